@@ -1,0 +1,62 @@
+//! The `patchflow` command: one subcommand per job of SPEC §7. Each subcommand parses its
+//! arguments, calls one library function and prints; no algorithm lives here.
+
+mod bench;
+mod cv;
+mod evaluate;
+mod features;
+mod generate;
+mod gp;
+mod show;
+mod train;
+
+use clap::{Parser, Subcommand};
+
+/// Simulated lidar traffic, difference-map patches and sparse heteroscedastic GPs for motion estimation.
+#[derive(Debug, Parser)]
+#[command(name = "patchflow", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Simulate scenarios and write a labelled dataset (SemanticKITTI layout plus motion truth).
+    Generate(generate::Args),
+    /// Extract importance-sampled patch or Gabor features with motion targets to a CSV.
+    Features(features::Args),
+    /// Draw one sweep's reflection and difference maps with clusters and true boxes to a PNG.
+    Show(show::Args),
+    /// Train the motion estimator (heading and speed GPs) on a dataset.
+    Train(train::Args),
+    /// Run every method on the five situations of a dataset and write metrics, tables and plots.
+    Evaluate(evaluate::Args),
+    /// K-fold cross-validation tables after thesis Tables 4.1 to 4.4.
+    Cv(cv::Args),
+    /// The main job: generate, train, cross-validate and evaluate on embedded defaults.
+    Bench(bench::Args),
+    /// Gaussian-process regression on any CSV.
+    Gp(gp::Args),
+}
+
+fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Generate(args) => generate::run(args),
+        Command::Features(args) => features::run(args),
+        Command::Show(args) => show::run(args),
+        Command::Train(args) => train::run(args),
+        Command::Evaluate(args) => evaluate::run(args),
+        Command::Cv(args) => cv::run(args),
+        Command::Bench(args) => bench::run(args),
+        Command::Gp(args) => gp::run(args),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Motion features from consecutive sweeps (thesis Chapter 2).

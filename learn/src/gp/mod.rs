@@ -1,0 +1,1 @@
+//! Gaussian-process regression: full GP, SPGP (FITC) and SPGP-HET (thesis 3.1.3).

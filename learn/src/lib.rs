@@ -1,0 +1,10 @@
+//! patchflow's learner: reflection and difference maps, single-link clusters, map-patch and Gabor
+//! features (thesis Chapter 2), and sparse heteroscedastic Gaussian processes (thesis Chapter 3).
+
+mod error;
+mod features;
+mod gp;
+
+pub use error::{LearnError, Result};
+pub use features::*;
+pub use gp::*;

@@ -1,0 +1,33 @@
+//! The dataset vocabulary of patchflow: plain data shared by the simulator, the learner and the
+//! evaluation, and the one on-disk format (SemanticKITTI layout plus motion truth, SPEC §4).
+//!
+//! This crate knows nothing of Rapier: `learn` and `eval` read datasets through it without pulling
+//! in the scene code.
+//!
+//! ```
+//! use patchflow_dataset::{PointLabel, SemanticClass};
+//! let label = PointLabel::new(SemanticClass::MovingCar, 7);
+//! assert_eq!(label.semantic(), 252);
+//! assert_eq!(label.instance(), 7);
+//! ```
+
+mod error;
+mod manifest;
+mod object;
+mod pose;
+mod reader;
+mod semantic;
+mod sweep;
+mod writer;
+
+pub use error::{DatasetError, Result};
+pub use manifest::{FORMAT_NAME, FORMAT_VERSION, Manifest, SequenceInfo};
+pub use object::{ActorClass, ObjectTruth};
+pub use pose::{format_kitti_pose, parse_kitti_pose};
+pub use reader::{Dataset, SequenceReader};
+pub use semantic::{PointLabel, SemanticClass};
+pub use sweep::Sweep;
+pub use writer::{SequenceWriter, write_atomic};
+
+/// Rigid transform type used for every pose (`world_from_sensor` and friends), f64 in the world frame.
+pub type Pose = nalgebra::Isometry3<f64>;

@@ -1,0 +1,70 @@
+//! Per-sweep ground truth of one actor: pose, size and exact motion in the world frame.
+
+use serde::{Deserialize, Serialize};
+
+use crate::SemanticClass;
+
+/// What kind of actor an object is. Cars come in several sizes; the class does not fix the size.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ActorClass {
+    /// A passenger car (compact to van size).
+    Car,
+    /// A truck.
+    Truck,
+    /// A pedestrian.
+    Pedestrian,
+    /// A bicyclist.
+    Cyclist,
+}
+
+impl ActorClass {
+    /// The SemanticKITTI class of this actor, moving or not.
+    pub fn semantic(self, moving: bool) -> SemanticClass {
+        match (self, moving) {
+            (Self::Car, false) => SemanticClass::Car,
+            (Self::Car, true) => SemanticClass::MovingCar,
+            (Self::Truck, false) => SemanticClass::Truck,
+            (Self::Truck, true) => SemanticClass::MovingTruck,
+            (Self::Pedestrian, false) => SemanticClass::Person,
+            (Self::Pedestrian, true) => SemanticClass::MovingPerson,
+            (Self::Cyclist, false) => SemanticClass::Bicyclist,
+            (Self::Cyclist, true) => SemanticClass::MovingBicyclist,
+        }
+    }
+}
+
+/// Ground truth of one actor at a sweep's reference time, world frame (z up, metres, radians).
+///
+/// `heading_rad` is the direction of the ground-plane velocity, counter-clockwise from world +x;
+/// for an actor standing still it equals `yaw_rad`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectTruth {
+    /// Actor id; equals the instance id in the high 16 bits of its points' labels (never 0).
+    pub id: u16,
+    /// The actor's name in the scenario file.
+    pub name: String,
+    /// Actor class.
+    pub class: ActorClass,
+    /// True for the one actor a situation marks as the benchmark target.
+    pub target: bool,
+    /// True if the actor moves at this instant (speed at least 0.05 m/s); decides moving vs static ids.
+    pub moving: bool,
+    /// Centre of the bounding box, world frame.
+    pub centre_m: [f64; 3],
+    /// Box size: length (along yaw), width, height.
+    pub size_m: [f64; 3],
+    /// Yaw of the box's long axis, counter-clockwise from world +x.
+    pub yaw_rad: f64,
+    /// Velocity of the box centre, world frame.
+    pub velocity_mps: [f64; 3],
+    /// |velocity| in the ground plane.
+    pub speed_mps: f64,
+    /// Direction of the ground-plane velocity, counter-clockwise from world +x.
+    pub heading_rad: f64,
+    /// Yaw rate, counter-clockwise positive.
+    pub yaw_rate_radps: f64,
+    /// Number of lidar points on this actor in this sweep.
+    pub point_count: u32,
+}

@@ -1,0 +1,69 @@
+//! One lidar sweep: points in the sensor frame with per-point labels, flow and timing, plus object truth.
+
+use crate::{ObjectTruth, PointLabel, Pose};
+
+/// One labelled sweep as stored on disk (SPEC §4).
+///
+/// The per-point arrays are parallel: index `i` of each describes the same point. Points are in
+/// the sensor frame at the sweep's reference time (`stamp_secs`) with the ego's own motion removed,
+/// as in KITTI odometry; moving actors keep their rolling-shutter smear.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Sweep {
+    /// Sweep number within its sequence (file name `NNNNNN`).
+    pub index: u32,
+    /// Reference time of the sweep, seconds since the sequence started (`times.txt`).
+    pub stamp_secs: f64,
+    /// Pose of the sensor at the reference time (`poses.txt`).
+    pub world_from_sensor: Pose,
+    /// x, y, z in the sensor frame (KITTI axes: x forward, y left, z up), metres.
+    pub points_in_sensor: Vec<[f32; 3]>,
+    /// Return intensity in [0, 1].
+    pub intensities: Vec<f32>,
+    /// SemanticKITTI label per point.
+    pub labels: Vec<PointLabel>,
+    /// True velocity of the hit surface point, world frame, m/s.
+    pub flow_in_world_mps: Vec<[f32; 3]>,
+    /// Seconds since the sweep started at which the point was measured.
+    pub time_in_sweep_secs: Vec<f32>,
+    /// Ground truth of every actor at the reference time.
+    pub objects: Vec<ObjectTruth>,
+}
+
+impl Sweep {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.points_in_sensor.len()
+    }
+
+    /// True if the sweep has no points.
+    pub fn is_empty(&self) -> bool {
+        self.points_in_sensor.is_empty()
+    }
+
+    /// Checks that all per-point arrays have one entry per point; returns the first mismatch.
+    pub fn check_lengths(&self) -> Result<(), String> {
+        let n = self.len();
+        for (name, len) in [
+            ("intensities", self.intensities.len()),
+            ("labels", self.labels.len()),
+            ("flow", self.flow_in_world_mps.len()),
+            ("time", self.time_in_sweep_secs.len()),
+        ] {
+            if len != n {
+                return Err(format!("{name} has {len} entries for {n} points"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Point `i` transformed into the world frame.
+    pub fn point_in_world(&self, i: usize) -> nalgebra::Point3<f64> {
+        let [x, y, z] = self.points_in_sensor[i];
+        self.world_from_sensor * nalgebra::Point3::new(f64::from(x), f64::from(y), f64::from(z))
+    }
+
+    /// The object marked `target`, if any.
+    pub fn target(&self) -> Option<&ObjectTruth> {
+        self.objects.iter().find(|o| o.target)
+    }
+}
