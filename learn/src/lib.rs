@@ -2,9 +2,11 @@
 //! features (thesis Chapter 2), and sparse heteroscedastic Gaussian processes (thesis Chapter 3).
 
 mod error;
+mod estimator;
 mod features;
 mod gp;
 
 pub use error::{LearnError, Result};
+pub use estimator::*;
 pub use features::*;
 pub use gp::*;
