@@ -2,14 +2,20 @@
 //! difference maps, single-link clusters, map patches and Gabor responses, and the importance
 //! sampled training samples of thesis 3.1.1-3.1.2.
 
+mod cluster;
 mod difference_map;
+mod gabor;
 mod grid;
 mod params;
+mod patch;
 mod reflection_map;
 mod slice;
 pub mod synthetic;
 
+pub use cluster::Clusters;
 pub use difference_map::MapPair;
+pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
 pub use grid::{GridMap, GridWindow};
 pub use params::{FeatureParams, GaborParams};
+pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
 pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
