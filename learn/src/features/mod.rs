@@ -10,6 +10,7 @@ mod params;
 mod patch;
 mod reflection_map;
 mod slice;
+mod sweep_features;
 pub mod synthetic;
 
 pub use cluster::Clusters;
@@ -19,3 +20,4 @@ pub use grid::{GridMap, GridWindow};
 pub use params::{FeatureParams, GaborParams};
 pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
 pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
+pub use sweep_features::{FeatureKind, SweepFeatures};
