@@ -1,1 +1,29 @@
-//! Motion features from consecutive sweeps (thesis Chapter 2).
+//! Motion features from consecutive sweeps (thesis Chapter 2): the height slice, reflection and
+//! difference maps, single-link clusters, map patches and Gabor responses, and the importance
+//! sampled training samples of thesis 3.1.1-3.1.2.
+
+mod cluster;
+mod csv;
+mod difference_map;
+mod gabor;
+mod grid;
+mod params;
+mod patch;
+mod reflection_map;
+mod samples;
+mod sampling;
+mod slice;
+mod sweep_features;
+pub mod synthetic;
+
+pub use cluster::Clusters;
+pub use csv::{Alignment, META_COLUMNS};
+pub use difference_map::MapPair;
+pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
+pub use grid::{GridMap, GridWindow};
+pub use params::{FeatureParams, GaborParams};
+pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
+pub use samples::{Sample, SampleSet};
+pub use sampling::importance_sample;
+pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
+pub use sweep_features::{FeatureKind, SweepFeatures};

@@ -1,0 +1,203 @@
+//! World-aligned grid windows and the maps stored on them (thesis 2.1: the data association
+//! between maps is given by cell positions, so every map lives on one global lattice).
+
+/// A rectangular window onto the global lattice of square cells of side `cell_m`.
+///
+/// Global cell `(gx, gy)` covers world `x ∈ [gx·cell_m, (gx+1)·cell_m)` and likewise for y, so
+/// the windows of two sweeps line up by an integer offset. Local cell `(col, row)` of a window is
+/// global cell `(origin_col + col, origin_row + row)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridWindow {
+    /// Global column of local column 0.
+    pub origin_col: i64,
+    /// Global row of local row 0.
+    pub origin_row: i64,
+    /// Number of columns (x direction).
+    pub cols: usize,
+    /// Number of rows (y direction).
+    pub rows: usize,
+    /// Side of a cell, metres.
+    pub cell_m: f64,
+}
+
+impl GridWindow {
+    /// The window of `2·half_extent_m` a side (rounded up to whole cells) around `centre_xy`.
+    pub fn centred(centre_xy: [f64; 2], half_extent_m: f64, cell_m: f64) -> Self {
+        let side = (2.0 * half_extent_m / cell_m).ceil() as usize;
+        let half = (side / 2) as i64;
+        Self {
+            origin_col: (centre_xy[0] / cell_m).floor() as i64 - half,
+            origin_row: (centre_xy[1] / cell_m).floor() as i64 - half,
+            cols: side,
+            rows: side,
+            cell_m,
+        }
+    }
+
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.cols * self.rows
+    }
+
+    /// True if the window has no cells.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Continuous local cell coordinates of a world point: cell `(c, r)` spans `[c, c+1)`.
+    pub fn to_local(&self, x_m: f64, y_m: f64) -> [f64; 2] {
+        [
+            x_m / self.cell_m - self.origin_col as f64,
+            y_m / self.cell_m - self.origin_row as f64,
+        ]
+    }
+
+    /// The local cell holding a world point, if it lies inside the window.
+    pub fn cell_of(&self, x_m: f64, y_m: f64) -> Option<(usize, usize)> {
+        let [u, v] = self.to_local(x_m, y_m);
+        let (c, r) = (u.floor(), v.floor());
+        (c >= 0.0 && r >= 0.0 && (c as usize) < self.cols && (r as usize) < self.rows)
+            .then_some((c as usize, r as usize))
+    }
+
+    /// World coordinates of the centre of local cell `(col, row)`.
+    pub fn centre_of(&self, col: usize, row: usize) -> [f64; 2] {
+        [
+            (self.origin_col + col as i64) as f64 * self.cell_m + 0.5 * self.cell_m,
+            (self.origin_row + row as i64) as f64 * self.cell_m + 0.5 * self.cell_m,
+        ]
+    }
+
+    /// Row-major index of local cell `(col, row)`.
+    pub fn index(&self, col: usize, row: usize) -> usize {
+        row * self.cols + col
+    }
+}
+
+/// Values on a [`GridWindow`], row-major (`row · cols + col`), with one value for every cell
+/// outside the window (the prior for reflection maps, 0 for difference maps).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridMap {
+    window: GridWindow,
+    values: Vec<f64>,
+    outside: f64,
+}
+
+impl GridMap {
+    /// A map with every cell, inside and outside, at `value`.
+    pub fn filled(window: GridWindow, value: f64) -> Self {
+        Self {
+            window,
+            values: vec![value; window.len()],
+            outside: value,
+        }
+    }
+
+    /// A map from row-major values; `None` if the count does not match the window.
+    pub fn from_values(window: GridWindow, values: Vec<f64>, outside: f64) -> Option<Self> {
+        (values.len() == window.len()).then_some(Self {
+            window,
+            values,
+            outside,
+        })
+    }
+
+    /// The window.
+    pub fn window(&self) -> &GridWindow {
+        &self.window
+    }
+
+    /// Row-major cell values.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// Row-major cell values, mutable.
+    pub fn values_mut(&mut self) -> &mut [f64] {
+        &mut self.values
+    }
+
+    /// Value of every cell outside the window.
+    pub fn outside(&self) -> f64 {
+        self.outside
+    }
+
+    /// Sets the value of cells outside the window.
+    pub fn set_outside(&mut self, value: f64) {
+        self.outside = value;
+    }
+
+    /// Value of local cell `(col, row)`, given as signed so neighbours of edge cells read the
+    /// outside value.
+    pub fn get(&self, col: i64, row: i64) -> f64 {
+        let w = &self.window;
+        if col < 0 || row < 0 || col >= w.cols as i64 || row >= w.rows as i64 {
+            self.outside
+        } else {
+            self.values[row as usize * w.cols + col as usize]
+        }
+    }
+
+    /// Value of the cell holding a world point (no interpolation).
+    pub fn at(&self, x_m: f64, y_m: f64) -> f64 {
+        let [u, v] = self.window.to_local(x_m, y_m);
+        self.get(u.floor() as i64, v.floor() as i64)
+    }
+
+    /// Bilinear interpolation between cell centres at a world point.
+    pub fn sample_bilinear(&self, x_m: f64, y_m: f64) -> f64 {
+        let [u, v] = self.window.to_local(x_m, y_m);
+        let (u, v) = (u - 0.5, v - 0.5);
+        let (c0, r0) = (u.floor(), v.floor());
+        let (tu, tv) = (u - c0, v - r0);
+        let (c, r) = (c0 as i64, r0 as i64);
+        let top = self.get(c, r) * (1.0 - tu) + self.get(c + 1, r) * tu;
+        let bottom = self.get(c, r + 1) * (1.0 - tu) + self.get(c + 1, r + 1) * tu;
+        top * (1.0 - tv) + bottom * tv
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn windows_around_nearby_centres_line_up_by_whole_cells() {
+        let a = GridWindow::centred([10.03, -4.96], 40.0, 0.1);
+        let b = GridWindow::centred([10.57, -4.11], 40.0, 0.1);
+        assert_eq!((a.cols, a.rows), (800, 800));
+        let ca = a.centre_of(100, 200);
+        let (col, row) = b.cell_of(ca[0], ca[1]).unwrap();
+        let cb = b.centre_of(col, row);
+        assert!((ca[0] - cb[0]).abs() < 1e-9 && (ca[1] - cb[1]).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_window_covers_its_half_extent_in_every_direction() {
+        let w = GridWindow::centred([3.0, 7.0], 40.0, 0.1);
+        for (dx, dy) in [(-39.9, 0.0), (39.9, 0.0), (0.0, -39.9), (0.0, 39.9)] {
+            assert!(w.cell_of(3.0 + dx, 7.0 + dy).is_some(), "{dx} {dy}");
+        }
+        assert!(w.cell_of(3.0 + 40.2, 7.0).is_none());
+    }
+
+    #[test]
+    fn bilinear_sampling_is_exact_at_centres_and_linear_between() {
+        let w = GridWindow::centred([0.0, 0.0], 0.5, 0.1);
+        let mut map = GridMap::filled(w, 0.0);
+        let i = w.index(4, 5);
+        map.values_mut()[i] = 1.0;
+        let c = w.centre_of(4, 5);
+        assert!((map.sample_bilinear(c[0], c[1]) - 1.0).abs() < 1e-12);
+        assert!((map.sample_bilinear(c[0] + 0.05, c[1]) - 0.5).abs() < 1e-12);
+        assert!((map.sample_bilinear(c[0] + 0.025, c[1] + 0.05) - 0.375).abs() < 1e-12);
+    }
+
+    #[test]
+    fn cells_outside_the_window_read_the_outside_value() {
+        let w = GridWindow::centred([0.0, 0.0], 1.0, 0.1);
+        let map = GridMap::filled(w, 0.5);
+        assert_eq!(map.get(-1, 3), 0.5);
+        assert_eq!(map.at(100.0, 0.0), 0.5);
+    }
+}

@@ -1,0 +1,239 @@
+//! One sweep's motion features (thesis Chapter 2 end to end): the height slice, the reflection
+//! and difference maps, the clusters, and patches and Gabor responses on demand.
+
+use patchflow_dataset::Sweep;
+use rayon::prelude::*;
+
+use crate::features::cluster::Clusters;
+use crate::features::difference_map::MapPair;
+use crate::features::gabor::{GABOR_FILTERS, GaborBank};
+use crate::features::grid::GridMap;
+use crate::features::patch::Patch;
+use crate::features::slice::{HeightSlice, SlicedPoint};
+use crate::{FeatureParams, Result};
+
+/// Which feature vector a point gets (thesis 2.2.2 and 2.2.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FeatureKind {
+    /// The 242 patch values (difference map, then reflection map).
+    Patch,
+    /// The 16 Gabor responses of the difference half of the patch.
+    Gabor,
+}
+
+impl FeatureKind {
+    /// Column names of this feature, in value order.
+    pub fn names(self) -> Vec<String> {
+        match self {
+            Self::Patch => Patch::feature_names(),
+            Self::Gabor => GaborBank::feature_names(),
+        }
+    }
+}
+
+/// The features of the current sweep given the previous one. Point indices `i` below index
+/// [`Self::points`], the sliced end points inside the map window; `points()[i].index` is the
+/// index into the sweep's own arrays.
+///
+/// ```
+/// use patchflow_learn::{FeatureParams, SweepFeatures};
+/// use patchflow_learn::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
+/// let scene = SyntheticScene { boxes: vec![SceneBox::car(1, [12.0, 0.0], 3.14, 5.0)] };
+/// let lidar = SyntheticLidar::with_resolution(32, 720);
+/// let prev = scene.scan(&lidar, [0.0, 0.0], 0.0, 0);
+/// let curr = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
+/// let features = SweepFeatures::compute(&prev, &curr, &FeatureParams::default()).unwrap();
+/// assert_eq!(features.clusters().len(), 1);
+/// let patch = features.heading_patch(0);
+/// assert!(patch.mean_abs_difference() > 0.0);
+/// ```
+#[derive(Debug, Clone)]
+pub struct SweepFeatures {
+    sensor_xy: [f64; 2],
+    points: Vec<SlicedPoint>,
+    clusters: Clusters,
+    maps: MapPair,
+    gabor: GaborBank,
+}
+
+impl SweepFeatures {
+    /// Runs the per-sweep pipeline on two consecutive sweeps.
+    pub fn compute(prev: &Sweep, curr: &Sweep, params: &FeatureParams) -> Result<Self> {
+        params.validate()?;
+        // 2.1.1: cut both sweeps to the height slice.
+        let (prev_slice, curr_slice) = rayon::join(
+            || HeightSlice::cut(prev, params),
+            || HeightSlice::cut(curr, params),
+        );
+        let (prev_slice, curr_slice) = (prev_slice?, curr_slice?);
+        // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their difference.
+        let maps = MapPair::build(&prev_slice, &curr_slice, params);
+        // 2.2.1: single-link clusters of the sliced end points that the maps cover.
+        let window = *maps.reflection.window();
+        let points: Vec<SlicedPoint> = curr_slice
+            .points
+            .into_iter()
+            .filter(|p| window.cell_of(p.x_m, p.y_m).is_some())
+            .collect();
+        let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
+        let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
+        Ok(Self {
+            sensor_xy: curr_slice.sensor_xy,
+            points,
+            clusters,
+            maps,
+            gabor: GaborBank::new(&params.gabor, params.cell_m),
+        })
+    }
+
+    /// The sliced end points inside the map window, in sweep order.
+    pub fn points(&self) -> &[SlicedPoint] {
+        &self.points
+    }
+
+    /// Number of sliced points.
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// True if no end point fell into the slice.
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// Sensor position of the current sweep, world x, y.
+    pub fn sensor_xy(&self) -> [f64; 2] {
+        self.sensor_xy
+    }
+
+    /// The single-link clusters of the points (ids follow the smallest member).
+    pub fn clusters(&self) -> &Clusters {
+        &self.clusters
+    }
+
+    /// Cluster id of point `i`.
+    pub fn cluster_of(&self, i: usize) -> usize {
+        self.clusters.cluster_of(i)
+    }
+
+    /// Reflection map of the current sweep.
+    pub fn reflection_map(&self) -> &GridMap {
+        &self.maps.reflection
+    }
+
+    /// Difference map, current minus previous.
+    pub fn difference_map(&self) -> &GridMap {
+        &self.maps.difference
+    }
+
+    /// Bearing of sensor → point `i` in the world frame, counter-clockwise from +x.
+    pub fn bearing_rad(&self, i: usize) -> f64 {
+        let p = &self.points[i];
+        (p.y_m - self.sensor_xy[1]).atan2(p.x_m - self.sensor_xy[0])
+    }
+
+    /// Patch of point `i` rotated to the axis `axis_rad` (thesis 2.2.2).
+    pub fn patch_along(&self, i: usize, axis_rad: f64) -> Patch {
+        let p = &self.points[i];
+        Patch::extract(&self.maps, [p.x_m, p.y_m], axis_rad)
+    }
+
+    /// Heading patch: aligned to the observation direction sensor → point.
+    pub fn heading_patch(&self, i: usize) -> Patch {
+        self.patch_along(i, self.bearing_rad(i))
+    }
+
+    /// Speed patch: aligned to a heading (the true one in training, the predicted one at run time).
+    pub fn speed_patch(&self, i: usize, heading_rad: f64) -> Patch {
+        self.patch_along(i, heading_rad)
+    }
+
+    /// Heading patches of many points, in parallel, in the order given.
+    pub fn heading_patches(&self, indices: &[usize]) -> Vec<Patch> {
+        indices.par_iter().map(|&i| self.heading_patch(i)).collect()
+    }
+
+    /// Gabor responses of a patch's difference half (thesis 2.2.3).
+    pub fn gabor(&self, patch: &Patch) -> [f64; GABOR_FILTERS] {
+        self.gabor.responses(patch)
+    }
+
+    /// The feature vector of a patch: its values or its Gabor responses.
+    pub fn feature_of(&self, patch: &Patch, kind: FeatureKind) -> Vec<f64> {
+        match kind {
+            FeatureKind::Patch => patch.values.to_vec(),
+            FeatureKind::Gabor => self.gabor(patch).to_vec(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::features::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
+
+    /// A car driving away along the line of sight (+x) and a static wall off to the side; the
+    /// ego drives 0.5 m along +y between the sweeps.
+    fn car_and_wall() -> SweepFeatures {
+        let scene = SyntheticScene {
+            boxes: vec![
+                SceneBox::car(7, [14.0, 0.0], 0.0, 6.0),
+                SceneBox::wall([0.0, 12.0], 0.0, [10.0, 0.4, 2.5]),
+            ],
+        };
+        let lidar = SyntheticLidar::with_resolution(64, 1800);
+        let prev = scene.scan(&lidar, [0.0, -0.5], 0.0, 0);
+        let curr = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
+        let params = FeatureParams {
+            half_extent_m: 25.0,
+            ..FeatureParams::default()
+        };
+        let f = SweepFeatures::compute(&prev, &curr, &params).unwrap();
+        assert!(
+            f.points()
+                .iter()
+                .all(|p| curr.labels[p.index].semantic() != 40)
+        );
+        f
+    }
+
+    fn mean_patch_weight(f: &SweepFeatures, on: impl Fn(&SlicedPoint) -> bool) -> f64 {
+        let idx: Vec<usize> = (0..f.len()).filter(|&i| on(&f.points()[i])).collect();
+        assert!(idx.len() > 20, "{} points", idx.len());
+        let patches = f.heading_patches(&idx);
+        patches.iter().map(Patch::mean_abs_difference).sum::<f64>() / patches.len() as f64
+    }
+
+    #[test]
+    fn a_car_on_the_line_of_sight_changes_the_map_far_more_than_a_static_wall() {
+        let f = car_and_wall();
+        let car = mean_patch_weight(&f, |p| p.x_m > 5.0);
+        let wall = mean_patch_weight(&f, |p| p.y_m > 10.0);
+        assert!(car >= 5.0 * wall, "car {car} vs wall {wall}");
+    }
+
+    #[test]
+    fn the_car_and_the_wall_form_separate_clusters() {
+        let f = car_and_wall();
+        assert_eq!(f.clusters().len(), 2);
+        let car_cluster = f.cluster_of((0..f.len()).find(|&i| f.points()[i].x_m > 5.0).unwrap());
+        for i in 0..f.len() {
+            assert_eq!(f.cluster_of(i) == car_cluster, f.points()[i].x_m > 5.0);
+        }
+    }
+
+    #[test]
+    fn the_bearing_points_from_the_sensor_to_the_point() {
+        let f = car_and_wall();
+        let i = (0..f.len()).find(|&i| f.points()[i].y_m > 10.0).unwrap();
+        let p = f.points()[i];
+        assert!((f.bearing_rad(i) - p.y_m.atan2(p.x_m)).abs() < 1e-12);
+        let g = f.gabor(&f.heading_patch(i));
+        assert_eq!(g.len(), 16);
+        assert_eq!(
+            f.feature_of(&f.speed_patch(i, 0.3), FeatureKind::Patch)
+                .len(),
+            242
+        );
+    }
+}
