@@ -6,3 +6,5 @@ mod kernel;
 mod linalg;
 mod sparse_posterior;
 mod train_data;
+mod full;
+mod lbfgs;
