@@ -44,14 +44,12 @@ pub(crate) struct Factors {
     blocks: Vec<Pass1>,
 }
 
-/// The NLML, its gradient, the jitter used and ∂𝓛/∂ε = tr(∂𝓛/∂B_u).
+/// The NLML, its gradient and ∂𝓛/∂ε = tr(∂𝓛/∂B_u).
 pub(crate) struct Evaluation {
     /// 𝓛.
     pub nlml: f64,
     /// Gradient in log-coordinates (raw Z).
     pub grad: HyperGrad,
-    /// The jitter actually used.
-    pub jitter: f64,
     /// ∂𝓛/∂ε, for a jitter proportional to s.
     pub d_jitter: f64,
 }
@@ -200,7 +198,7 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
         pseudo_inputs: d_z,
         log_pseudo_noise: h.pseudo_noise.as_ref().map(|p| p.component_mul(&d_bu.diagonal())),
     };
-    Ok(Evaluation { nlml: f.nlml, grad, jitter: f.jitter, d_jitter: d_bu.trace() })
+    Ok(Evaluation { nlml: f.nlml, grad, d_jitter: d_bu.trace() })
 }
 
 #[cfg(test)]

@@ -34,7 +34,7 @@ fn factor(x: &DMatrix<f64>, h: &Hyper, jitter: f64) -> Result<(DMatrix<f64>, DMa
 /// 𝓛 = ½yᵀC⁻¹y + ½log|C| + (N/2)log 2π (eq. 3.18 negated) and its gradient.
 pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Evaluation> {
     let x = data.x_rows();
-    let (k, l, used) = factor(&x, h, jitter)?;
+    let (k, l, _) = factor(&x, h, jitter)?;
     let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
     let c_inv = mul(&t_view(&l_inv), &l_inv);
     let alpha = &c_inv * &data.y;
@@ -59,7 +59,7 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
         pseudo_inputs: DMatrix::zeros(0, data.dims()),
         log_pseudo_noise: None,
     };
-    Ok(Evaluation { nlml, grad, jitter: used, d_jitter: trace })
+    Ok(Evaluation { nlml, grad, d_jitter: trace })
 }
 
 /// What the exact GP keeps for prediction: the training inputs, C⁻¹y and chol(C).
