@@ -5,16 +5,15 @@ use std::time::Instant;
 
 use nalgebra::{DMatrix, DVector};
 
-use super::full::{self, FullPosterior};
-use super::hyper::{Hyper, Layout};
-use super::init::initial_hyper;
+use super::full::FullPosterior;
+use super::hyper::Hyper;
 use super::lbfgs::{LbfgsOptions, minimize};
 use super::model::{FitReport, GpModel, Posterior};
+use super::objective::GpObjective;
 use super::params::{GpKind, GpParams, GpValidParams};
 use super::sparse_posterior::SparsePosterior;
 use super::train_data::TrainData;
 use super::transform::Standardiser;
-use super::fitc;
 use crate::{LearnError, Result};
 
 /// Correction pairs kept by L-BFGS.
@@ -25,19 +24,6 @@ impl GpParams {
     pub fn fit(&self, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<GpModel> {
         self.check()?.fit(x, y)
     }
-}
-
-/// The NLML and its flat gradient at θ (gp.md §1-2; full GP: thesis eq. 3.18).
-fn evidence(data: &TrainData, kind: GpKind, layout: &Layout, jitter: f64, theta: &DVector<f64>) -> Result<(f64, DVector<f64>)> {
-    let h = layout.unpack(theta);
-    let eps = jitter * h.signal_variance;
-    let e = match kind {
-        GpKind::Full => full::objective(data, &h, eps)?,
-        GpKind::Spgp | GpKind::SpgpHet => fitc::objective(data, &h, eps)?,
-    };
-    let mut grad = layout.pack_grad(&h, &e.grad);
-    grad[layout.dims] += eps * e.d_jitter; // ε = jitter·s, so ∂ε/∂log s = ε (gp.md §2.3)
-    Ok((e.nlml, grad))
 }
 
 /// Caches what prediction needs (thesis eqs. 3.32-3.33, or 3.20-3.21 for the full GP).
@@ -90,28 +76,22 @@ impl GpValidParams {
         // Standardise inputs per column and the target (stored with the model).
         let inputs = Standardiser::of_columns(x);
         let target = Standardiser::of_vector(y);
-        let data = TrainData::new(&inputs.apply(x), &target.apply_vector(y));
         // Seeded initialisation: random-subset pseudo-inputs, spread-based ℓ, s = var(y) (gp.md §5.3).
-        let start = initial_hyper(&data, kind, self.pseudo_inputs(), self.seed());
-        let layout = Layout {
-            dims: data.dims(),
-            pseudo: start.pseudo_inputs.nrows(),
-            het: kind == GpKind::SpgpHet,
-            noise_floor: self.noise_floor(),
-        };
+        let data = TrainData::new(&inputs.apply(x), &target.apply_vector(y));
+        let objective = GpObjective::standardised(self, data);
         // Maximise the marginal likelihood p(y | X, X̄, Θ) (eq. 3.30) jointly in Θ, the
         // pseudo-inputs X̄ and, for SPGP-HET, the pseudo-input noise h (eq. 3.34).
         let (grad_tol, rel_tol) = self.tolerances();
         let options = LbfgsOptions { max_iters: self.max_iters(), max_evals: self.max_evals(), memory: LBFGS_MEMORY, grad_tol, rel_tol };
-        let jitter = self.jitter();
-        let outcome = minimize(|t| evidence(&data, kind, &layout, jitter, t), layout.pack(&start), options)?;
-        let hyper = layout.unpack(&outcome.x);
+        let outcome = minimize(|t| objective.value_and_gradient(t), objective.start(), options)?;
+        let hyper = objective.layout.unpack(&outcome.x);
         // Condition on the data for predictions (eqs. 3.32-3.33).
-        let (posterior, used_jitter) = condition(&data, kind, &hyper, jitter)?;
+        let data = &objective.data;
+        let (posterior, used_jitter) = condition(data, kind, &hyper, self.jitter())?;
         let report = FitReport {
             n: data.len(),
             d: data.dims(),
-            m: layout.pseudo,
+            m: objective.layout.pseudo,
             evals: outcome.evals,
             iterations: outcome.iterations,
             seconds: clock.elapsed().as_secs_f64(),

@@ -21,6 +21,7 @@ mod kernel;
 mod lbfgs;
 mod linalg;
 mod model;
+mod objective;
 mod params;
 mod sparse_posterior;
 mod train_data;
@@ -28,5 +29,6 @@ mod transform;
 
 pub use full::FULL_GP_MAX_SAMPLES;
 pub use model::{FitReport, GpModel, GpPrediction};
+pub use objective::GpObjective;
 pub use params::{GpKind, GpParams, GpValidParams};
 pub use transform::Standardiser;
