@@ -1,1 +1,34 @@
 //! Gaussian-process regression: full GP, SPGP (FITC) and SPGP-HET (thesis 3.1.3).
+//!
+//! ```
+//! use nalgebra::{DMatrix, DVector};
+//! use patchflow_learn::{GpKind, GpParams};
+//!
+//! let x = DMatrix::from_fn(40, 1, |i, _| i as f64 / 8.0);
+//! let y = x.column(0).map(|v| v.sin());
+//! let model = GpParams::new(GpKind::Spgp).pseudo_inputs(8).max_iters(50).fit(&x, &y)?;
+//! let p = model.predict(&DMatrix::from_element(1, 1, 2.0))?;
+//! assert!((p.mean[0] - 2f64.sin()).abs() < 0.1);
+//! # Ok::<(), patchflow_learn::LearnError>(())
+//! ```
+
+mod fit;
+mod fitc;
+mod full;
+mod hyper;
+mod init;
+mod kernel;
+mod lbfgs;
+mod linalg;
+mod model;
+mod objective;
+mod params;
+mod sparse_posterior;
+mod train_data;
+mod transform;
+
+pub use full::FULL_GP_MAX_SAMPLES;
+pub use model::{FitReport, GpModel, GpPrediction};
+pub use objective::GpObjective;
+pub use params::{GpKind, GpParams, GpValidParams};
+pub use transform::Standardiser;

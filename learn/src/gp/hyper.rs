@@ -1,0 +1,131 @@
+//! The hyperparameters of the SE-ARD sparse GP and the optimiser's parameter vector (gp.md §5.2):
+//! log ℓ, log s, log(σ² − floor), raw pseudo-inputs Z and, for SPGP-HET, log h.
+
+use nalgebra::{DMatrix, DVector};
+
+/// Largest magnitude of a log-parameter; keeps exp() finite when the optimiser strays.
+const LOG_LIMIT: f64 = 40.0;
+
+/// Kernel, noise and pseudo-input parameters in the standardised space of a fit.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Hyper {
+    /// ARD lengthscales ℓ_d (not squared).
+    pub lengthscales: DVector<f64>,
+    /// Signal variance s.
+    pub signal_variance: f64,
+    /// Observation noise variance σ².
+    pub noise_variance: f64,
+    /// Pseudo-inputs Z, one row each (M×D); empty for the full GP.
+    pub pseudo_inputs: DMatrix<f64>,
+    /// Per-pseudo-input noise h (SPGP-HET, thesis eq. 3.34); `None` for FITC.
+    pub pseudo_noise: Option<DVector<f64>>,
+}
+
+/// Gradient of the NLML in the natural coordinates of each group.
+#[derive(Debug, Clone)]
+pub(crate) struct HyperGrad {
+    /// ∂𝓛/∂log ℓ_d.
+    pub log_lengthscales: DVector<f64>,
+    /// ∂𝓛/∂log s.
+    pub log_signal_variance: f64,
+    /// ∂𝓛/∂log σ².
+    pub log_noise_variance: f64,
+    /// ∂𝓛/∂Z (M×D).
+    pub pseudo_inputs: DMatrix<f64>,
+    /// ∂𝓛/∂log h (SPGP-HET).
+    pub log_pseudo_noise: Option<DVector<f64>>,
+}
+
+/// How a [`Hyper`] maps to a flat vector: [log ℓ (D), log s, log(σ² − floor), Z (column-major), log h].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Layout {
+    /// Input dimension D.
+    pub dims: usize,
+    /// Number of pseudo-inputs M (0 for the full GP).
+    pub pseudo: usize,
+    /// Whether log h is part of the vector.
+    pub het: bool,
+    /// Lower bound on σ² (gp.md §1, numerical guard 2).
+    pub noise_floor: f64,
+}
+
+impl Layout {
+    /// Length of the flat vector.
+    pub fn len(&self) -> usize {
+        self.dims + 2 + self.pseudo * self.dims + if self.het { self.pseudo } else { 0 }
+    }
+
+    /// The flat vector of `h`.
+    pub fn pack(&self, h: &Hyper) -> DVector<f64> {
+        let mut v = Vec::with_capacity(self.len());
+        v.extend(h.lengthscales.iter().map(|l| l.ln()));
+        v.push(h.signal_variance.ln());
+        v.push((h.noise_variance - self.noise_floor).max(1e-300).ln());
+        v.extend(h.pseudo_inputs.iter().copied());
+        if let Some(p) = &h.pseudo_noise {
+            v.extend(p.iter().map(|x| x.max(1e-300).ln()));
+        }
+        DVector::from_vec(v)
+    }
+
+    /// The hyperparameters of a flat vector.
+    pub fn unpack(&self, v: &DVector<f64>) -> Hyper {
+        let (d, m) = (self.dims, self.pseudo);
+        let ex = |x: f64| x.clamp(-LOG_LIMIT, LOG_LIMIT).exp();
+        let lengthscales = DVector::from_iterator(d, v.rows(0, d).iter().map(|x| ex(*x)));
+        let z0 = d + 2;
+        let pseudo_inputs = DMatrix::from_column_slice(m, d, &v.as_slice()[z0..z0 + m * d]);
+        let pseudo_noise = self
+            .het
+            .then(|| DVector::from_iterator(m, v.rows(z0 + m * d, m).iter().map(|x| ex(*x))));
+        Hyper {
+            lengthscales,
+            signal_variance: ex(v[d]),
+            noise_variance: self.noise_floor + ex(v[d + 1]),
+            pseudo_inputs,
+            pseudo_noise,
+        }
+    }
+
+    /// The flat gradient for the point `h`, chaining ∂/∂log σ² through the floor.
+    pub fn pack_grad(&self, h: &Hyper, g: &HyperGrad) -> DVector<f64> {
+        let mut v = Vec::with_capacity(self.len());
+        v.extend(g.log_lengthscales.iter().copied());
+        v.push(g.log_signal_variance);
+        // σ² = floor + e^θ, so ∂/∂θ = ∂/∂log σ² · (σ² − floor)/σ².
+        v.push(g.log_noise_variance * (h.noise_variance - self.noise_floor) / h.noise_variance);
+        v.extend(g.pseudo_inputs.iter().copied());
+        if self.het {
+            if let Some(p) = &g.log_pseudo_noise {
+                v.extend(p.iter().copied());
+            } else {
+                v.extend(std::iter::repeat_n(0.0, self.pseudo));
+            }
+        }
+        DVector::from_vec(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packing_and_unpacking_round_trips() {
+        let layout = Layout { dims: 2, pseudo: 3, het: true, noise_floor: 1e-6 };
+        let h = Hyper {
+            lengthscales: DVector::from_vec(vec![0.5, 2.0]),
+            signal_variance: 1.3,
+            noise_variance: 0.02,
+            pseudo_inputs: DMatrix::from_fn(3, 2, |i, j| i as f64 - j as f64 * 0.5),
+            pseudo_noise: Some(DVector::from_vec(vec![0.1, 0.2, 0.3])),
+        };
+        let back = layout.unpack(&layout.pack(&h));
+        assert_eq!(layout.pack(&h).len(), layout.len());
+        assert!((back.noise_variance - 0.02).abs() < 1e-15);
+        assert!((back.lengthscales - h.lengthscales).amax() < 1e-14);
+        assert_eq!(back.pseudo_inputs, h.pseudo_inputs);
+        let pn = back.pseudo_noise.expect("het layout keeps h");
+        assert!((pn - DVector::from_vec(vec![0.1, 0.2, 0.3])).amax() < 1e-15);
+    }
+}

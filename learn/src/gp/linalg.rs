@@ -1,0 +1,140 @@
+//! Small dense linear-algebra helpers: transposed views for gemm, a jittered Cholesky (gp.md §5.1)
+//! and triangular inverses, so the O(NM²) products run as matrix-matrix products.
+
+use nalgebra::{DMatrix, DVector, Dyn, Matrix, MatrixView, Storage};
+
+/// A dense matrix view with arbitrary strides (e.g. a transpose).
+pub(crate) type StridedView<'a> = MatrixView<'a, f64, Dyn, Dyn, Dyn, Dyn>;
+
+use crate::{LearnError, Result};
+
+/// How many times the jitter is multiplied by 10 before a factorisation is declared failed.
+const JITTER_RETRIES: usize = 5;
+
+/// nalgebra's threshold below which `gemm` does not call matrixmultiply.
+const SMALL_DIM: usize = 5;
+
+/// A view of the transpose of the column-major `rows × cols` matrix stored in `data`.
+///
+/// nalgebra's `gemm` hands the strides to matrixmultiply, so multiplying by this view costs no copy.
+pub(crate) fn transposed(data: &[f64], rows: usize, cols: usize) -> StridedView<'_> {
+    StridedView::from_slice_with_strides(data, cols, rows, rows, 1)
+}
+
+/// The transpose of `a` as a view (see [`transposed`]).
+pub(crate) fn t_view(a: &DMatrix<f64>) -> StridedView<'_> {
+    transposed(a.as_slice(), a.nrows(), a.ncols())
+}
+
+/// `a * b` through matrixmultiply's gemm.
+pub(crate) fn mul<S1, S2>(a: &Matrix<f64, Dyn, Dyn, S1>, b: &Matrix<f64, Dyn, Dyn, S2>) -> DMatrix<f64>
+where
+    S1: Storage<f64, Dyn, Dyn>,
+    S2: Storage<f64, Dyn, Dyn>,
+{
+    // nalgebra's fallback for small dimensions (≤ 5) mis-handles strided views (its axcpy loops
+    // over the view's slice length), so small products go through owned copies.
+    if a.nrows().min(a.ncols()).min(b.ncols()) <= SMALL_DIM {
+        return a.clone_owned() * b.clone_owned();
+    }
+    let mut out = DMatrix::zeros(a.nrows(), b.ncols());
+    out.gemm(1.0, a, b, 0.0);
+    out
+}
+
+/// A lower Cholesky factor and the diagonal jitter that made the factorisation succeed.
+pub(crate) struct JitteredCholesky {
+    /// Lower-triangular factor of `a + jitter·I`.
+    pub l: DMatrix<f64>,
+    /// The jitter finally added to the diagonal.
+    pub jitter: f64,
+}
+
+/// Factors `a + jitter·I`; on failure retries with 10× the jitter up to five times (GPy's `jitchol`,
+/// gp.md §5.1), then returns [`LearnError::Numerical`] naming `what`.
+pub(crate) fn cholesky_with_jitter(
+    a: &DMatrix<f64>,
+    jitter: f64,
+    what: &str,
+) -> Result<JitteredCholesky> {
+    if a.iter().any(|v| !v.is_finite()) {
+        return Err(LearnError::Numerical(format!("{what} has non-finite entries")));
+    }
+    let n = a.nrows();
+    let mean_diag = if n == 0 { 1.0 } else { a.diagonal().mean().abs().max(f64::MIN_POSITIVE) };
+    let mut eps = jitter.max(0.0);
+    for attempt in 0..=JITTER_RETRIES {
+        let mut m = a.clone();
+        for i in 0..n {
+            m[(i, i)] += eps;
+        }
+        if let Some(chol) = nalgebra::Cholesky::new(m) {
+            return Ok(JitteredCholesky { l: chol.unpack(), jitter: eps });
+        }
+        if attempt < JITTER_RETRIES {
+            eps = (eps * 10.0).max(1e-10 * mean_diag);
+        }
+    }
+    Err(LearnError::Numerical(format!(
+        "{what} ({n}×{n}) is not positive definite even with jitter {eps:.3e}"
+    )))
+}
+
+/// The inverse of a lower-triangular matrix with a non-zero diagonal.
+pub(crate) fn lower_inverse(l: &DMatrix<f64>, what: &str) -> Result<DMatrix<f64>> {
+    let n = l.nrows();
+    l.solve_lower_triangular(&DMatrix::identity(n, n))
+        .filter(|inv| inv.iter().all(|v| v.is_finite()))
+        .ok_or_else(|| LearnError::Numerical(format!("{what} has a zero pivot")))
+}
+
+/// Sum of the logs of the diagonal of a triangular factor (half the log-determinant).
+pub(crate) fn log_diag_sum(l: &DMatrix<f64>) -> f64 {
+    l.diagonal().iter().map(|v| v.ln()).sum()
+}
+
+/// Scales column `j` of `a` by `s[j]` in place.
+pub(crate) fn scale_columns(a: &mut DMatrix<f64>, s: &DVector<f64>) {
+    for (mut col, f) in a.column_iter_mut().zip(s.iter()) {
+        col *= *f;
+    }
+}
+
+/// Column sums of the elementwise product `a ∘ b` (same shapes).
+pub(crate) fn colsum_product(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DVector<f64> {
+    DVector::from_iterator(
+        a.ncols(),
+        a.column_iter().zip(b.column_iter()).map(|(ca, cb)| ca.dot(&cb)),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_transposed_view_multiplies_like_a_transpose() {
+        let a = DMatrix::from_fn(7, 9, |i, j| (i * 3 + j) as f64 * 0.1 - 1.0);
+        let b = DMatrix::from_fn(7, 8, |i, j| (i + 2 * j) as f64 * 0.05);
+        let got = mul(&t_view(&a), &b);
+        let want = a.transpose() * &b;
+        assert!((got - want).amax() < 1e-12);
+    }
+
+    #[test]
+    fn small_strided_products_are_computed_without_overrunning() {
+        let a = DMatrix::from_fn(3, 2, |i, j| (i + 4 * j) as f64);
+        let b = DMatrix::from_fn(3, 4, |i, j| (2 * i + j) as f64);
+        assert_eq!(mul(&t_view(&a), &b), a.transpose() * &b);
+    }
+
+    #[test]
+    fn a_singular_matrix_factors_after_jitter_and_nan_is_an_error() {
+        let a = DMatrix::from_element(3, 3, 1.0);
+        let chol = cholesky_with_jitter(&a, 0.0, "K").expect("jitter rescues a rank-one matrix");
+        assert!(chol.jitter > 0.0);
+        let mut bad = DMatrix::identity(2, 2);
+        bad[(0, 1)] = f64::NAN;
+        assert!(matches!(cholesky_with_jitter(&bad, 1e-6, "K"), Err(LearnError::Numerical(_))));
+    }
+}
