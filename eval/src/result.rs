@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
+use crate::metrics::{MethodMetrics, score_method};
 use crate::progress::StageTiming;
 
 /// The target's true motion at one scan.
@@ -72,6 +73,22 @@ impl SituationResult {
             }
         }
         Ok(())
+    }
+
+    /// Scores every method against the truth (SPEC §6); method name → metrics.
+    pub fn metrics(&self) -> Result<BTreeMap<String, MethodMetrics>, EvalError> {
+        self.validate()?;
+        self.methods
+            .iter()
+            .map(|(method, estimates)| {
+                let metrics =
+                    score_method(&self.truth, estimates).map_err(|err| EvalError::BadResult {
+                        situation: self.name.clone(),
+                        reason: format!("method {method}: {err}"),
+                    })?;
+                Ok((method.clone(), metrics))
+            })
+            .collect()
     }
 }
 
