@@ -1,2 +1,46 @@
 //! patchflow's evaluation: ICP and constant-velocity Kalman baselines (thesis 3.2), metrics, the
 //! five-situation benchmark (thesis 4.4), cross-validation tables (thesis 4.3), reports and plots.
+
+mod baselines;
+mod cluster_association;
+mod error;
+mod estimate;
+mod icp;
+mod kalman;
+mod method;
+mod metrics;
+mod observation;
+mod progress;
+mod report;
+mod result;
+mod rigid_fit;
+mod thesis_tables;
+mod tracker;
+
+pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
+pub use cluster_association::{
+    CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
+};
+pub use error::EvalError;
+pub use estimate::MotionEstimate;
+pub use icp::{IcpAlignment, IcpParams, align_icp, icp_motion_estimate};
+pub use kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
+pub use method::{CANONICAL_METHODS, ordered_methods};
+pub use metrics::{
+    MIN_SCORED_SPEED_MPS, MethodMetrics, heading_error_deg, mean_abs, rmse, score_method,
+    wrap_angle_rad,
+};
+pub use observation::{ClusterObservation, ScanObservation, centroid_of};
+pub use progress::{StageTimer, StageTiming, progress_bar, spinner};
+pub use report::{
+    CvFeature, CvGp, CvReport, CvRow, ReportFiles, metrics_json, metrics_json_value, plot_heading,
+    plot_speed, write_cv_report, write_report,
+};
+pub use result::{BenchmarkReport, SituationResult, TruthAtScan};
+pub use rigid_fit::{fit_rigid_closed_form, fit_rigid_svd};
+pub use thesis_tables::{
+    THESIS_CV_HEADING_LOW_VAR_RMSE_DEG, THESIS_CV_HEADING_RMSE_DEG,
+    THESIS_CV_SPEED_LOW_VAR_RMSE_MPS, THESIS_CV_SPEED_RMSE_MPS, THESIS_SITUATIONS, ThesisRow,
+    ThesisSituation, thesis_row, thesis_situation,
+};
+pub use tracker::{MultiTargetTracker, Track, TrackStatus, TrackerParams};

@@ -1,0 +1,118 @@
+//! Progress bars and stage timing for long commands: indicatif bars on stderr (hidden when stderr
+//! is not a terminal) and a [`StageTimer`] whose per-stage seconds fill the report's timing table.
+
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::{Deserialize, Serialize};
+
+/// Seconds spent in one named stage.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StageTiming {
+    /// Stage name, e.g. `generate`, `train SPGP-HET`, `evaluate situation3`.
+    pub stage: String,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// Records wall-clock seconds per stage, in the order the stages ran.
+///
+/// ```
+/// use patchflow_eval::StageTimer;
+/// let mut timer = StageTimer::new();
+/// let answer = timer.time("think", || 6 * 7);
+/// assert_eq!(answer, 42);
+/// assert_eq!(timer.timings()[0].stage, "think");
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct StageTimer {
+    timings: Vec<StageTiming>,
+}
+
+impl StageTimer {
+    /// An empty timer.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Runs `work`, records its seconds under `stage`, and returns its result.
+    pub fn time<T>(&mut self, stage: &str, work: impl FnOnce() -> T) -> T {
+        let start = Instant::now();
+        let out = work();
+        self.record(stage, start.elapsed().as_secs_f64());
+        out
+    }
+
+    /// Records seconds measured elsewhere. A stage recorded twice accumulates.
+    pub fn record(&mut self, stage: &str, seconds: f64) {
+        match self.timings.iter_mut().find(|t| t.stage == stage) {
+            Some(timing) => timing.seconds += seconds,
+            None => self.timings.push(StageTiming {
+                stage: stage.to_owned(),
+                seconds,
+            }),
+        }
+    }
+
+    /// The stages so far, in first-run order.
+    pub fn timings(&self) -> &[StageTiming] {
+        &self.timings
+    }
+
+    /// Total seconds over all stages.
+    pub fn total_seconds(&self) -> f64 {
+        self.timings.iter().map(|t| t.seconds).sum()
+    }
+
+    /// Hands the timings over (e.g. into `BenchmarkReport::timings`).
+    pub fn into_timings(self) -> Vec<StageTiming> {
+        self.timings
+    }
+}
+
+/// A progress bar of `len` steps labelled `message`, with elapsed time and ETA.
+pub fn progress_bar(len: u64, message: &str) -> ProgressBar {
+    let bar = ProgressBar::new(len);
+    let style = ProgressStyle::with_template(
+        "{msg:>24} [{elapsed_precise}] {bar:32.cyan/blue} {pos}/{len} (eta {eta})",
+    )
+    .unwrap_or_else(|_| ProgressStyle::default_bar())
+    .progress_chars("=> ");
+    bar.set_style(style);
+    bar.set_message(message.to_owned());
+    bar
+}
+
+/// A spinner for a stage of unknown length labelled `message`.
+pub fn spinner(message: &str) -> ProgressBar {
+    let bar = ProgressBar::new_spinner();
+    bar.set_message(message.to_owned());
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_stage_recorded_twice_accumulates_and_keeps_its_place() {
+        let mut timer = StageTimer::new();
+        timer.record("generate", 1.5);
+        timer.record("train", 2.0);
+        timer.record("generate", 0.5);
+        let names: Vec<&str> = timer.timings().iter().map(|t| t.stage.as_str()).collect();
+        assert_eq!(names, ["generate", "train"]);
+        assert!((timer.timings()[0].seconds - 2.0).abs() < 1e-12);
+        assert!((timer.total_seconds() - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn timing_a_closure_records_a_non_negative_duration() {
+        let mut timer = StageTimer::new();
+        timer.time("sleep", || {
+            std::thread::sleep(std::time::Duration::from_millis(5))
+        });
+        assert!(timer.timings()[0].seconds >= 0.004);
+    }
+}

@@ -1,0 +1,17 @@
+//! Report writers: `metrics.json`, `tables.csv`, `report.md` and plots for the benchmark; `cv.json`
+//! and `cv.md` for cross-validation.
+
+mod csv;
+mod cv;
+mod files;
+mod json;
+mod markdown;
+mod plot;
+#[cfg(test)]
+mod synthetic;
+mod writer;
+
+pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
+pub use json::{metrics_json, metrics_json_value};
+pub use plot::{plot_heading, plot_speed};
+pub use writer::{ReportFiles, write_report};
