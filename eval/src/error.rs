@@ -55,6 +55,12 @@ pub enum EvalError {
         /// Why it is invalid.
         reason: String,
     },
+    /// Feature extraction, GP training or prediction, or a model file failed.
+    #[error(transparent)]
+    Learn(#[from] patchflow_learn::LearnError),
+    /// Reading a dataset failed.
+    #[error(transparent)]
+    Dataset(#[from] patchflow_dataset::DatasetError),
 }
 
 impl EvalError {

@@ -2,7 +2,9 @@
 //! five-situation benchmark (thesis 4.4), cross-validation tables (thesis 4.3), reports and plots.
 
 mod baselines;
+mod benchmark;
 mod cluster_association;
+mod cross_validation;
 mod error;
 mod estimate;
 mod icp;
@@ -18,9 +20,11 @@ mod thesis_tables;
 mod tracker;
 
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
+pub use benchmark::{GpMethod, SituationRun, evaluate_situation, method_prefix};
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
 };
+pub use cross_validation::{CvParams, cross_validate};
 pub use error::EvalError;
 pub use estimate::MotionEstimate;
 pub use icp::{IcpAlignment, IcpParams, align_icp, icp_motion_estimate};

@@ -141,6 +141,8 @@ impl GpModel {
                 rows[bad].len()
             )));
         }
-        self.predict(&DMatrix::from_fn(rows.len(), d, |i, j| f64::from(rows[i][j])))
+        self.predict(&DMatrix::from_fn(rows.len(), d, |i, j| {
+            f64::from(rows[i][j])
+        }))
     }
 }

@@ -1,0 +1,315 @@
+//! K-fold cross-validation of the GP features (thesis 4.3, Tables 4.1-4.4): heading RMSE for
+//! {map patch, Gabor} × prior {0.01, 0.5} × {SPGP, SPGP-HET}, the same on the low-variance test
+//! patches, and speed RMSE on heading-aligned map patches.
+//!
+//! Samples are drawn once per prior by importance sampling (thesis 3.1.2) with map-patch features;
+//! the Gabor features of the same samples are the bank's responses to those patches, so both
+//! features are judged on the same points. Folds are a seeded shuffle of the samples. RMSEs are
+//! averaged over the folds as in the thesis. "Low variance" (thesis 4.3.1): a test patch whose
+//! predicted variance is more than one standard deviation below the mean of the fold's predicted
+//! variances, for the heading on both the sine and the cosine GP.
+
+use nalgebra::{DMatrix, DVector};
+use patchflow_dataset::Dataset;
+use patchflow_learn::{
+    FeatureKind, FeatureParams, GaborBank, GpKind, GpParams, GpPrediction, Patch, SampleSet,
+};
+use rand::SeedableRng;
+use rand::seq::SliceRandom;
+use rand_chacha::ChaCha8Rng;
+
+use crate::error::EvalError;
+use crate::metrics::{rmse, wrap_angle_rad};
+use crate::report::{CvFeature, CvGp, CvReport, CvRow};
+
+/// Settings of a cross-validation run; `Default` is the thesis setup with 5 folds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CvParams {
+    /// Number of folds K.
+    pub folds: usize,
+    /// Importance-sampled samples per prior (thesis: 1,600).
+    pub samples: usize,
+    /// Pseudo-inputs per GP (thesis: 100).
+    pub pseudo_inputs: usize,
+    /// Optimiser iteration limit per GP.
+    pub max_iters: usize,
+    /// Map priors to compare (thesis: 0.01 and 0.5).
+    pub priors: Vec<f64>,
+    /// Seed of sampling, folds and GP initialisation.
+    pub seed: u64,
+}
+
+impl Default for CvParams {
+    fn default() -> Self {
+        Self {
+            folds: 5,
+            samples: 1600,
+            pseudo_inputs: 100,
+            max_iters: 200,
+            priors: vec![0.01, 0.5],
+            seed: 0,
+        }
+    }
+}
+
+/// Runs the whole cross-validation; `progress(done, total)` counts GP configurations × folds.
+pub fn cross_validate(
+    dataset: &Dataset,
+    params: &CvParams,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<CvReport, EvalError> {
+    if params.folds < 2 {
+        return Err(EvalError::BadParameter {
+            name: "CvParams.folds",
+            reason: format!("need at least 2 folds, got {}", params.folds),
+        });
+    }
+    let configs = params.priors.len() * 2 * 2;
+    let total = configs * params.folds;
+    let mut done = 0;
+    let mut rows = Vec::new();
+    for &prior in &params.priors {
+        let feature_params = FeatureParams::with_prior(prior);
+        let set = SampleSet::collect(
+            dataset,
+            &feature_params,
+            FeatureKind::Patch,
+            params.samples,
+            params.seed,
+        )?;
+        if set.samples.len() < 2 * params.folds {
+            return Err(EvalError::BadResult {
+                situation: dataset.root().display().to_string(),
+                reason: format!(
+                    "{} samples on moving actors is too few for {} folds",
+                    set.samples.len(),
+                    params.folds
+                ),
+            });
+        }
+        let folds = fold_assignment(set.samples.len(), params.folds, params.seed);
+        let gabor = GaborBank::new(&feature_params.gabor, feature_params.cell_m);
+        for feature in [CvFeature::Patch, CvFeature::Gabor] {
+            let heading_x = features_of(&set, feature, &gabor, |s| &s.heading_features);
+            let speed_x = features_of(&set, feature, &gabor, |s| &s.speed_features);
+            // The thesis judges speed on map patches only, with the prior that served heading best (0.5).
+            let with_speed = feature == CvFeature::Patch && (prior - 0.5).abs() < 1e-12;
+            for gp in [CvGp::Spgp, CvGp::SpgpHet] {
+                let mut acc = FoldAccumulator::default();
+                for fold in 0..params.folds {
+                    let split = Split::new(&folds, fold);
+                    acc.add_heading(heading_fold(&set, &heading_x, &split, gp, params)?);
+                    if with_speed {
+                        acc.add_speed(speed_fold(&set, &speed_x, &split, gp, params)?);
+                    }
+                    done += 1;
+                    progress(done, total);
+                }
+                rows.push(acc.row(feature, prior, gp));
+            }
+        }
+    }
+    let notes = vec![format!(
+        "{} folds over {} importance-sampled patches per prior, {} pseudo-inputs, at most {} optimiser iterations per GP, seed {}.",
+        params.folds, params.samples, params.pseudo_inputs, params.max_iters, params.seed
+    )];
+    Ok(CvReport {
+        folds: params.folds,
+        rows,
+        notes,
+    })
+}
+
+/// Which fold each sample is tested in: a seeded shuffle dealt round-robin.
+fn fold_assignment(n: usize, folds: usize, seed: u64) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..n).collect();
+    order.shuffle(&mut ChaCha8Rng::seed_from_u64(seed ^ 0xC0FF_EE00));
+    let mut fold = vec![0; n];
+    for (rank, &i) in order.iter().enumerate() {
+        fold[i] = rank % folds;
+    }
+    fold
+}
+
+struct Split {
+    train: Vec<usize>,
+    test: Vec<usize>,
+}
+
+impl Split {
+    fn new(folds: &[usize], fold: usize) -> Self {
+        let (test, train) = (0..folds.len()).partition(|&i| folds[i] == fold);
+        Self { train, test }
+    }
+}
+
+fn features_of(
+    set: &SampleSet,
+    feature: CvFeature,
+    gabor: &GaborBank,
+    pick: impl Fn(&patchflow_learn::Sample) -> &Vec<f64>,
+) -> DMatrix<f64> {
+    let d = match feature {
+        CvFeature::Patch => FeatureKind::Patch.names().len(),
+        CvFeature::Gabor => FeatureKind::Gabor.names().len(),
+    };
+    let mut x = DMatrix::zeros(set.samples.len(), d);
+    for (r, sample) in set.samples.iter().enumerate() {
+        let values = pick(sample);
+        let row: Vec<f64> = match feature {
+            CvFeature::Patch => values.clone(),
+            CvFeature::Gabor => {
+                let mut patch = Patch {
+                    values: [0.0; patchflow_learn::PATCH_LEN],
+                };
+                patch.values.copy_from_slice(values);
+                gabor.responses(&patch).to_vec()
+            }
+        };
+        for (c, v) in row.into_iter().enumerate() {
+            x[(r, c)] = v;
+        }
+    }
+    x
+}
+
+fn fit_predict(
+    x: &DMatrix<f64>,
+    y: &DVector<f64>,
+    split: &Split,
+    gp: CvGp,
+    params: &CvParams,
+    seed: u64,
+) -> Result<GpPrediction, EvalError> {
+    let kind = match gp {
+        CvGp::Spgp => GpKind::Spgp,
+        CvGp::SpgpHet => GpKind::SpgpHet,
+    };
+    let x_train = x.select_rows(&split.train);
+    let y_train = y.select_rows(&split.train);
+    let model = GpParams::new(kind)
+        .pseudo_inputs(params.pseudo_inputs.min(split.train.len()))
+        .max_iters(params.max_iters)
+        .seed(seed)
+        .fit(&x_train, &y_train)?;
+    Ok(model.predict(&x.select_rows(&split.test))?)
+}
+
+/// Per-test-sample errors of one fold and which samples count as low-variance.
+struct FoldErrors {
+    errors: Vec<f64>,
+    low_var: Vec<bool>,
+}
+
+fn heading_fold(
+    set: &SampleSet,
+    x: &DMatrix<f64>,
+    split: &Split,
+    gp: CvGp,
+    params: &CvParams,
+) -> Result<FoldErrors, EvalError> {
+    let sin = DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.sin_rel));
+    let cos = DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.cos_rel));
+    let sin_pred = fit_predict(x, &sin, split, gp, params, params.seed.wrapping_add(1))?;
+    let cos_pred = fit_predict(x, &cos, split, gp, params, params.seed.wrapping_add(2))?;
+    let errors = split
+        .test
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| {
+            let predicted = sin_pred.mean[k].atan2(cos_pred.mean[k]);
+            let truth = set.samples[i].sin_rel.atan2(set.samples[i].cos_rel);
+            wrap_angle_rad(predicted - truth).to_degrees()
+        })
+        .collect();
+    let (low_sin, low_cos) = (low_variance(&sin_pred.var_y), low_variance(&cos_pred.var_y));
+    let low_var = low_sin
+        .iter()
+        .zip(&low_cos)
+        .map(|(a, b)| *a && *b)
+        .collect();
+    Ok(FoldErrors { errors, low_var })
+}
+
+fn speed_fold(
+    set: &SampleSet,
+    x: &DMatrix<f64>,
+    split: &Split,
+    gp: CvGp,
+    params: &CvParams,
+) -> Result<FoldErrors, EvalError> {
+    let speed = DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.speed_mps));
+    let predicted = fit_predict(x, &speed, split, gp, params, params.seed.wrapping_add(3))?;
+    let errors = split
+        .test
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| predicted.mean[k] - set.samples[i].speed_mps)
+        .collect();
+    Ok(FoldErrors {
+        errors,
+        low_var: low_variance(&predicted.var_y),
+    })
+}
+
+/// Variance more than one standard deviation below the mean of the variances (thesis 4.3.1).
+fn low_variance(var: &DVector<f64>) -> Vec<bool> {
+    let n = var.len().max(1) as f64;
+    let mean = var.iter().sum::<f64>() / n;
+    let std = (var.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+    var.iter().map(|v| *v < mean - std).collect()
+}
+
+/// Per-fold RMSEs, averaged at the end as in the thesis.
+#[derive(Default)]
+struct FoldAccumulator {
+    heading: Vec<f64>,
+    heading_low: Vec<f64>,
+    speed: Vec<f64>,
+    speed_low: Vec<f64>,
+    n_test: usize,
+    n_low_var: usize,
+}
+
+impl FoldAccumulator {
+    fn add_heading(&mut self, fold: FoldErrors) {
+        let low: Vec<f64> = fold
+            .errors
+            .iter()
+            .zip(&fold.low_var)
+            .filter(|(_, l)| **l)
+            .map(|(e, _)| *e)
+            .collect();
+        self.n_test += fold.errors.len();
+        self.n_low_var += low.len();
+        self.heading.extend(rmse(&fold.errors));
+        self.heading_low.extend(rmse(&low));
+    }
+
+    fn add_speed(&mut self, fold: FoldErrors) {
+        let low: Vec<f64> = fold
+            .errors
+            .iter()
+            .zip(&fold.low_var)
+            .filter(|(_, l)| **l)
+            .map(|(e, _)| *e)
+            .collect();
+        self.speed.extend(rmse(&fold.errors));
+        self.speed_low.extend(rmse(&low));
+    }
+
+    fn row(&self, feature: CvFeature, prior: f64, gp: CvGp) -> CvRow {
+        let mean = |v: &[f64]| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+        CvRow {
+            feature,
+            prior,
+            gp,
+            heading_rmse_deg: mean(&self.heading).unwrap_or(f64::NAN),
+            heading_rmse_low_var_deg: mean(&self.heading_low),
+            speed_rmse_mps: mean(&self.speed),
+            speed_rmse_low_var_mps: mean(&self.speed_low),
+            n_test: self.n_test,
+            n_low_var: self.n_low_var,
+        }
+    }
+}

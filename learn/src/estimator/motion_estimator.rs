@@ -1,0 +1,296 @@
+//! The motion estimator of thesis 3.1: three GPs learned from importance-sampled map patches,
+//! applied per point and merged per cluster.
+
+use nalgebra::{DMatrix, DVector};
+use patchflow_dataset::Dataset;
+
+use super::merge::{Gaussian, HeadingVote, MergeRule, merge_heading, merge_scalar};
+use super::params::EstimatorParams;
+use crate::{
+    FeatureKind, FeatureParams, GpKind, GpModel, GpParams, LearnError, Result, SampleSet,
+    SweepFeatures,
+};
+
+/// A merged motion estimate for one cluster.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClusterMotion {
+    /// Heading, world frame, CCW from +x.
+    pub heading_rad: f64,
+    /// Approximate variance of the heading, rad².
+    pub heading_var: f64,
+    /// Speed, m/s.
+    pub speed_mps: f64,
+    /// Variance of the merged speed, (m/s)².
+    pub speed_var: f64,
+    /// Points whose heading predictions took part in the merge.
+    pub heading_votes: usize,
+}
+
+/// What a cluster gets under both merge rules (thesis 3.1.4).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClusterEstimate {
+    /// Product of all per-point predictions.
+    pub all: Option<ClusterMotion>,
+    /// Product of the low-variance predictions only.
+    pub best: Option<ClusterMotion>,
+}
+
+/// A trained motion estimator: GPs for sin and cos of the heading relative to the bearing, and
+/// for the speed on heading-aligned patches (thesis 3.1.1).
+#[derive(Debug, Clone)]
+pub struct MotionEstimator {
+    pub(crate) gp: GpKind,
+    pub(crate) feature: FeatureKind,
+    pub(crate) features: FeatureParams,
+    pub(crate) heading_sin: GpModel,
+    pub(crate) heading_cos: GpModel,
+    pub(crate) speed: GpModel,
+    pub(crate) training: TrainingRecord,
+}
+
+/// What the training saw, kept in the model file for reproducibility.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct TrainingRecord {
+    /// Sequences the samples were drawn from.
+    pub sequences: Vec<String>,
+    /// Candidate points in the pool.
+    pub pool_size: usize,
+    /// Samples drawn.
+    pub samples: usize,
+    /// Pseudo-inputs per sparse GP.
+    pub pseudo_inputs: usize,
+    /// Seed of sampling and initialisation.
+    pub seed: u64,
+    /// Wall time of the whole training, seconds.
+    pub seconds: f64,
+}
+
+impl MotionEstimator {
+    /// Trains on every sequence of a dataset (thesis 3.1.1-3.1.3).
+    pub fn train(dataset: &Dataset, params: &EstimatorParams) -> Result<Self> {
+        Self::train_with_progress(dataset, params, &|_, _| {})
+    }
+
+    /// Like [`Self::train`], reporting sample collection as `progress(done, total)` sweep pairs.
+    pub fn train_with_progress(
+        dataset: &Dataset,
+        params: &EstimatorParams,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Self> {
+        params.validate()?;
+        let start = std::time::Instant::now();
+        // 3.1.2: importance-sample points on moving actors by the motion their patch shows.
+        let set = SampleSet::collect_with_progress(
+            dataset,
+            &params.features,
+            params.feature,
+            params.samples,
+            params.seed,
+            progress,
+        )?;
+        let estimator = Self::fit_samples(&set, params)?;
+        let sequences = dataset.sequences().iter().map(|s| s.name.clone()).collect();
+        let training = TrainingRecord {
+            sequences,
+            pool_size: set.pool_size,
+            samples: set.samples.len(),
+            pseudo_inputs: params.pseudo_inputs,
+            seed: params.seed,
+            seconds: start.elapsed().as_secs_f64(),
+        };
+        Ok(Self {
+            training,
+            ..estimator
+        })
+    }
+
+    /// Fits the three GPs to an already drawn sample set (thesis 3.1.1, 3.1.3).
+    pub fn fit_samples(set: &SampleSet, params: &EstimatorParams) -> Result<Self> {
+        params.validate()?;
+        if set.samples.len() < 2 {
+            return Err(LearnError::DegenerateData(format!(
+                "{} training samples on moving actors; the dataset needs moving actors in the height slice",
+                set.samples.len()
+            )));
+        }
+        let names = set.kind.names();
+        let heading_x = rows_to_matrix(
+            set.samples.iter().map(|s| s.heading_features.as_slice()),
+            names.len(),
+        )?;
+        let speed_x = rows_to_matrix(
+            set.samples.iter().map(|s| s.speed_features.as_slice()),
+            names.len(),
+        )?;
+        let sin_y =
+            DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.sin_rel));
+        let cos_y =
+            DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.cos_rel));
+        let speed_y =
+            DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.speed_mps));
+        let gp = |seed_offset: u64| {
+            GpParams::new(params.gp)
+                .pseudo_inputs(params.pseudo_inputs.min(set.samples.len()))
+                .max_iters(params.max_iters)
+                .seed(params.seed.wrapping_add(seed_offset))
+        };
+        // 3.1.1: one GP for each of sin and cos of (heading − bearing), one for the speed.
+        let heading_sin = named(gp(1).fit(&heading_x, &sin_y)?, &names, "sin_rel");
+        let heading_cos = named(gp(2).fit(&heading_x, &cos_y)?, &names, "cos_rel");
+        let speed = named(gp(3).fit(&speed_x, &speed_y)?, &names, "speed");
+        let training = TrainingRecord {
+            sequences: Vec::new(),
+            pool_size: set.pool_size,
+            samples: set.samples.len(),
+            pseudo_inputs: params.pseudo_inputs,
+            seed: params.seed,
+            seconds: 0.0,
+        };
+        Ok(Self {
+            gp: params.gp,
+            feature: set.kind,
+            features: FeatureParams {
+                prior: set.prior,
+                ..params.features.clone()
+            },
+            heading_sin,
+            heading_cos,
+            speed,
+            training,
+        })
+    }
+
+    /// GP kind of the three regressions.
+    pub fn gp_kind(&self) -> GpKind {
+        self.gp
+    }
+
+    /// Feature kind the GPs read.
+    pub fn feature_kind(&self) -> FeatureKind {
+        self.feature
+    }
+
+    /// Feature parameters the model was trained with; run-time maps must use the same.
+    pub fn feature_params(&self) -> &FeatureParams {
+        &self.features
+    }
+
+    /// What the training saw.
+    pub fn training(&self) -> &TrainingRecord {
+        &self.training
+    }
+
+    /// The three GPs: sin and cos of the relative heading, and the speed.
+    pub fn gps(&self) -> [&GpModel; 3] {
+        [&self.heading_sin, &self.heading_cos, &self.speed]
+    }
+
+    /// Estimates the motion of one cluster (thesis 3.1, steps 3 and 4), under both merge rules.
+    /// `members` index `features.points()`.
+    pub fn estimate_cluster(
+        &self,
+        features: &SweepFeatures,
+        members: &[usize],
+    ) -> Result<ClusterEstimate> {
+        if members.is_empty() {
+            return Ok(ClusterEstimate::default());
+        }
+        // 3a-b: heading patches aligned to each point's bearing; per-point sin and cos predictions.
+        let patches = features.heading_patches(members);
+        let x = self.feature_matrix(features, &patches)?;
+        let sin = self.heading_sin.predict(&x)?;
+        let cos = self.heading_cos.predict(&x)?;
+        let votes: Vec<HeadingVote> = members
+            .iter()
+            .enumerate()
+            .map(|(k, &i)| {
+                let s = Gaussian {
+                    mean: sin.mean[k],
+                    var: sin.var_y[k],
+                };
+                let c = Gaussian {
+                    mean: cos.mean[k],
+                    var: cos.var_y[k],
+                };
+                HeadingVote::from_relative(features.bearing_rad(i), s, c)
+            })
+            .collect();
+        // 3c and 4: merge the headings, then predict and merge the speed along each merged heading.
+        let all = self.speed_along(features, members, &votes, MergeRule::All)?;
+        let best = self.speed_along(features, members, &votes, MergeRule::Best)?;
+        Ok(ClusterEstimate { all, best })
+    }
+
+    fn speed_along(
+        &self,
+        features: &SweepFeatures,
+        members: &[usize],
+        votes: &[HeadingVote],
+        rule: MergeRule,
+    ) -> Result<Option<ClusterMotion>> {
+        let Some(heading) = merge_heading(votes, rule) else {
+            return Ok(None);
+        };
+        // 4a-c: speed patches aligned to the merged heading, per-point speeds, merged the same way.
+        let patches: Vec<_> = members
+            .iter()
+            .map(|&i| features.speed_patch(i, heading.heading_rad))
+            .collect();
+        let x = self.feature_matrix(features, &patches)?;
+        let speed = self.speed.predict(&x)?;
+        let predictions: Vec<Gaussian> = (0..members.len())
+            .map(|k| Gaussian {
+                mean: speed.mean[k],
+                var: speed.var_y[k],
+            })
+            .collect();
+        Ok(merge_scalar(&predictions, rule).map(|s| ClusterMotion {
+            heading_rad: heading.heading_rad,
+            heading_var: heading.var_rad2,
+            speed_mps: s.mean.max(0.0),
+            speed_var: s.var,
+            heading_votes: heading.votes,
+        }))
+    }
+
+    fn feature_matrix(
+        &self,
+        features: &SweepFeatures,
+        patches: &[crate::Patch],
+    ) -> Result<DMatrix<f64>> {
+        let rows: Vec<Vec<f64>> = patches
+            .iter()
+            .map(|p| features.feature_of(p, self.feature))
+            .collect();
+        let d = self.feature.names().len();
+        rows_to_matrix(rows.iter().map(Vec::as_slice), d)
+    }
+}
+
+/// Records the feature and target names in a fitted GP, so its model file is self-describing.
+fn named(mut model: GpModel, inputs: &[String], target: &str) -> GpModel {
+    model.input_names = inputs.to_vec();
+    model.target_name = target.to_owned();
+    model
+}
+
+/// Stacks feature rows into an N × D matrix, checking every row's length.
+fn rows_to_matrix<'a>(
+    rows: impl ExactSizeIterator<Item = &'a [f64]>,
+    d: usize,
+) -> Result<DMatrix<f64>> {
+    let n = rows.len();
+    let mut x = DMatrix::zeros(n, d);
+    for (r, row) in rows.enumerate() {
+        if row.len() != d {
+            return Err(LearnError::DegenerateData(format!(
+                "feature row {r} has {} values, expected {d}",
+                row.len()
+            )));
+        }
+        for (c, v) in row.iter().enumerate() {
+            x[(r, c)] = *v;
+        }
+    }
+    Ok(x)
+}

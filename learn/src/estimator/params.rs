@@ -1,0 +1,63 @@
+//! Training parameters of the motion estimator, with the thesis defaults (4.3).
+
+use crate::{FeatureKind, FeatureParams, GpKind, LearnError, Result};
+
+/// Everything that decides how a [`MotionEstimator`](super::MotionEstimator) is trained.
+///
+/// `Default` gives the thesis' setup: SPGP-HET on 242-value map patches, prior 0.5, 1,600
+/// importance-sampled training samples and 100 pseudo-inputs (thesis 4.3).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EstimatorParams {
+    /// GP used for all three regressions (sin, cos of the relative heading; speed).
+    pub gp: GpKind,
+    /// Patch values or Gabor responses.
+    pub feature: FeatureKind,
+    /// Map, cluster and patch parameters (the map prior lives here).
+    pub features: FeatureParams,
+    /// Importance-sampled training samples (thesis 3.1.2: 1,600).
+    pub samples: usize,
+    /// Pseudo-inputs per sparse GP (thesis 4.3: 100).
+    pub pseudo_inputs: usize,
+    /// Optimiser iteration limit per GP.
+    pub max_iters: usize,
+    /// Seed of sampling and GP initialisation.
+    pub seed: u64,
+}
+
+impl Default for EstimatorParams {
+    fn default() -> Self {
+        Self {
+            gp: GpKind::SpgpHet,
+            feature: FeatureKind::Patch,
+            features: FeatureParams::default(),
+            samples: 1600,
+            pseudo_inputs: 100,
+            max_iters: 300,
+            seed: 0,
+        }
+    }
+}
+
+impl EstimatorParams {
+    /// Checks the parameters once, before any work.
+    pub fn validate(&self) -> Result<()> {
+        self.features.validate()?;
+        if self.samples < 10 {
+            return Err(LearnError::InvalidParams(format!(
+                "samples must be at least 10, got {}",
+                self.samples
+            )));
+        }
+        if self.gp != GpKind::Full && self.pseudo_inputs == 0 {
+            return Err(LearnError::InvalidParams(
+                "a sparse GP needs at least one pseudo-input".into(),
+            ));
+        }
+        if self.max_iters == 0 {
+            return Err(LearnError::InvalidParams(
+                "max_iters must be at least 1".into(),
+            ));
+        }
+        Ok(())
+    }
+}
