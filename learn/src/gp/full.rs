@@ -74,6 +74,8 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
 pub(crate) struct FullPosterior {
     /// Standardised training inputs (N×D).
     pub x: DMatrix<f64>,
+    /// Standardised training targets (N), kept so model files can rebuild the posterior.
+    pub y: DVector<f64>,
     /// α = C⁻¹y.
     pub alpha: DVector<f64>,
     /// Lower Cholesky factor of C.
@@ -87,7 +89,7 @@ impl FullPosterior {
         let (_, l, used) = factor(&x, h, jitter)?;
         let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
         let alpha = l_inv.tr_mul(&(&l_inv * &data.y));
-        Ok((Self { x, alpha, l }, used))
+        Ok((Self { x, y: data.y.clone(), alpha, l }, used))
     }
 
     /// Mean (eq. 3.20) and latent variance (eq. 3.21) at the rows of `x_test` (standardised).

@@ -21,6 +21,7 @@ mod kernel;
 mod lbfgs;
 mod linalg;
 mod model;
+mod model_file;
 mod objective;
 mod params;
 mod sparse_posterior;
@@ -29,6 +30,7 @@ mod transform;
 
 pub use full::FULL_GP_MAX_SAMPLES;
 pub use model::{FitReport, GpModel, GpPrediction};
+pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
 pub use objective::GpObjective;
 pub use params::{GpKind, GpParams, GpValidParams};
 pub use transform::Standardiser;
