@@ -294,3 +294,146 @@ fn rows_to_matrix<'a>(
     }
     Ok(x)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
+    use patchflow_dataset::{Pose, SequenceWriter, Sweep};
+
+    /// A car at `speed_mps` driving at `heading_rad` past a sensor at the origin; `sweeps` sweeps.
+    fn car_sweeps(heading_rad: f64, speed_mps: f64, sweeps: u32) -> Vec<Sweep> {
+        let lidar = SyntheticLidar::with_resolution(24, 900);
+        let start = [
+            12.0 - 6.0 * heading_rad.cos(),
+            3.0 - 6.0 * heading_rad.sin(),
+        ];
+        let mut scene = SyntheticScene {
+            boxes: vec![SceneBox::car(1, start, heading_rad, speed_mps)],
+        };
+        let mut out = Vec::new();
+        for i in 0..sweeps {
+            out.push(scene.scan(&lidar, [0.0, 0.0], 0.0, i));
+            scene = scene.advanced(0.1);
+        }
+        out
+    }
+
+    fn write_dataset(root: &std::path::Path, tracks: &[(f64, f64)]) -> Dataset {
+        for (k, &(heading, speed)) in tracks.iter().enumerate() {
+            let writer = SequenceWriter::open(root, &format!("track{k:02}")).unwrap();
+            let sweeps = car_sweeps(heading, speed, 8);
+            for s in &sweeps {
+                writer.write_sweep(s).unwrap();
+            }
+            let poses: Vec<Pose> = sweeps.iter().map(|s| s.world_from_sensor).collect();
+            let stamps: Vec<f64> = sweeps.iter().map(|s| s.stamp_secs).collect();
+            writer
+                .finish("synthetic", 0, 10.0, &poses, &stamps, "test")
+                .unwrap();
+        }
+        Dataset::open(root).unwrap()
+    }
+
+    fn small_params() -> EstimatorParams {
+        EstimatorParams {
+            gp: GpKind::Spgp,
+            features: FeatureParams {
+                half_extent_m: 20.0,
+                ..FeatureParams::default()
+            },
+            samples: 300,
+            pseudo_inputs: 15,
+            max_iters: 60,
+            ..EstimatorParams::default()
+        }
+    }
+
+    fn estimate_for(
+        estimator: &MotionEstimator,
+        heading_rad: f64,
+        speed_mps: f64,
+    ) -> ClusterEstimate {
+        let sweeps = car_sweeps(heading_rad, speed_mps, 4);
+        let features =
+            SweepFeatures::compute(&sweeps[2], &sweeps[3], estimator.feature_params()).unwrap();
+        let biggest = (0..features.clusters().len())
+            .max_by_key(|&c| features.clusters().members(c).len())
+            .unwrap();
+        estimator
+            .estimate_cluster(&features, features.clusters().members(biggest))
+            .unwrap()
+    }
+
+    #[test]
+    fn a_trained_estimator_recovers_heading_and_speed_of_a_held_out_car() {
+        let dir = tempfile::tempdir().unwrap();
+        let tracks: Vec<(f64, f64)> = (0..8)
+            .map(|k| (-3.0 + 0.8 * k as f64, 4.0 + (k % 3) as f64 * 2.0))
+            .collect();
+        let dataset = write_dataset(dir.path(), &tracks);
+        let estimator = MotionEstimator::train(&dataset, &small_params()).unwrap();
+        let (heading, speed) = (0.2, 6.0);
+        let all = estimate_for(&estimator, heading, speed).all.unwrap();
+        let heading_error_deg = (all.heading_rad - heading)
+            .sin()
+            .atan2((all.heading_rad - heading).cos())
+            .to_degrees();
+        assert!(
+            heading_error_deg.abs() < 30.0,
+            "heading error {heading_error_deg:.1} deg: {all:?}"
+        );
+        assert!((all.speed_mps - speed).abs() < 2.5, "speed {all:?}");
+    }
+
+    #[test]
+    fn a_saved_model_loads_and_predicts_identically() {
+        let dir = tempfile::tempdir().unwrap();
+        let dataset = write_dataset(dir.path(), &[(0.5, 5.0), (-1.5, 7.0), (2.5, 4.0)]);
+        let params = EstimatorParams {
+            samples: 100,
+            pseudo_inputs: 8,
+            max_iters: 15,
+            ..small_params()
+        };
+        let estimator = MotionEstimator::train(&dataset, &params).unwrap();
+        let path = dir.path().join("model.json");
+        estimator.save(&path).unwrap();
+        let loaded = MotionEstimator::load(&path).unwrap();
+        assert_eq!(loaded.feature_params(), estimator.feature_params());
+        assert_eq!(
+            estimate_for(&loaded, 0.5, 5.0),
+            estimate_for(&estimator, 0.5, 5.0)
+        );
+    }
+
+    #[test]
+    fn a_model_file_of_another_version_is_refused_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("old.json");
+        std::fs::write(
+            &path,
+            r#"{"format": "patchflow-motion-model", "version": 0}"#,
+        )
+        .unwrap();
+        let err = MotionEstimator::load(&path).unwrap_err().to_string();
+        assert!(
+            err.contains("old.json") && err.contains("version 0"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_dataset_without_moving_actors_is_a_clear_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let dataset = write_dataset(dir.path(), &[(0.0, 0.0)]);
+        let err = MotionEstimator::train(&dataset, &small_params()).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                LearnError::DegenerateData(_) | LearnError::InvalidParams(_)
+            ),
+            "{err}"
+        );
+    }
+}

@@ -89,7 +89,15 @@ impl FullPosterior {
         let (_, l, used) = factor(&x, h, jitter)?;
         let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
         let alpha = l_inv.tr_mul(&(&l_inv * &data.y));
-        Ok((Self { x, y: data.y.clone(), alpha, l }, used))
+        Ok((
+            Self {
+                x,
+                y: data.y.clone(),
+                alpha,
+                l,
+            },
+            used,
+        ))
     }
 
     /// Mean (eq. 3.20) and latent variance (eq. 3.21) at the rows of `x_test` (standardised).

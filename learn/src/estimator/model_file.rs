@@ -1,0 +1,178 @@
+//! The motion estimator's model file: one versioned JSON holding the three GPs, every feature
+//! parameter the run-time maps must reproduce, and what the training saw.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use super::motion_estimator::{MotionEstimator, TrainingRecord};
+use crate::{FeatureKind, FeatureParams, GaborParams, GpKind, GpModel, LearnError, Result};
+
+/// Format name written into every estimator model file.
+pub const MOTION_MODEL_FORMAT: &str = "patchflow-motion-model";
+/// Version of the estimator model file this build reads and writes.
+pub const MOTION_MODEL_VERSION: u32 = 1;
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelFile {
+    format: String,
+    version: u32,
+    generator: String,
+    gp: GpKind,
+    feature: String,
+    features: FeatureRecord,
+    training: TrainingRecord,
+    heading_sin: Value,
+    heading_cos: Value,
+    speed: Value,
+}
+
+/// Every field of [`FeatureParams`], so a model reproduces its maps exactly.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FeatureRecord {
+    slice_min_m: f64,
+    slice_max_m: f64,
+    cell_m: f64,
+    half_extent_m: f64,
+    prior: f64,
+    spread: f64,
+    cluster_gap_m: f64,
+    gabor_wavelength_m: f64,
+    gabor_sigma_m: f64,
+    gabor_gamma: f64,
+}
+
+impl From<&FeatureParams> for FeatureRecord {
+    fn from(p: &FeatureParams) -> Self {
+        Self {
+            slice_min_m: p.slice_min_m,
+            slice_max_m: p.slice_max_m,
+            cell_m: p.cell_m,
+            half_extent_m: p.half_extent_m,
+            prior: p.prior,
+            spread: p.spread,
+            cluster_gap_m: p.cluster_gap_m,
+            gabor_wavelength_m: p.gabor.wavelength_m,
+            gabor_sigma_m: p.gabor.sigma_m,
+            gabor_gamma: p.gabor.gamma,
+        }
+    }
+}
+
+impl From<FeatureRecord> for FeatureParams {
+    fn from(r: FeatureRecord) -> Self {
+        Self {
+            slice_min_m: r.slice_min_m,
+            slice_max_m: r.slice_max_m,
+            cell_m: r.cell_m,
+            half_extent_m: r.half_extent_m,
+            prior: r.prior,
+            spread: r.spread,
+            cluster_gap_m: r.cluster_gap_m,
+            gabor: GaborParams {
+                wavelength_m: r.gabor_wavelength_m,
+                sigma_m: r.gabor_sigma_m,
+                gamma: r.gabor_gamma,
+            },
+        }
+    }
+}
+
+fn feature_name(kind: FeatureKind) -> &'static str {
+    match kind {
+        FeatureKind::Patch => "patch",
+        FeatureKind::Gabor => "gabor",
+    }
+}
+
+impl MotionEstimator {
+    /// Writes the model to `path` atomically (a temporary file renamed into place).
+    pub fn save(&self, path: &Path) -> Result<()> {
+        let file = ModelFile {
+            format: MOTION_MODEL_FORMAT.to_owned(),
+            version: MOTION_MODEL_VERSION,
+            generator: concat!("patchflow ", env!("CARGO_PKG_VERSION")).to_owned(),
+            gp: self.gp,
+            feature: feature_name(self.feature).to_owned(),
+            features: FeatureRecord::from(&self.features),
+            training: self.training.clone(),
+            heading_sin: self.heading_sin.to_json_value()?,
+            heading_cos: self.heading_cos.to_json_value()?,
+            speed: self.speed.to_json_value()?,
+        };
+        let model_err = |reason: String| LearnError::Model {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let mut bytes = serde_json::to_vec(&file).map_err(|e| model_err(e.to_string()))?;
+        bytes.push(b'\n');
+        let tmp = path.with_extension("json.tmp");
+        std::fs::write(&tmp, bytes).map_err(|source| LearnError::Io {
+            path: tmp.clone(),
+            source,
+        })?;
+        std::fs::rename(&tmp, path).map_err(|source| LearnError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    /// Reads a model written by [`MotionEstimator::save`]; another format or version, or a
+    /// corrupt file, is an error naming the file.
+    pub fn load(path: &Path) -> Result<Self> {
+        let model_err = |reason: String| LearnError::Model {
+            path: path.to_path_buf(),
+            reason,
+        };
+        let bytes = std::fs::read(path).map_err(|source| LearnError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let value: Value = serde_json::from_slice(&bytes)
+            .map_err(|e| model_err(format!("not valid JSON: {e}")))?;
+        let format = value.get("format").and_then(Value::as_str).unwrap_or("");
+        if format != MOTION_MODEL_FORMAT {
+            return Err(model_err(format!(
+                "not a patchflow motion model (format '{format}'; a single GP from `patchflow gp fit` is not an estimator)"
+            )));
+        }
+        let version = value.get("version").and_then(Value::as_u64).unwrap_or(0);
+        if version != u64::from(MOTION_MODEL_VERSION) {
+            return Err(model_err(format!(
+                "motion model version {version} is not supported (this build reads version {MOTION_MODEL_VERSION}); retrain it with `patchflow train`"
+            )));
+        }
+        let file: ModelFile = serde_json::from_value(value)
+            .map_err(|e| model_err(format!("corrupt motion model: {e}")))?;
+        let feature = match file.feature.as_str() {
+            "patch" => FeatureKind::Patch,
+            "gabor" => FeatureKind::Gabor,
+            other => return Err(model_err(format!("unknown feature kind '{other}'"))),
+        };
+        let features = FeatureParams::from(file.features);
+        features.validate().map_err(|e| model_err(e.to_string()))?;
+        let estimator = Self {
+            gp: file.gp,
+            feature,
+            heading_sin: GpModel::from_json_value(file.heading_sin, path)?,
+            heading_cos: GpModel::from_json_value(file.heading_cos, path)?,
+            speed: GpModel::from_json_value(file.speed, path)?,
+            features,
+            training: file.training,
+        };
+        let d = feature.names().len();
+        for gp in estimator.gps() {
+            if gp.input_names().len() != d {
+                return Err(model_err(format!(
+                    "a GP reads {} inputs, the {} feature has {d}",
+                    gp.input_names().len(),
+                    file.feature
+                )));
+            }
+        }
+        Ok(estimator)
+    }
+}
