@@ -172,8 +172,10 @@ fn draw(
     if !y_min.is_finite() {
         (y_min, y_max) = (0.0, 1.0);
     }
+    // Extra room at the top keeps the legend (upper right) off the curves.
     let pad = ((y_max - y_min) * 0.08).max(1.0);
-    let y_range = y_floor.map_or(y_min - pad, |f| f.min(y_min))..(y_max + pad);
+    let legend_room = (y_max - y_min).max(1.0) * 0.35;
+    let y_range = y_floor.map_or(y_min - pad, |f| f.min(y_min))..(y_max + pad + legend_room);
 
     let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
