@@ -326,4 +326,25 @@ mod tests {
             "{err}"
         );
     }
+
+    #[test]
+    fn baseline_estimates_score_near_zero_error_on_a_clean_constant_velocity_target() {
+        use crate::result::{SituationResult, TruthAtScan};
+        let scans = situation(30);
+        let situation = SituationResult {
+            name: "clean".into(),
+            scans: scans.len(),
+            truth: (0..scans.len())
+                .map(|k| TruthAtScan::from_velocity(k, [8.0, 2.0]))
+                .collect(),
+            methods: run_all_baselines("clean", &scans, &BaselineParams::default()).unwrap(),
+        };
+        let metrics = situation.metrics().unwrap();
+        let icp = &metrics["ICP"];
+        assert!(icp.heading_rmse_deg.unwrap() < 1e-6 && icp.speed_rmse_mps.unwrap() < 1e-6);
+        assert!((icp.coverage - 29.0 / 30.0).abs() < 1e-12);
+        // The Kalman filters start at rest, so their early scans carry the start-up error.
+        assert!(metrics["KF"].heading_me_deg.unwrap() < 10.0);
+        assert!((metrics["KF-AUTO"].coverage - 28.0 / 30.0).abs() < 1e-12);
+    }
 }

@@ -109,6 +109,13 @@ pub fn align_icp(
     target: &[[f64; 2]],
     params: &IcpParams,
 ) -> Option<IcpAlignment> {
+    // Non-finite points carry no geometry (and would break the k-d tree); drop them.
+    let finite = |p: &&[f64; 2]| p[0].is_finite() && p[1].is_finite();
+    if !source.iter().all(|p| finite(&p)) || !target.iter().all(|p| finite(&p)) {
+        let source: Vec<[f64; 2]> = source.iter().filter(finite).copied().collect();
+        let target: Vec<[f64; 2]> = target.iter().filter(finite).copied().collect();
+        return align_icp(&source, &target, params);
+    }
     let source_centroid = centroid_of(source)?;
     let target_centroid = centroid_of(target)?;
     // Initialisation by centroid alignment.
@@ -197,7 +204,12 @@ pub fn icp_motion_estimate(
         return None;
     }
     let alignment = align_icp(previous, current, params)?;
-    let centroid = centroid_of(previous)?;
+    let finite_previous: Vec<[f64; 2]> = previous
+        .iter()
+        .filter(|p| p[0].is_finite() && p[1].is_finite())
+        .copied()
+        .collect();
+    let centroid = centroid_of(&finite_previous)?;
     Some(MotionEstimate::from_velocity(
         alignment.velocity_of(centroid, dt_secs),
     ))
@@ -416,6 +428,19 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(6);
         let c = points(&random_car_outline(&mut rng, 20, [0.0, 0.0]));
         assert!(icp_motion_estimate(&c, &c, 0.0, &IcpParams::default()).is_none());
+    }
+
+    #[test]
+    fn non_finite_points_are_ignored() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let source = points(&random_car_outline(&mut rng, 60, [3.0, 3.0]));
+        let truth = Isometry2::translation(0.5, 0.2);
+        let mut target = moved(&source, &truth, 0.0, &mut rng);
+        target.push([f64::NAN, 1.0]);
+        target.push([f64::INFINITY, 0.0]);
+        let a = align_icp(&source, &target, &IcpParams::default()).unwrap();
+        assert!(centroid_displacement_error(&a, &source, &truth) < 1e-9);
+        assert!(align_icp(&[[f64::NAN, 0.0]], &source, &IcpParams::default()).is_none());
     }
 
     #[test]

@@ -80,7 +80,7 @@ impl MultiTargetTracker {
     /// An empty tracker.
     pub fn new(params: TrackerParams) -> Result<Self, EvalError> {
         params.kalman.validate()?;
-        if !(params.gate_chi2 > 0.0) {
+        if params.gate_chi2.is_nan() || params.gate_chi2 <= 0.0 {
             return Err(EvalError::BadParameter {
                 name: "TrackerParams.gate_chi2",
                 reason: format!("must be positive, got {}", params.gate_chi2),

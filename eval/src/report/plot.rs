@@ -172,8 +172,10 @@ fn draw(
     if !y_min.is_finite() {
         (y_min, y_max) = (0.0, 1.0);
     }
+    // Extra room at the top keeps the legend (upper right) off the curves.
     let pad = ((y_max - y_min) * 0.08).max(1.0);
-    let y_range = y_floor.map_or(y_min - pad, |f| f.min(y_min))..(y_max + pad);
+    let legend_room = (y_max - y_min).max(1.0) * 0.35;
+    let y_range = y_floor.map_or(y_min - pad, |f| f.min(y_min))..(y_max + pad + legend_room);
 
     let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
@@ -188,6 +190,8 @@ fn draw(
         .configure_mesh()
         .x_desc("scan")
         .y_desc(y_label)
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_label_formatter(&|y| format!("{y:.0}"))
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
         .light_line_style(RGBColor(235, 235, 235))
