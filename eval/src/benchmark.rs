@@ -203,3 +203,49 @@ fn to_estimate(motion: ClusterMotion) -> MotionEstimate {
         speed_var: Some(motion.speed_var),
     }
 }
+
+/// Every sequence of a dataset whose sweeps mark a `target` actor: the situations to evaluate.
+pub fn situation_names(dataset: &patchflow_dataset::Dataset) -> Result<Vec<String>, EvalError> {
+    let mut names = Vec::new();
+    for info in dataset.sequences() {
+        let sequence = dataset.sequence(&info.name)?;
+        if sequence.len() >= 2 && sequence.read_sweep(0)?.target().is_some() {
+            names.push(info.name.clone());
+        }
+    }
+    if names.is_empty() {
+        return Err(EvalError::BadResult {
+            situation: dataset.root().display().to_string(),
+            reason: "no sequence has an actor marked `target` and at least two sweeps".into(),
+        });
+    }
+    Ok(names)
+}
+
+/// Evaluates every situation of a dataset (see [`situation_names`]) with the given estimators and
+/// the four baselines. `on_scan` is called once per scan evaluated; `total_scans` tells how many.
+pub fn evaluate_dataset(
+    dataset: &patchflow_dataset::Dataset,
+    methods: &[GpMethod<'_>],
+    baselines: &BaselineParams,
+    on_scan: &(dyn Fn() + Sync),
+) -> Result<(crate::BenchmarkReport, f64), EvalError> {
+    let mut report = crate::BenchmarkReport::default();
+    let mut perception = Vec::new();
+    for name in situation_names(dataset)? {
+        let run = evaluate_situation(&dataset.sequence(&name)?, methods, baselines, on_scan)?;
+        perception.push(run.perception_secs_per_scan);
+        report.situations.push(run.result);
+    }
+    let mean_perception = perception.iter().sum::<f64>() / perception.len().max(1) as f64;
+    Ok((report, mean_perception))
+}
+
+/// Number of scans [`evaluate_dataset`] will evaluate (every sweep but the first of each situation).
+pub fn scans_to_evaluate(dataset: &patchflow_dataset::Dataset) -> Result<u64, EvalError> {
+    let mut total = 0;
+    for name in situation_names(dataset)? {
+        total += dataset.sequence(&name)?.len().saturating_sub(1) as u64;
+    }
+    Ok(total)
+}

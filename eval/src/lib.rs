@@ -20,7 +20,10 @@ mod thesis_tables;
 mod tracker;
 
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
-pub use benchmark::{GpMethod, SituationRun, evaluate_situation, method_prefix};
+pub use benchmark::{
+    GpMethod, SituationRun, evaluate_dataset, evaluate_situation, method_prefix, scans_to_evaluate,
+    situation_names,
+};
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
 };

@@ -2,6 +2,9 @@
 
 use std::path::PathBuf;
 
+use patchflow_dataset::Dataset;
+use patchflow_eval::{CvParams, CvReport, cross_validate, progress_bar, write_cv_report};
+
 /// Arguments of `patchflow cv`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -18,5 +21,24 @@ pub struct Args {
 
 /// Runs `patchflow cv`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("patchflow cv is not built yet ({args:?})")
+    let dataset = Dataset::open(&args.data)?;
+    let params = CvParams {
+        folds: args.folds,
+        ..CvParams::default()
+    };
+    let report = cv_with_bar(&dataset, &params)?;
+    write_cv_report(&report, &args.out)?;
+    println!("wrote {}", args.out.join("cv.md").display());
+    Ok(())
+}
+
+/// Cross-validates with a progress bar over configurations × folds.
+pub fn cv_with_bar(dataset: &Dataset, params: &CvParams) -> anyhow::Result<CvReport> {
+    let bar = progress_bar(0, "cross-validation");
+    let report = cross_validate(dataset, params, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    Ok(report?)
 }

@@ -2,6 +2,7 @@
 //! arguments, calls one library function and prints; no algorithm lives here.
 
 mod bench;
+mod common;
 mod cv;
 mod evaluate;
 mod features;

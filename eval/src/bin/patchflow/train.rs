@@ -1,6 +1,13 @@
-//! `patchflow train`: train the motion estimator on a dataset.
+//! `patchflow train`: train the motion estimator (two heading GPs and a speed GP) on a dataset.
 
 use std::path::PathBuf;
+
+use anyhow::Context;
+use patchflow_dataset::Dataset;
+use patchflow_eval::progress_bar;
+use patchflow_learn::{EstimatorParams, FeatureParams, MotionEstimator};
+
+use crate::common::{parse_feature, parse_gp};
 
 /// Arguments of `patchflow train`.
 #[derive(Debug, clap::Args)]
@@ -33,5 +40,66 @@ pub struct Args {
 
 /// Runs `patchflow train`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("patchflow train is not built yet ({args:?})")
+    let params = EstimatorParams {
+        gp: parse_gp(&args.gp)?,
+        feature: parse_feature(&args.feature)?,
+        features: FeatureParams::with_prior(args.prior),
+        samples: args.samples,
+        pseudo_inputs: args.pseudo,
+        seed: args.seed,
+        ..EstimatorParams::default()
+    };
+    let dataset = Dataset::open(&args.data)?;
+    let estimator = train_with_bar(&dataset, &params)?;
+    estimator.save(&args.out)?;
+    println!("wrote {}", args.out.display());
+    print_summary(&estimator);
+    Ok(())
+}
+
+/// Trains with a progress bar over the sample collection.
+pub fn train_with_bar(
+    dataset: &Dataset,
+    params: &EstimatorParams,
+) -> anyhow::Result<MotionEstimator> {
+    let bar = progress_bar(0, &format!("samples ({})", params.gp));
+    let estimator = MotionEstimator::train_with_progress(dataset, params, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+        if done == total {
+            bar.set_message(format!("fitting 3 {} GPs", params.gp));
+        }
+    })
+    .with_context(|| format!("training on {}", dataset.root().display()))?;
+    bar.finish_and_clear();
+    Ok(estimator)
+}
+
+/// One line per GP and a JSON summary as the last line.
+pub fn print_summary(estimator: &MotionEstimator) {
+    let names = ["sin_rel", "cos_rel", "speed"];
+    for (name, gp) in names.iter().zip(estimator.gps()) {
+        let r = gp.fit_report();
+        println!(
+            "{name:>8}: {} n={} d={} m={} evals={} nlml={:.3} {:.1}s ({})",
+            gp.kind(),
+            r.n,
+            r.d,
+            r.m,
+            r.evals,
+            r.nlml,
+            r.seconds,
+            r.stop
+        );
+    }
+    let t = estimator.training();
+    let summary = serde_json::json!({
+        "gp": estimator.gp_kind().name(),
+        "samples": t.samples,
+        "pool": t.pool_size,
+        "pseudo": t.pseudo_inputs,
+        "seed": t.seed,
+        "seconds": t.seconds,
+    });
+    println!("{summary}");
 }
