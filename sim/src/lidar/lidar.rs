@@ -252,3 +252,54 @@ impl Lidar {
         out
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::{Scenario, Simulation};
+
+    /// A car 6 m ahead drives across the view at 15 m/s in the direction the beam sweeps.
+    fn crossing(rolling: bool) -> patchflow_dataset::Sweep {
+        let text = format!(
+            "sweeps = 1\n[lidar]\nchannels = 8\nupper_deg = -4.0\nlower_deg = -12.0\nspacing = \"uniform\"\nazimuth_steps = 3600\nblocks = 3600\nrange_noise_std_m = 0.0\nrolling_shutter = {rolling}\n[ego]\npath_m = [[0.0, 0.0], [1.0, 0.0]]\nspeed_mps = 0.0\n[[actors]]\nname = \"car\"\ntarget = true\npath_m = [[6.0, 30.0], [6.0, -30.0]]\nspeed_mps = 15.0\nstart_secs = -1.95\n"
+        );
+        let scenario = Scenario::from_toml(&text, "smear.toml", "smear").unwrap();
+        Simulation::new(&scenario, 0).unwrap().sweep(0)
+    }
+
+    fn car_extent_y(sweep: &patchflow_dataset::Sweep) -> (f64, f64) {
+        let on_car: Vec<usize> = (0..sweep.len())
+            .filter(|&i| sweep.labels[i].instance() == 1)
+            .collect();
+        let ys: Vec<f64> = on_car
+            .iter()
+            .map(|&i| f64::from(sweep.points_in_sensor[i][1]))
+            .collect();
+        let ts: Vec<f64> = on_car
+            .iter()
+            .map(|&i| f64::from(sweep.time_in_sweep_secs[i]))
+            .collect();
+        let extent = ys.iter().cloned().fold(f64::MIN, f64::max)
+            - ys.iter().cloned().fold(f64::MAX, f64::min);
+        let duration = ts.iter().cloned().fold(f64::MIN, f64::max)
+            - ts.iter().cloned().fold(f64::MAX, f64::min);
+        (extent, duration)
+    }
+
+    #[test]
+    fn the_rolling_shutter_smears_a_crossing_car_by_its_speed_times_its_scan_time() {
+        let (static_extent, static_duration) = car_extent_y(&crossing(false));
+        let (rolling_extent, rolling_duration) = car_extent_y(&crossing(true));
+        assert_eq!(static_duration, 0.0);
+        let expected = 15.0 * rolling_duration;
+        assert!(
+            expected > 0.1,
+            "the car's azimuth span takes only {rolling_duration} s"
+        );
+        let smear = rolling_extent - static_extent;
+        // Tolerance: one azimuth column at 6 m (1 cm) on each end plus f32 rounding.
+        assert!(
+            (smear - expected).abs() < 0.03,
+            "smear {smear} m, expected v·Δt = {expected} m"
+        );
+    }
+}

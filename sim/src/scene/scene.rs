@@ -282,3 +282,42 @@ impl Tables {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_analytic_velocity_equals_the_velocity_rapier_derives() {
+        let text = "sweeps = 1\n[ego]\npath_m = [[0.0, 0.0], [50.0, 0.0]]\nspeed_mps = 3.0\n[[actors]]\nname = \"turner\"\npath_m = [[0.0, 10.0], [20.0, 10.0], [20.0, 40.0]]\nturn_radius_m = 6.0\nspeed_mps = 8.0\ninitial_speed_mps = 2.0\n";
+        let scenario = Scenario::from_toml(text, "turn.toml", "turn").unwrap();
+        let mut scene = Scene::build(&scenario, &scenario.actors).unwrap();
+        let dt = 0.01;
+        let mut turning_samples = 0;
+        for i in 0..40 {
+            let t = 0.1 * f64::from(i);
+            let (v, w) = scene.rapier_velocity(0, t, dt).unwrap();
+            // Rapier's velocity is the backward difference over [t − dt, t]: the analytic value
+            // at the middle of that step, up to O(dt²) and f32 rounding of the poses.
+            let truth = scene.actors()[0].trajectory.state_at(t - dt / 2.0);
+            assert!(
+                (v[0] - truth.velocity_mps[0]).abs() < 0.02
+                    && (v[1] - truth.velocity_mps[1]).abs() < 0.02,
+                "t = {t}: rapier {v:?}, truth {:?}",
+                truth.velocity_mps
+            );
+            let before = scene.actors()[0].trajectory.state_at(t - dt);
+            if (before.yaw_rate_radps - truth.yaw_rate_radps).abs() < 1e-9
+                && scene.actors()[0].trajectory.state_at(t).yaw_rate_radps == truth.yaw_rate_radps
+            {
+                assert!(
+                    (w - truth.yaw_rate_radps).abs() < 0.01,
+                    "t = {t}: rapier ω {w}, truth {}",
+                    truth.yaw_rate_radps
+                );
+                turning_samples += usize::from(truth.yaw_rate_radps.abs() > 0.1);
+            }
+        }
+        assert!(turning_samples > 0, "the test never sampled the arc");
+    }
+}
