@@ -1,4 +1,35 @@
 //! The patchflow simulator: scenario files → Rapier scene → rolling-shutter spinning lidar →
 //! labelled sweeps in the dataset format of SPEC §4.
+//!
+//! ```
+//! let text = "sweeps = 1\n[lidar]\nchannels = 8\nazimuth_steps = 90\nblocks = 9\n[ego]\npath_m = [[0.0, 0.0], [50.0, 0.0]]\nspeed_mps = 5.0\n";
+//! let scenario = patchflow_sim::Scenario::from_toml(text, "doc.toml", "doc").unwrap();
+//! let sweep = patchflow_sim::Simulation::new(&scenario, 7).unwrap().sweep(0);
+//! assert_eq!(sweep.labels.len(), sweep.len());
+//! ```
 
+mod error;
+mod generate;
+mod lidar;
+mod motion;
+mod scenario;
+mod scene;
+mod seed;
+mod simulation;
+
+pub use error::{Result, SimError};
+pub use generate::{
+    GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset, generate_sequence,
+};
+pub use lidar::{Lidar, Scan, elevations_deg};
+pub use motion::{
+    MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory, wrap_angle,
+};
 pub use patchflow_dataset as dataset;
+pub use scenario::{
+    ActorConfig, CarModel, EMBEDDED_SCENARIOS, ElevationSpacing, LidarConfig, Scenario,
+    StructureConfig, StructureKind, TrafficConfig,
+};
+pub use scene::{Scene, SceneActor};
+pub use seed::sweep_key;
+pub use simulation::{MOVING_SPEED_MPS, Simulation};

@@ -1,6 +1,12 @@
 //! `patchflow generate`: simulate scenario files and write a dataset (SPEC §4).
 
+use std::collections::HashMap;
 use std::path::PathBuf;
+use std::sync::Mutex;
+
+use anyhow::Context;
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset};
 
 /// Arguments of `patchflow generate`.
 #[derive(Debug, clap::Args)]
@@ -20,5 +26,67 @@ pub struct Args {
 
 /// Runs `patchflow generate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("patchflow generate is not built yet ({args:?})")
+    let sources = if args.scenarios.is_empty() {
+        ScenarioSource::all_embedded()
+    } else {
+        args.scenarios
+            .iter()
+            .cloned()
+            .map(ScenarioSource::File)
+            .collect()
+    };
+    let shard = match &args.shard {
+        Some(text) => Shard::parse(text)?,
+        None => Shard::ALL,
+    };
+    let options = GenerateOptions {
+        out: args.out.clone(),
+        seed: args.seed,
+        shard,
+    };
+    let bars = MultiProgress::new();
+    let style = ProgressStyle::with_template(
+        "{prefix:>12} [{bar:40}] {pos}/{len} sweeps {elapsed} (eta {eta}) {msg}",
+    )
+    .unwrap_or_else(|_| ProgressStyle::default_bar())
+    .progress_chars("=> ");
+    let open: Mutex<HashMap<String, ProgressBar>> = Mutex::new(HashMap::new());
+    let on_progress = |event: Progress| {
+        let Ok(mut open) = open.lock() else { return };
+        match event {
+            Progress::SequenceStarted { name, sweeps } => {
+                let bar = bars.add(
+                    ProgressBar::new(u64::from(sweeps))
+                        .with_style(style.clone())
+                        .with_prefix(name.clone()),
+                );
+                open.insert(name, bar);
+            }
+            Progress::SweepDone { name, points, .. } => {
+                if let Some(bar) = open.get(&name) {
+                    bar.inc(1);
+                    if points > 0 {
+                        bar.set_message(format!("{points} points"));
+                    }
+                }
+            }
+            Progress::SequenceDone { name, skipped } => match open.remove(&name) {
+                Some(bar) => bar.finish_with_message("done"),
+                None if skipped => {
+                    let _ = bars.println(format!("{name:>12} already complete, skipped"));
+                }
+                None => {}
+            },
+        }
+    };
+    let manifest = generate_dataset(&sources, &options, &on_progress)
+        .with_context(|| format!("generating into {}", args.out.display()))?;
+    let points: u64 = manifest.sequences.iter().map(|s| s.points).sum();
+    println!(
+        "{}: {} sequences, {} points (manifest.json rewritten)",
+        args.out.display(),
+        manifest.sequences.len(),
+        points
+    );
+    Ok(())
 }

@@ -1,0 +1,9 @@
+//! Actor motion: smooth paths, speed profiles, and the exact state at any time.
+
+mod path;
+mod speed_profile;
+mod trajectory;
+
+pub use path::{Path, PathPoint, wrap_angle};
+pub use speed_profile::{ProfileState, SpeedProfile};
+pub use trajectory::{MotionState, Trajectory};

@@ -1,0 +1,35 @@
+//! The shipped scenario files, embedded in the binary so `patchflow generate` works anywhere.
+
+/// `(name, TOML text)` of every shipped scenario, sorted by name: the five evaluation situations
+/// and the nine training tracks. (`scenarios/tiny.toml`, for tests, is not among them.)
+pub const EMBEDDED_SCENARIOS: [(&str, &str); 14] = [
+    (
+        "situation1",
+        include_str!("../../../scenarios/situation1.toml"),
+    ),
+    (
+        "situation2",
+        include_str!("../../../scenarios/situation2.toml"),
+    ),
+    (
+        "situation3",
+        include_str!("../../../scenarios/situation3.toml"),
+    ),
+    (
+        "situation4",
+        include_str!("../../../scenarios/situation4.toml"),
+    ),
+    (
+        "situation5",
+        include_str!("../../../scenarios/situation5.toml"),
+    ),
+    ("train01", include_str!("../../../scenarios/train01.toml")),
+    ("train02", include_str!("../../../scenarios/train02.toml")),
+    ("train03", include_str!("../../../scenarios/train03.toml")),
+    ("train04", include_str!("../../../scenarios/train04.toml")),
+    ("train05", include_str!("../../../scenarios/train05.toml")),
+    ("train06", include_str!("../../../scenarios/train06.toml")),
+    ("train07", include_str!("../../../scenarios/train07.toml")),
+    ("train08", include_str!("../../../scenarios/train08.toml")),
+    ("train09", include_str!("../../../scenarios/train09.toml")),
+];

@@ -1,0 +1,17 @@
+//! Scenario files: schema with defaults in code, loading with file-and-line errors, the embedded
+//! scenario set, and seeded random traffic.
+
+mod actor_config;
+mod embedded;
+mod lidar_config;
+mod load;
+mod scenario;
+mod structure_config;
+mod traffic;
+
+pub use actor_config::{ActorConfig, CarModel};
+pub use embedded::EMBEDDED_SCENARIOS;
+pub use lidar_config::{ElevationSpacing, LidarConfig};
+pub use scenario::{Scenario, TrafficConfig};
+pub use structure_config::{StructureConfig, StructureKind};
+pub use traffic::random_traffic;
