@@ -20,8 +20,7 @@ fn street_sweeps() -> (Sweep, Sweep) {
         boxes.push(SceneBox::wall([x + 6.0, -14.0], 0.0, [14.0, 6.0, 12.0]));
         boxes.push(SceneBox::wall([x + 3.0, -9.5], 0.0, [4.2, 1.8, 1.4]));
     }
-    let mut id = 1;
-    for (x, y, yaw, speed) in [
+    for (id, (x, y, yaw, speed)) in (1..).zip([
         (12.0, -3.0, 0.0, 9.0),
         (-15.0, -3.0, 0.0, 11.0),
         (25.0, 3.0, std::f64::consts::PI, 8.0),
@@ -30,9 +29,8 @@ fn street_sweeps() -> (Sweep, Sweep) {
         (33.0, -6.0, 1.57, 4.0),
         (-6.0, 7.0, 0.1, 3.0),
         (40.0, -3.0, 0.0, 6.0),
-    ] {
+    ]) {
         boxes.push(SceneBox::car(id, [x, y], yaw, speed));
-        id += 1;
     }
     let scene = SyntheticScene { boxes };
     let lidar = SyntheticLidar::hdl64e();
