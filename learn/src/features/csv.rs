@@ -4,8 +4,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::Result;
 use crate::features::samples::SampleSet;
-use crate::{LearnError, Result};
 
 /// Which of a sample's two feature vectors goes into the CSV.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -57,12 +57,11 @@ impl SampleSet {
 
     /// Writes [`Self::to_csv`] to `path` atomically.
     pub fn write_csv(&self, path: &Path, align: Alignment) -> Result<()> {
-        patchflow_dataset::write_atomic(path, self.to_csv(align).as_bytes()).map_err(|e| {
-            LearnError::Io {
-                path: path.to_owned(),
-                source: std::io::Error::other(e.to_string()),
-            }
-        })
+        // The dataset crate's error names the file.
+        Ok(patchflow_dataset::write_atomic(
+            path,
+            self.to_csv(align).as_bytes(),
+        )?)
     }
 }
 

@@ -170,10 +170,10 @@ impl SyntheticScene {
                     }
                 }
                 for (k, b) in self.boxes.iter().enumerate() {
-                    if let Some(t) = b.intersect(&origin, &dir) {
-                        if t < best.0 {
-                            best = (t, Some(k));
-                        }
+                    if let Some(t) = b.intersect(&origin, &dir)
+                        && t < best.0
+                    {
+                        best = (t, Some(k));
                     }
                 }
                 let (t, Some(k)) = best else { continue };

@@ -2,6 +2,10 @@
 
 use std::path::PathBuf;
 
+use anyhow::Context;
+use patchflow_dataset::Dataset;
+use patchflow_learn::{Alignment, FeatureKind, FeatureParams, SampleSet};
+
 /// Arguments of `patchflow features`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -23,9 +27,50 @@ pub struct Args {
     /// Seed of the sampling.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Patch alignment: `bearing` (heading features) or `heading` (speed features, true heading).
+    #[arg(long, default_value = "bearing")]
+    pub align: String,
 }
 
 /// Runs `patchflow features`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("patchflow features is not built yet ({args:?})")
+    let kind = match args.feature.as_str() {
+        "patch" => FeatureKind::Patch,
+        "gabor" => FeatureKind::Gabor,
+        other => anyhow::bail!("--feature must be patch or gabor, not {other:?}"),
+    };
+    let align = match args.align.as_str() {
+        "bearing" => Alignment::Bearing,
+        "heading" => Alignment::Heading,
+        other => anyhow::bail!("--align must be bearing or heading, not {other:?}"),
+    };
+    let params = FeatureParams::with_prior(args.prior);
+    let dataset = Dataset::open(&args.data)?;
+    let bar = indicatif::ProgressBar::new(0).with_message("sweep pairs");
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg} ({elapsed})")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let progress = |done: usize, total: usize| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    };
+    let set = SampleSet::collect_with_progress(
+        &dataset,
+        &params,
+        kind,
+        args.samples,
+        args.seed,
+        &progress,
+    )
+    .with_context(|| format!("collecting samples from {}", args.data.display()))?;
+    bar.finish_and_clear();
+    set.write_csv(&args.out, align)?;
+    println!(
+        "wrote {} samples (pool {}) to {}",
+        set.samples.len(),
+        set.pool_size,
+        args.out.display()
+    );
+    Ok(())
 }

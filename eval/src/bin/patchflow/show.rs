@@ -1,6 +1,10 @@
-//! `patchflow show`: a PNG of one sweep'\''s reflection and difference maps with clusters and true boxes.
+//! `patchflow show`: a PNG of one sweep's reflection and difference maps with clusters and true boxes.
 
 use std::path::PathBuf;
+
+use anyhow::Context;
+use patchflow_dataset::Dataset;
+use patchflow_learn::{FeatureParams, SweepFeatures, write_png};
 
 /// Arguments of `patchflow show`.
 #[derive(Debug, clap::Args)]
@@ -21,5 +25,29 @@ pub struct Args {
 
 /// Runs `patchflow show`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("patchflow show is not built yet ({args:?})")
+    if args.scan == 0 {
+        anyhow::bail!("--scan must be at least 1: the difference map needs the previous sweep");
+    }
+    let dataset = Dataset::open(&args.data)?;
+    let name = match &args.sequence {
+        Some(name) => name.clone(),
+        None => dataset
+            .sequences()
+            .first()
+            .map(|s| s.name.clone())
+            .with_context(|| format!("{}: no sequence", args.data.display()))?,
+    };
+    let sequence = dataset.sequence(&name)?;
+    let prev = sequence.read_sweep(args.scan - 1)?;
+    let curr = sequence.read_sweep(args.scan)?;
+    let features = SweepFeatures::compute(&prev, &curr, &FeatureParams::default())
+        .with_context(|| format!("{}: sweep {}", sequence.dir().display(), args.scan))?;
+    write_png(&features, &curr, &args.out)?;
+    println!(
+        "wrote {} ({} sliced points, {} clusters)",
+        args.out.display(),
+        features.len(),
+        features.clusters().len()
+    );
+    Ok(())
 }
