@@ -25,6 +25,7 @@ mod model_file;
 mod objective;
 mod params;
 mod sparse_posterior;
+mod table;
 mod train_data;
 mod transform;
 
@@ -33,4 +34,5 @@ pub use model::{FitReport, GpModel, GpPrediction};
 pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
 pub use objective::GpObjective;
 pub use params::{GpKind, GpParams, GpValidParams};
+pub use table::{Columns, Table};
 pub use transform::Standardiser;

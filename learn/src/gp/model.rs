@@ -21,6 +21,17 @@ pub struct GpPrediction {
     pub var_y: DVector<f64>,
 }
 
+impl GpPrediction {
+    /// The prediction as CSV with header `mean,var,var_y` (SPEC §7), one line per test point.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::from("mean,var,var_y\n");
+        for ((m, v), vy) in self.mean.iter().zip(self.var_latent.iter()).zip(self.var_y.iter()) {
+            out.push_str(&format!("{m},{v},{vy}\n"));
+        }
+        out
+    }
+}
+
 /// How the fit went.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FitReport {
