@@ -52,9 +52,33 @@ impl Default for CvParams {
     }
 }
 
-/// Runs the whole cross-validation; `progress(done, total)` counts GP configurations × folds.
+/// Runs the whole cross-validation: draws the samples for each prior, then
+/// [`cross_validate_samples`]. `progress(done, total)` counts GP configurations × folds.
 pub fn cross_validate(
     dataset: &Dataset,
+    params: &CvParams,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<CvReport, EvalError> {
+    let sets = params
+        .priors
+        .iter()
+        .map(|&prior| {
+            SampleSet::collect(
+                dataset,
+                &FeatureParams::with_prior(prior),
+                FeatureKind::Patch,
+                params.samples,
+                params.seed,
+            )
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    cross_validate_samples(&sets, params, progress)
+}
+
+/// Cross-validates on sample sets already drawn with map-patch features, one per prior (the
+/// benchmark reuses the set it trains on). `params.priors` is ignored; each set carries its prior.
+pub fn cross_validate_samples(
+    sets: &[SampleSet],
     params: &CvParams,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<CvReport, EvalError> {
@@ -64,22 +88,20 @@ pub fn cross_validate(
             reason: format!("need at least 2 folds, got {}", params.folds),
         });
     }
-    let configs = params.priors.len() * 2 * 2;
-    let total = configs * params.folds;
+    let total = sets.len() * 2 * 2 * params.folds;
     let mut done = 0;
     let mut rows = Vec::new();
-    for &prior in &params.priors {
-        let feature_params = FeatureParams::with_prior(prior);
-        let set = SampleSet::collect(
-            dataset,
-            &feature_params,
-            FeatureKind::Patch,
-            params.samples,
-            params.seed,
-        )?;
+    for set in sets {
+        let prior = set.prior;
+        if set.kind != FeatureKind::Patch {
+            return Err(EvalError::BadParameter {
+                name: "SampleSet.kind",
+                reason: "cross-validation needs map-patch samples".into(),
+            });
+        }
         if set.samples.len() < 2 * params.folds {
             return Err(EvalError::BadResult {
-                situation: dataset.root().display().to_string(),
+                situation: format!("prior {prior}"),
                 reason: format!(
                     "{} samples on moving actors is too few for {} folds",
                     set.samples.len(),
@@ -87,20 +109,21 @@ pub fn cross_validate(
                 ),
             });
         }
+        let feature_params = FeatureParams::with_prior(prior);
         let folds = fold_assignment(set.samples.len(), params.folds, params.seed);
         let gabor = GaborBank::new(&feature_params.gabor, feature_params.cell_m);
         for feature in [CvFeature::Patch, CvFeature::Gabor] {
-            let heading_x = features_of(&set, feature, &gabor, |s| &s.heading_features);
-            let speed_x = features_of(&set, feature, &gabor, |s| &s.speed_features);
+            let heading_x = features_of(set, feature, &gabor, |s| &s.heading_features);
+            let speed_x = features_of(set, feature, &gabor, |s| &s.speed_features);
             // The thesis judges speed on map patches only, with the prior that served heading best (0.5).
             let with_speed = feature == CvFeature::Patch && (prior - 0.5).abs() < 1e-12;
             for gp in [CvGp::Spgp, CvGp::SpgpHet] {
                 let mut acc = FoldAccumulator::default();
                 for fold in 0..params.folds {
                     let split = Split::new(&folds, fold);
-                    acc.add_heading(heading_fold(&set, &heading_x, &split, gp, params)?);
+                    acc.add_heading(heading_fold(set, &heading_x, &split, gp, params)?);
                     if with_speed {
-                        acc.add_speed(speed_fold(&set, &speed_x, &split, gp, params)?);
+                        acc.add_speed(speed_fold(set, &speed_x, &split, gp, params)?);
                     }
                     done += 1;
                     progress(done, total);
@@ -109,9 +132,10 @@ pub fn cross_validate(
             }
         }
     }
+    let samples = sets.first().map_or(0, |s| s.samples.len());
     let notes = vec![format!(
         "{} folds over {} importance-sampled patches per prior, {} pseudo-inputs, at most {} optimiser iterations per GP, seed {}.",
-        params.folds, params.samples, params.pseudo_inputs, params.max_iters, params.seed
+        params.folds, samples, params.pseudo_inputs, params.max_iters, params.seed
     )];
     Ok(CvReport {
         folds: params.folds,

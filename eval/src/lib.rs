@@ -27,7 +27,7 @@ pub use benchmark::{
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
 };
-pub use cross_validation::{CvParams, cross_validate};
+pub use cross_validation::{CvParams, cross_validate, cross_validate_samples};
 pub use error::EvalError;
 pub use estimate::MotionEstimate;
 pub use icp::{IcpAlignment, IcpParams, align_icp, icp_motion_estimate};

@@ -103,4 +103,7 @@ pub struct BenchmarkReport {
     pub timings: Vec<StageTiming>,
     /// Seed of the run, recorded in metrics.json when known.
     pub seed: Option<u64>,
+    /// Cross-validation tables, included in `report.md` when present.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cv: Option<crate::report::CvReport>,
 }

@@ -118,7 +118,7 @@ fn find(rows: &[CvRow], feature: CvFeature, prior: f64, gp: CvGp) -> Option<&CvR
         .find(|r| r.feature == feature && r.gp == gp && (r.prior - prior).abs() < 1e-9)
 }
 
-fn cv_markdown(folds: usize, rows: &[CvRow], notes: &[String]) -> String {
+pub(crate) fn cv_markdown(folds: usize, rows: &[CvRow], notes: &[String]) -> String {
     let mut md = String::new();
     let gps = [CvGp::Spgp, CvGp::SpgpHet];
     // Writing to a String cannot fail.

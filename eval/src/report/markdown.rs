@@ -41,6 +41,18 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetr
     for (name, scans, methods) in metrics {
         situation_section(&mut md, name, *scans, methods);
     }
+    if let Some(cv) = &report.cv {
+        // The CV tables sit one heading level below the report's title.
+        let tables = crate::report::cv::cv_markdown(cv.folds, &cv.rows, &cv.notes);
+        for line in tables.lines() {
+            let line = if line.starts_with('#') {
+                format!("#{line}")
+            } else {
+                line.to_owned()
+            };
+            let _ = writeln!(md, "{line}");
+        }
+    }
     timing_section(&mut md, report);
     notes_section(&mut md, report);
     md

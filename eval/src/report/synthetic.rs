@@ -68,5 +68,6 @@ pub(crate) fn synthetic_report() -> BenchmarkReport {
             },
         ],
         seed: Some(7),
+        cv: None,
     }
 }

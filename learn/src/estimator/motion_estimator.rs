@@ -107,6 +107,7 @@ impl MotionEstimator {
     /// Fits the three GPs to an already drawn sample set (thesis 3.1.1, 3.1.3).
     pub fn fit_samples(set: &SampleSet, params: &EstimatorParams) -> Result<Self> {
         params.validate()?;
+        let start = std::time::Instant::now();
         if set.samples.len() < 2 {
             return Err(LearnError::DegenerateData(format!(
                 "{} training samples on moving actors; the dataset needs moving actors in the height slice",
@@ -144,7 +145,7 @@ impl MotionEstimator {
             samples: set.samples.len(),
             pseudo_inputs: params.pseudo_inputs,
             seed: params.seed,
-            seconds: 0.0,
+            seconds: start.elapsed().as_secs_f64(),
         };
         Ok(Self {
             gp: params.gp,
@@ -158,6 +159,13 @@ impl MotionEstimator {
             speed,
             training,
         })
+    }
+
+    /// Records the dataset's sequences as the training data (for models fitted with
+    /// [`Self::fit_samples`] on samples drawn from it).
+    pub fn with_sequences(mut self, dataset: &Dataset) -> Self {
+        self.training.sequences = dataset.sequences().iter().map(|s| s.name.clone()).collect();
+        self
     }
 
     /// GP kind of the three regressions.

@@ -1,6 +1,22 @@
-//! `patchflow bench`: the main job: generate, train, cross-validate, evaluate, report.
+//! `patchflow bench`: the main job on embedded defaults. Generates the nine training tracks and the
+//! five situations, draws the training samples, trains SPGP and SPGP-HET estimators, runs the
+//! cross-validation of thesis 4.3, evaluates every method on the situations (thesis 4.4), and
+//! writes `report.md`, `metrics.json`, `tables.csv`, `cv.json`, `cv.md` and `plots/*.png`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use patchflow_dataset::Dataset;
+use patchflow_eval::{
+    CvParams, GpMethod, StageTimer, method_prefix, write_cv_report, write_report,
+};
+use patchflow_learn::{
+    EstimatorParams, FeatureKind, FeatureParams, GpKind, MotionEstimator, SampleSet,
+};
+use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
+
+use crate::cv::cv_with_samples;
+use crate::evaluate::evaluate_with_bar;
 
 /// Arguments of `patchflow bench`.
 #[derive(Debug, clap::Args)]
@@ -8,12 +24,279 @@ pub struct Args {
     /// Output folder.
     #[arg(long, default_value = "results/bench")]
     pub out: PathBuf,
-    /// A smaller run (fewer sweeps, samples and folds) for a quick look.
+    /// A smaller run (three training tracks, fewer samples, pseudo-inputs and folds) for a quick look.
     #[arg(long)]
     pub quick: bool,
 }
 
+/// The seed of every stage of the benchmark, recorded in its outputs.
+const SEED: u64 = 7;
+
+/// What a benchmark run does; the full plan follows the thesis (4.3), the quick one is smaller.
+struct Plan {
+    training: Vec<&'static str>,
+    samples: usize,
+    pseudo_inputs: usize,
+    max_iters: usize,
+    cv: CvParams,
+}
+
+impl Plan {
+    fn new(quick: bool) -> Self {
+        let all: Vec<&'static str> = embedded_names("train");
+        if quick {
+            let training = all.iter().copied().step_by(3).collect();
+            let cv = CvParams {
+                folds: 2,
+                samples: 600,
+                pseudo_inputs: 30,
+                max_iters: 60,
+                priors: vec![0.01, 0.5],
+                seed: SEED,
+            };
+            Self {
+                training,
+                samples: 800,
+                pseudo_inputs: 40,
+                max_iters: 120,
+                cv,
+            }
+        } else {
+            let cv = CvParams {
+                folds: 3,
+                samples: 1600,
+                pseudo_inputs: 100,
+                max_iters: 100,
+                priors: vec![0.01, 0.5],
+                seed: SEED,
+            };
+            Self {
+                training: all,
+                samples: 1600,
+                pseudo_inputs: 100,
+                max_iters: 300,
+                cv,
+            }
+        }
+    }
+}
+
+fn embedded_names(prefix: &str) -> Vec<&'static str> {
+    patchflow_sim::EMBEDDED_SCENARIOS
+        .iter()
+        .map(|(name, _)| *name)
+        .filter(|n| n.starts_with(prefix))
+        .collect()
+}
+
 /// Runs `patchflow bench`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("patchflow bench is not built yet ({args:?})")
+    let plan = Plan::new(args.quick);
+    let mut timer = StageTimer::new();
+    let data = args.out.join("data");
+
+    // 1. Simulate the training tracks and the five situations (SPEC §3).
+    let train = stage(&mut timer, "generate training tracks", || {
+        generate(&plan.training, &data.join("train"))
+    })?;
+    let situations = stage(&mut timer, "generate situations", || {
+        generate(&embedded_names("situation"), &data.join("situations"))
+    })?;
+
+    // 2. Importance-sample map patches once per prior (thesis 3.1.2); prior 0.5 also trains the estimators.
+    let sets = stage(&mut timer, "sample patches", || {
+        plan.cv
+            .priors
+            .iter()
+            .map(|&prior| collect_samples(&train, prior, plan.samples))
+            .collect::<anyhow::Result<Vec<_>>>()
+    })?;
+    let training_set = sets
+        .iter()
+        .find(|s| (s.prior - 0.5).abs() < 1e-12)
+        .context("no sample set with prior 0.5")?;
+
+    // 3. Train SPGP and SPGP-HET estimators on the same samples (thesis 3.1.3).
+    let estimators = stage(&mut timer, "train SPGP and SPGP-HET", || {
+        [GpKind::Spgp, GpKind::SpgpHet]
+            .iter()
+            .map(|&gp| train_estimator(&train, training_set, &plan, gp, &args.out))
+            .collect::<anyhow::Result<Vec<_>>>()
+    })?;
+
+    // 4. Cross-validation tables (thesis 4.3, Tables 4.1-4.4).
+    let cv_sets: Vec<SampleSet> = sets.iter().map(|s| truncate(s, plan.cv.samples)).collect();
+    let cv = stage(&mut timer, "cross-validation", || {
+        cv_with_samples(&cv_sets, &plan.cv)
+    })?;
+
+    // 5. Every method on every situation (thesis 4.4).
+    let methods: Vec<GpMethod<'_>> = estimators
+        .iter()
+        .map(|e| GpMethod {
+            prefix: method_prefix(e.gp_kind()),
+            estimator: e,
+        })
+        .collect();
+    let (mut report, perception_secs) = stage(&mut timer, "evaluate situations", || {
+        evaluate_with_bar(&situations, &methods)
+    })?;
+
+    // 6. The report.
+    report.seed = Some(SEED);
+    report.notes = notes(&plan, &estimators, perception_secs, args.quick);
+    report.cv = Some(cv.clone());
+    report.timings = timer.timings().to_vec();
+    let files = write_report(&report, &args.out)?;
+    write_cv_report(&cv, &args.out)?;
+    print_headline(&report)?;
+    println!("\nreport: {}", files.report_md.display());
+    Ok(())
+}
+
+/// Runs one stage, records its time and prints a timing line.
+fn stage<T>(
+    timer: &mut StageTimer,
+    name: &str,
+    work: impl FnOnce() -> anyhow::Result<T>,
+) -> anyhow::Result<T> {
+    let value = timer
+        .time(name, work)
+        .with_context(|| format!("stage '{name}'"))?;
+    if let Some(t) = timer.timings().last() {
+        println!("{:>28}: {:7.1} s", t.stage, t.seconds);
+    }
+    Ok(value)
+}
+
+fn generate(names: &[&'static str], out: &Path) -> anyhow::Result<Dataset> {
+    let sources: Vec<ScenarioSource> = ScenarioSource::all_embedded()
+        .into_iter()
+        .filter(|s| matches!(s, ScenarioSource::Embedded(name, _) if names.contains(name)))
+        .collect();
+    let options = GenerateOptions {
+        out: out.to_owned(),
+        seed: SEED,
+        shard: Shard::ALL,
+    };
+    crate::generate::generate_with_progress(&sources, &options)?;
+    Ok(Dataset::open(out)?)
+}
+
+fn collect_samples(train: &Dataset, prior: f64, n: usize) -> anyhow::Result<SampleSet> {
+    let bar = patchflow_eval::progress_bar(0, &format!("samples, prior {prior}"));
+    let set = SampleSet::collect_with_progress(
+        train,
+        &FeatureParams::with_prior(prior),
+        FeatureKind::Patch,
+        n,
+        SEED,
+        &|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    );
+    bar.finish_and_clear();
+    Ok(set?)
+}
+
+fn train_estimator(
+    dataset: &Dataset,
+    set: &SampleSet,
+    plan: &Plan,
+    gp: GpKind,
+    out: &Path,
+) -> anyhow::Result<MotionEstimator> {
+    let params = EstimatorParams {
+        gp,
+        samples: plan.samples,
+        pseudo_inputs: plan.pseudo_inputs,
+        max_iters: plan.max_iters,
+        seed: SEED,
+        ..EstimatorParams::default()
+    };
+    let spinner = patchflow_eval::spinner(&format!("fitting 3 {gp} GPs"));
+    let estimator = MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset));
+    spinner.finish_and_clear();
+    let estimator = estimator?;
+    let models = out.join("models");
+    std::fs::create_dir_all(&models).with_context(|| format!("creating {}", models.display()))?;
+    estimator.save(&models.join(format!("{gp}.json")))?;
+    Ok(estimator)
+}
+
+/// The first `n` samples of a set (samples are in dataset order, so this is itself a sample).
+fn truncate(set: &SampleSet, n: usize) -> SampleSet {
+    SampleSet {
+        samples: set.samples.iter().take(n).cloned().collect(),
+        ..set.clone()
+    }
+}
+
+fn notes(
+    plan: &Plan,
+    estimators: &[MotionEstimator],
+    perception_secs: f64,
+    quick: bool,
+) -> Vec<String> {
+    let mut notes = vec![format!(
+        "{}Training tracks: {}. {} importance-sampled samples, {} pseudo-inputs, at most {} optimiser iterations per GP, seed {SEED}.",
+        if quick { "Quick run (`--quick`). " } else { "" },
+        plan.training.join(", "),
+        plan.samples,
+        plan.pseudo_inputs,
+        plan.max_iters
+    )];
+    notes.push(format!("Perception per scan (maps, clusters, patches and GP prediction for the target cluster, all estimators): {:.1} ms.", perception_secs * 1e3));
+    for e in estimators {
+        for (target, gp) in ["sin_rel", "cos_rel", "speed"].iter().zip(e.gps()) {
+            let r = gp.fit_report();
+            notes.push(format!(
+                "{} {target}: n={} d={} m={}, {} evaluations in {:.1} s, NLML {:.2} ({}).",
+                method_prefix(e.gp_kind()),
+                r.n,
+                r.d,
+                r.m,
+                r.evals,
+                r.seconds,
+                r.nlml,
+                r.stop
+            ));
+        }
+    }
+    notes
+}
+
+/// Prints one line per situation: heading and speed RMSE and coverage of the headline methods.
+fn print_headline(report: &patchflow_eval::BenchmarkReport) -> anyhow::Result<()> {
+    let methods = ["SPGP-HET-ALL", "SPGP-ALL", "KF", "ICP"];
+    println!(
+        "\n{:<12} {}",
+        "situation",
+        methods.map(|m| format!("{m:>26}")).join("")
+    );
+    println!(
+        "{:<12} {}",
+        "",
+        methods
+            .map(|_| format!("{:>26}", "heading° / speed m/s / cov"))
+            .join("")
+    );
+    for situation in &report.situations {
+        let metrics = situation.metrics()?;
+        let cells = methods.map(|m| match metrics.get(m) {
+            Some(x) => format!(
+                "{:>26}",
+                format!(
+                    "{} / {} / {:.2}",
+                    x.heading_rmse_deg.map_or("-".into(), |v| format!("{v:.1}")),
+                    x.speed_rmse_mps.map_or("-".into(), |v| format!("{v:.2}")),
+                    x.coverage
+                )
+            ),
+            None => format!("{:>26}", "-"),
+        });
+        println!("{:<12} {}", situation.name, cells.join(""));
+    }
+    Ok(())
 }

@@ -3,7 +3,10 @@
 use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
-use patchflow_eval::{CvParams, CvReport, cross_validate, progress_bar, write_cv_report};
+use patchflow_eval::{
+    CvParams, CvReport, cross_validate, cross_validate_samples, progress_bar, write_cv_report,
+};
+use patchflow_learn::SampleSet;
 
 /// Arguments of `patchflow cv`.
 #[derive(Debug, clap::Args)]
@@ -36,6 +39,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 pub fn cv_with_bar(dataset: &Dataset, params: &CvParams) -> anyhow::Result<CvReport> {
     let bar = progress_bar(0, "cross-validation");
     let report = cross_validate(dataset, params, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    Ok(report?)
+}
+
+/// Cross-validates sample sets already drawn (one per prior), with a progress bar.
+pub fn cv_with_samples(sets: &[SampleSet], params: &CvParams) -> anyhow::Result<CvReport> {
+    let bar = progress_bar(0, "cross-validation");
+    let report = cross_validate_samples(sets, params, &|done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     });

@@ -6,6 +6,7 @@ use std::sync::Mutex;
 
 use anyhow::Context;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use patchflow_dataset::Manifest;
 use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset};
 
 /// Arguments of `patchflow generate`.
@@ -44,6 +45,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         seed: args.seed,
         shard,
     };
+    let manifest = generate_with_progress(&sources, &options)?;
+    let points: u64 = manifest.sequences.iter().map(|s| s.points).sum();
+    println!(
+        "{}: {} sequences, {} points (manifest.json rewritten)",
+        args.out.display(),
+        manifest.sequences.len(),
+        points
+    );
+    Ok(())
+}
+
+/// Generates with one progress bar per sequence; `bench` uses it too.
+pub fn generate_with_progress(
+    sources: &[ScenarioSource],
+    options: &GenerateOptions,
+) -> anyhow::Result<Manifest> {
     let bars = MultiProgress::new();
     let style = ProgressStyle::with_template(
         "{prefix:>12} [{bar:40}] {pos}/{len} sweeps {elapsed} (eta {eta}) {msg}",
@@ -79,14 +96,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             },
         }
     };
-    let manifest = generate_dataset(&sources, &options, &on_progress)
-        .with_context(|| format!("generating into {}", args.out.display()))?;
-    let points: u64 = manifest.sequences.iter().map(|s| s.points).sum();
-    println!(
-        "{}: {} sequences, {} points (manifest.json rewritten)",
-        args.out.display(),
-        manifest.sequences.len(),
-        points
-    );
-    Ok(())
+    generate_dataset(sources, options, &on_progress)
+        .with_context(|| format!("generating into {}", options.out.display()))
 }
