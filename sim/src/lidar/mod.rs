@@ -2,8 +2,8 @@
 
 mod beams;
 mod intensity;
-mod lidar;
+mod spinning_lidar;
 
 pub use beams::elevations_deg;
 
-pub use lidar::{Lidar, Scan};
+pub use spinning_lidar::{Lidar, Scan};

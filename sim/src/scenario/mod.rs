@@ -5,13 +5,13 @@ mod actor_config;
 mod embedded;
 mod lidar_config;
 mod load;
-mod scenario;
+mod schema;
 mod structure_config;
 mod traffic;
 
 pub use actor_config::{ActorConfig, CarModel};
 pub use embedded::EMBEDDED_SCENARIOS;
 pub use lidar_config::{ElevationSpacing, LidarConfig};
-pub use scenario::{Scenario, TrafficConfig};
+pub use schema::{Scenario, TrafficConfig};
 pub use structure_config::{StructureConfig, StructureKind};
 pub use traffic::random_traffic;

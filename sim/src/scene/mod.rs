@@ -1,7 +1,7 @@
 //! The Rapier scene: ground, static boxes, kinematic actors and the ego car.
 
-mod scene;
+mod rapier_scene;
 mod surface;
 
-pub use scene::{Scene, SceneActor};
+pub use rapier_scene::{Scene, SceneActor};
 pub use surface::Surface;

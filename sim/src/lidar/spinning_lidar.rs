@@ -130,9 +130,14 @@ impl Lidar {
         };
         let ego_ref = scene.ego().trajectory.state_at(start_secs);
         let sensor_from_world_ref = self.world_from_sensor(&ego_ref).inverse();
+        let rays = self.azimuth_sin_cos.len() * self.elevation_sin_cos.len();
         let mut scan = Scan {
+            points_in_sensor: Vec::with_capacity(rays),
+            intensities: Vec::with_capacity(rays),
+            labels: Vec::with_capacity(rays),
+            flow_in_world_mps: Vec::with_capacity(rays),
+            time_in_sweep_secs: Vec::with_capacity(rays),
             actor_point_counts: vec![0; scene.actors().len()],
-            ..Scan::default()
         };
         for b in 0..blocks {
             let (first, end) = (b * steps / blocks, (b + 1) * steps / blocks);
