@@ -1,0 +1,78 @@
+//! Regression test of model training: cross-validated heading and speed RMSE of SPGP-HET on a
+//! small fixed scene (fixed scenario, seed and settings) must not get worse than recorded bounds.
+//! A change to the simulator, the features or the GPs that makes the learned model worse fails
+//! here. The bounds are the values measured when the test was written plus a margin for
+//! floating-point differences between machines; tighten them when the model improves.
+
+use patchflow_eval::{CvGp, CvParams, cross_validate};
+
+/// Cars crossing, oncoming and leaving at three speeds, seen from a slowly moving ego car.
+const SCENE: &str = r#"
+description = "training regression scene"
+sweeps = 14
+
+[lidar]
+channels = 32
+azimuth_steps = 900
+blocks = 36
+
+[ego]
+path_m = [[0.0, 0.0], [100.0, 0.0]]
+speed_mps = 2.0
+
+[[actors]]
+name = "crossing"
+target = true
+path_m = [[14.0, -8.0], [14.0, 60.0]]
+speed_mps = 8.0
+
+[[actors]]
+name = "oncoming"
+path_m = [[40.0, 4.0], [-60.0, 4.0]]
+speed_mps = 6.0
+
+[[actors]]
+name = "leaving"
+path_m = [[8.0, -4.0], [120.0, -4.0]]
+speed_mps = 4.0
+"#;
+
+/// Recorded on the commit that added this test (see the module docs).
+/// Measured 11.82° (2026-11-22).
+const HEADING_RMSE_BOUND_DEG: f64 = 14.0;
+/// Measured 0.986 m/s (2026-11-22).
+const SPEED_RMSE_BOUND_MPS: f64 = 1.2;
+
+#[test]
+fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = patchflow_tests::generate_scene(dir.path(), "regression", SCENE, 11);
+    let params = CvParams {
+        folds: 2,
+        samples: 300,
+        pseudo_inputs: 15,
+        max_iters: 40,
+        priors: vec![0.5],
+        seed: 5,
+    };
+    let report = cross_validate(&dataset, &params, &|_, _| {}).unwrap();
+    let row = report
+        .rows
+        .iter()
+        .find(|r| r.gp == CvGp::SpgpHet && r.feature == patchflow_eval::CvFeature::Patch)
+        .unwrap();
+    let speed = row.speed_rmse_mps.unwrap();
+    println!(
+        "heading RMSE {:.3} deg, speed RMSE {:.4} m/s",
+        row.heading_rmse_deg, speed
+    );
+    assert!(
+        row.heading_rmse_deg <= HEADING_RMSE_BOUND_DEG,
+        "heading RMSE {:.3} deg > bound {HEADING_RMSE_BOUND_DEG}",
+        row.heading_rmse_deg
+    );
+    assert!(
+        speed <= SPEED_RMSE_BOUND_MPS,
+        "speed RMSE {speed:.4} m/s > bound {SPEED_RMSE_BOUND_MPS}"
+    );
+}
