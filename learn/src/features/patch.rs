@@ -40,8 +40,7 @@ impl Patch {
                 let x = centre_xy[0] + along * c - across * s;
                 let y = centre_xy[1] + along * s + across * c;
                 let k = r * PATCH_SIDE + col;
-                values[k] = maps.difference.sample_bilinear(x, y);
-                values[PATCH_CELLS + k] = maps.reflection.sample_bilinear(x, y);
+                (values[k], values[PATCH_CELLS + k]) = sample_both(maps, x, y);
             }
         }
         Self { values }
@@ -72,6 +71,43 @@ impl Patch {
             })
             .collect()
     }
+}
+
+/// Bilinear samples of the difference and reflection maps at one world point: both maps share
+/// a window, so the cell indices and weights are computed once.
+fn sample_both(maps: &MapPair, x_m: f64, y_m: f64) -> (f64, f64) {
+    let window = maps.reflection.window();
+    let [u, v] = window.to_local(x_m, y_m);
+    let (u, v) = (u - 0.5, v - 0.5);
+    let (c0, r0) = (u.floor(), v.floor());
+    let (cols, rows) = (window.cols as f64, window.rows as f64);
+    let inside = c0 >= 0.0 && r0 >= 0.0 && c0 + 1.0 < cols && r0 + 1.0 < rows;
+    if !inside || maps.difference.window() != window {
+        return (
+            maps.difference.sample_bilinear(x_m, y_m),
+            maps.reflection.sample_bilinear(x_m, y_m),
+        );
+    }
+    let (tu, tv) = (u - c0, v - r0);
+    let weights = [
+        (1.0 - tu) * (1.0 - tv),
+        tu * (1.0 - tv),
+        (1.0 - tu) * tv,
+        tu * tv,
+    ];
+    let k = r0 as usize * window.cols + c0 as usize;
+    let cells = [k, k + 1, k + window.cols, k + window.cols + 1];
+    let blend = |values: &[f64]| {
+        cells
+            .iter()
+            .zip(&weights)
+            .map(|(&c, w)| values[c] * w)
+            .sum()
+    };
+    (
+        blend(maps.difference.values()),
+        blend(maps.reflection.values()),
+    )
 }
 
 #[cfg(test)]
