@@ -2,8 +2,9 @@
 //!
 //! Cutting the single-link hierarchy at distance d gives exactly the connected components of the
 //! graph that links every two points at most d apart, so we compute those instead of the O(N²)
-//! SLINK: hash the points into cells of side d (linked points lie in the same or a neighbouring
-//! cell), test only those pairs, and join with union-find. O(N log N) for bounded point density.
+//! SLINK: hash the points into cells of side d/√2 (points in one cell are linked; linked points
+//! lie at most two cells apart), test only pairs of neighbouring cells until one pair links them,
+//! and join with union-find. O(N log N) for bounded point density.
 
 /// A partition of points into clusters with deterministic ids: cluster 0 holds point 0, and ids
 /// follow the smallest member index.
@@ -19,12 +20,11 @@ impl Clusters {
     pub fn single_link(points_xy: &[[f64; 2]], max_gap_m: f64) -> Self {
         let mut sets = UnionFind::new(points_xy.len());
         let gap2 = max_gap_m * max_gap_m;
-        let cell_of = |p: &[f64; 2]| {
-            (
-                (p[0] / max_gap_m).floor() as i64,
-                (p[1] / max_gap_m).floor() as i64,
-            )
-        };
+        // Cells of side d/√2: two points in one cell are less than d apart, so a cell is joined
+        // without a single test; linked points lie at most two cells apart.
+        // Shrunk by 1e-9 so rounding cannot link a same-cell pair just over d.
+        let side = max_gap_m / std::f64::consts::SQRT_2 * (1.0 - 1e-9);
+        let cell_of = |p: &[f64; 2]| ((p[0] / side).floor() as i64, (p[1] / side).floor() as i64);
         let mut keyed: Vec<((i64, i64), usize)> = points_xy
             .iter()
             .enumerate()
@@ -43,28 +43,43 @@ impl Clusters {
             let (p, q) = (points_xy[a], points_xy[b]);
             (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) <= gap2
         };
+        for &(_, start, end) in &runs {
+            for k in start + 1..end {
+                sets.union(keyed[start].1, keyed[k].1);
+            }
+        }
+        // Half of the 5 × 5 neighbourhood; the other half sees this cell from its side. One close
+        // pair joins two cells, since each cell is already one set.
+        const HALF: [(i64, i64); 12] = [
+            (1, 0),
+            (2, 0),
+            (-2, 1),
+            (-1, 1),
+            (0, 1),
+            (1, 1),
+            (2, 1),
+            (-2, 2),
+            (-1, 2),
+            (0, 2),
+            (1, 2),
+            (2, 2),
+        ];
         for &((cx, cy), start, end) in &runs {
             let own = &keyed[start..end];
-            for (k, &(_, a)) in own.iter().enumerate() {
-                for &(_, b) in &own[k + 1..] {
-                    if close(a, b) {
-                        sets.union(a, b);
-                    }
-                }
-            }
-            // Half of the 8 neighbours; the other half sees this cell from its side.
-            for (dx, dy) in [(1, -1), (1, 0), (1, 1), (0, 1)] {
+            for (dx, dy) in HALF {
                 let key = (cx + dx, cy + dy);
                 let Ok(n) = runs.binary_search_by(|r| r.0.cmp(&key)) else {
                     continue;
                 };
                 let other = &keyed[runs[n].1..runs[n].2];
-                for &(_, a) in own {
-                    for &(_, b) in other {
-                        if close(a, b) {
-                            sets.union(a, b);
-                        }
-                    }
+                if sets.find(own[0].1) == sets.find(other[0].1) {
+                    continue;
+                }
+                let linked = own
+                    .iter()
+                    .any(|&(_, a)| other.iter().any(|&(_, b)| close(a, b)));
+                if linked {
+                    sets.union(own[0].1, other[0].1);
                 }
             }
         }

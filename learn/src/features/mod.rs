@@ -7,6 +7,7 @@ mod csv;
 mod difference_map;
 mod gabor;
 mod grid;
+mod line;
 mod params;
 mod patch;
 mod reflection_map;

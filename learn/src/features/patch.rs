@@ -2,6 +2,7 @@
 //! reflection map on a grid centred on a point and rotated to a reference axis.
 
 use crate::features::difference_map::MapPair;
+use crate::features::grid::{GridMap, GridWindow};
 
 /// Cells along each side of a patch (thesis 4.3: 11 × 11 cells of 0.10 m, 1.1 m a side).
 pub const PATCH_SIDE: usize = 11;
@@ -29,19 +30,32 @@ impl Patch {
     /// Samples both maps on the grid centred on `centre_xy` (world) with reference axis
     /// `axis_rad` (counter-clockwise from world +x); sample spacing is the map's cell size.
     pub fn extract(maps: &MapPair, centre_xy: [f64; 2], axis_rad: f64) -> Self {
-        let cell = maps.reflection.window().cell_m;
+        let window = *maps.reflection.window();
         let (s, c) = axis_rad.sin_cos();
         let half = (PATCH_SIDE / 2) as f64;
+        // Sample positions in local cell units (spacing one cell), relative to cell centres.
+        let [uc, vc] = window.to_local(centre_xy[0], centre_xy[1]);
+        let (uc, vc) = (uc - 0.5, vc - 0.5);
+        let shared = maps.difference.window() == &window;
         let mut values = [0.0; PATCH_LEN];
         for r in 0..PATCH_SIDE {
-            let across = (r as f64 - half) * cell;
+            let across = r as f64 - half;
             for col in 0..PATCH_SIDE {
-                let along = (col as f64 - half) * cell;
-                let x = centre_xy[0] + along * c - across * s;
-                let y = centre_xy[1] + along * s + across * c;
+                let along = col as f64 - half;
+                let u = uc + along * c - across * s;
+                let v = vc + along * s + across * c;
                 let k = r * PATCH_SIDE + col;
-                values[k] = maps.difference.sample_bilinear(x, y);
-                values[PATCH_CELLS + k] = maps.reflection.sample_bilinear(x, y);
+                (values[k], values[PATCH_CELLS + k]) = match shared {
+                    true => sample_both(maps, &window, u, v),
+                    false => {
+                        let x = (u + 0.5 + window.origin_col as f64) * window.cell_m;
+                        let y = (v + 0.5 + window.origin_row as f64) * window.cell_m;
+                        (
+                            maps.difference.sample_bilinear(x, y),
+                            maps.reflection.sample_bilinear(x, y),
+                        )
+                    }
+                };
             }
         }
         Self { values }
@@ -74,11 +88,50 @@ impl Patch {
     }
 }
 
+/// Bilinear samples of the difference and reflection maps (which share `window`) at local
+/// position `(u, v)` measured from cell centres: indices and weights are computed once.
+fn sample_both(maps: &MapPair, window: &GridWindow, u: f64, v: f64) -> (f64, f64) {
+    let (c0, r0) = (u.floor(), v.floor());
+    let inside =
+        c0 >= 0.0 && r0 >= 0.0 && c0 + 1.0 < window.cols as f64 && r0 + 1.0 < window.rows as f64;
+    let (tu, tv) = (u - c0, v - r0);
+    let weights = [
+        (1.0 - tu) * (1.0 - tv),
+        tu * (1.0 - tv),
+        (1.0 - tu) * tv,
+        tu * tv,
+    ];
+    if !inside {
+        let (c, r) = (c0 as i64, r0 as i64);
+        let corners = [(c, r), (c + 1, r), (c, r + 1), (c + 1, r + 1)];
+        let blend = |map: &GridMap| {
+            corners
+                .iter()
+                .zip(&weights)
+                .map(|(&(c, r), w)| map.get(c, r) * w)
+                .sum()
+        };
+        return (blend(&maps.difference), blend(&maps.reflection));
+    }
+    let k = r0 as usize * window.cols + c0 as usize;
+    let cells = [k, k + 1, k + window.cols, k + window.cols + 1];
+    let blend = |values: &[f64]| {
+        cells
+            .iter()
+            .zip(&weights)
+            .map(|(&c, w)| values[c] * w)
+            .sum()
+    };
+    (
+        blend(maps.difference.values()),
+        blend(maps.reflection.values()),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::FeatureParams;
-    use crate::features::grid::{GridMap, GridWindow};
     use crate::features::slice::HeightSlice;
     use crate::features::synthetic::{SceneBox, SyntheticLidar, SyntheticScene, rotate_about};
 
@@ -110,6 +163,21 @@ mod tests {
         assert!((patch.difference().iter().sum::<f64>() - 1.0).abs() < 1e-9);
         assert!(patch.reflection().iter().all(|&v| (v - 0.5).abs() < 1e-12));
         assert_eq!(Patch::feature_names()[PATCH_CELLS + 12], "m_1_1");
+    }
+
+    #[test]
+    fn samples_beyond_the_window_read_the_prior_and_zero_change() {
+        let w = GridWindow::centred([0.0, 0.0], 2.0, 0.1);
+        let maps = MapPair {
+            reflection: GridMap::from_values(w, vec![0.0; w.len()], 0.5).unwrap(),
+            difference: GridMap::from_values(w, vec![1.0; w.len()], 0.0).unwrap(),
+        };
+        // Centred on the window's right edge: columns 6..=10 lie outside, column 5 on the edge.
+        let patch = Patch::extract(&maps, [2.0, 0.0], 0.0);
+        assert!((patch.values[5 * PATCH_SIDE + 10] - 0.0).abs() < 1e-12);
+        assert!((patch.values[PATCH_CELLS + 5 * PATCH_SIDE + 10] - 0.5).abs() < 1e-12);
+        assert!((patch.values[5 * PATCH_SIDE] - 1.0).abs() < 1e-12);
+        assert!((patch.values[PATCH_CELLS + 5 * PATCH_SIDE] - 0.0).abs() < 1e-12);
     }
 
     #[test]

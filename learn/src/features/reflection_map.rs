@@ -4,6 +4,7 @@
 use rayon::prelude::*;
 
 use crate::features::grid::{GridMap, GridWindow};
+use crate::features::line::add_misses;
 use crate::features::slice::SlicedBeam;
 
 /// Builds one sweep's reflection map on `window` (not accumulated over time, thesis 2.1.1).
@@ -24,21 +25,12 @@ pub fn reflection_map(
     for beam in beams {
         trace_beam(beam, window, &mut hits, &mut misses);
     }
-    let mut scratch = vec![0f32; window.len()];
-    smooth(&mut hits, &mut scratch, window, spread as f32);
-    smooth(&mut misses, &mut scratch, window, spread as f32);
-    let values = hits
-        .par_iter()
-        .zip(misses.par_iter())
-        .map(|(&h, &m)| {
-            let total = f64::from(h) + f64::from(m);
-            if total > 1e-9 {
-                f64::from(h) / total
-            } else {
-                prior
-            }
-        })
-        .collect();
+    let s = spread as f32;
+    rayon::join(
+        || smooth_rows(&mut hits, window.cols, s),
+        || smooth_rows(&mut misses, window.cols, s),
+    );
+    let values = smooth_columns_and_divide(&hits, &misses, window, s, prior);
     GridMap::from_values(*window, values, prior).unwrap_or_else(|| GridMap::filled(*window, prior))
 }
 
@@ -61,11 +53,7 @@ fn trace_beam(beam: &SlicedBeam, window: &GridWindow, hits: &mut [f32], misses: 
     let (x1, y1) = (last(cb[0], cols), last(cb[1], rows));
     // The end cell is the hit itself when the beam ends in the slice inside the window.
     let skip_last = beam.hit && end_inside && (x1, y1) == (end_cell.0 as i64, end_cell.1 as i64);
-    bresenham(x0, y0, x1, y1, |x, y, is_last| {
-        if !(is_last && skip_last) {
-            misses[y as usize * window.cols + x as usize] += 1.0;
-        }
-    });
+    add_misses(misses, window.cols, (x0, y0), (x1, y1), skip_last);
 }
 
 /// Clips the segment `a → b` to the box `[0, cols] × [0, rows]` (Liang–Barsky).
@@ -97,58 +85,61 @@ fn clip_to_box(a: [f64; 2], b: [f64; 2], cols: f64, rows: f64) -> Option<([f64; 
     })
 }
 
-/// Bresenham's line from cell `(x0, y0)` to `(x1, y1)`, both included; `visit(x, y, is_last)`.
-pub(crate) fn bresenham(x0: i64, y0: i64, x1: i64, y1: i64, mut visit: impl FnMut(i64, i64, bool)) {
-    let (dx, dy) = ((x1 - x0).abs(), -(y1 - y0).abs());
-    let (sx, sy) = (if x0 < x1 { 1 } else { -1 }, if y0 < y1 { 1 } else { -1 });
-    let (mut x, mut y, mut err) = (x0, y0, dx + dy);
-    loop {
-        let is_last = x == x1 && y == y1;
-        visit(x, y, is_last);
-        if is_last {
-            return;
-        }
-        let e2 = 2 * err;
-        if e2 >= dy {
-            err += dy;
-            x += sx;
-        }
-        if e2 <= dx {
-            err += dx;
-            y += sy;
-        }
-    }
-}
-
-/// Separable 3-tap smoothing in place: along rows, then along columns. Mass that would leave the
-/// window is dropped.
-fn smooth(values: &mut [f32], scratch: &mut [f32], window: &GridWindow, s: f32) {
+/// Spreads counts along x in place with `[s, 1 − 2s, s]`; mass leaving the window is dropped.
+fn smooth_rows(values: &mut [f32], cols: usize, s: f32) {
     if s == 0.0 {
         return;
     }
+    let c = 1.0 - 2.0 * s;
+    values.par_chunks_mut(cols).for_each(|row| {
+        let mut left = 0.0;
+        for x in 0..cols {
+            let here = row[x];
+            let right = if x + 1 < cols { row[x + 1] } else { 0.0 };
+            row[x] = c * here + s * (left + right);
+            left = here;
+        }
+    });
+}
+
+/// Row `r` of a row-major grid with `cols` columns, if `r` is given.
+fn row_of(values: &[f32], r: Option<usize>, cols: usize) -> Option<&[f32]> {
+    r.map(|r| &values[r * cols..(r + 1) * cols])
+}
+
+/// Spreads both counts along y with `[s, 1 − 2s, s]` and returns hits / (hits + misses) per
+/// cell, `prior` where no mass arrived (thesis Eq. 2.8).
+fn smooth_columns_and_divide(
+    hits: &[f32],
+    misses: &[f32],
+    window: &GridWindow,
+    s: f32,
+    prior: f64,
+) -> Vec<f64> {
     let (cols, rows, c) = (window.cols, window.rows, 1.0 - 2.0 * s);
-    scratch
-        .par_chunks_mut(cols)
-        .zip(values.par_chunks(cols))
-        .for_each(|(out, row)| {
-            for x in 0..cols {
-                let left = if x > 0 { row[x - 1] } else { 0.0 };
-                let right = if x + 1 < cols { row[x + 1] } else { 0.0 };
-                out[x] = c * row[x] + s * (left + right);
+    let mut out = vec![prior; window.len()];
+    out.par_chunks_mut(cols).enumerate().for_each(|(y, out)| {
+        let row = |v, r| row_of(v, r, cols);
+        let (below, above) = (y.checked_sub(1), (y + 1 < rows).then_some(y + 1));
+        let (h, m) = (row(hits, Some(y)), row(misses, Some(y)));
+        let (hb, mb, ha, ma) = (
+            row(hits, below),
+            row(misses, below),
+            row(hits, above),
+            row(misses, above),
+        );
+        let (Some(h), Some(m)) = (h, m) else { return };
+        for x in 0..cols {
+            let side = |v: Option<&[f32]>| v.map_or(0.0, |r| r[x]);
+            let hx = c * h[x] + s * (side(hb) + side(ha));
+            let mx = c * m[x] + s * (side(mb) + side(ma));
+            let total = f64::from(hx) + f64::from(mx);
+            if total > 1e-9 {
+                out[x] = f64::from(hx) / total;
             }
-        });
-    values
-        .par_chunks_mut(cols)
-        .enumerate()
-        .for_each(|(y, out)| {
-            let mid = &scratch[y * cols..(y + 1) * cols];
-            let below = (y > 0).then(|| &scratch[(y - 1) * cols..y * cols]);
-            let above = (y + 1 < rows).then(|| &scratch[(y + 1) * cols..(y + 2) * cols]);
-            for x in 0..cols {
-                let side = below.map_or(0.0, |r| r[x]) + above.map_or(0.0, |r| r[x]);
-                out[x] = c * mid[x] + s * side;
-            }
-        });
+        }
+    });
+    out
 }
 
 #[cfg(test)]
@@ -216,20 +207,6 @@ mod tests {
             "the hit cell stays mostly occupied"
         );
         assert_eq!(map.at(1.05, 0.45), 0.5, "three cells away nothing arrives");
-    }
-
-    #[test]
-    fn bresenham_visits_a_connected_line_between_both_ends() {
-        let mut cells = Vec::new();
-        bresenham(0, 0, 5, -3, |x, y, _| cells.push((x, y)));
-        assert_eq!(cells.first(), Some(&(0, 0)));
-        assert_eq!(cells.last(), Some(&(5, -3)));
-        assert!(
-            cells
-                .windows(2)
-                .all(|w| (w[1].0 - w[0].0).abs() <= 1 && (w[1].1 - w[0].1).abs() <= 1)
-        );
-        assert_eq!(cells.len(), 6);
     }
 
     #[test]

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use patchflow_dataset::Sweep;
 
-use crate::features::reflection_map::bresenham;
+use crate::features::line::bresenham;
 use crate::features::sweep_features::SweepFeatures;
 use crate::{LearnError, Result};
 

@@ -43,6 +43,7 @@ impl HeightSlice {
     /// each end point. A non-finite point is an error.
     pub fn cut(sweep: &Sweep, params: &FeatureParams) -> Result<Self> {
         let origin = sweep.world_from_sensor.translation.vector;
+        let rotation = sweep.world_from_sensor.rotation.to_rotation_matrix();
         let (zmin, zmax) = (params.slice_min_m, params.slice_max_m);
         let mut beams = Vec::new();
         let mut points = Vec::new();
@@ -53,7 +54,9 @@ impl HeightSlice {
                     sweep.index
                 )));
             }
-            let end = sweep.point_in_world(index);
+            let end = rotation
+                * nalgebra::Vector3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
+                + origin;
             let Some((t0, t1)) = clip_to_slab(origin.z, end.z, zmin, zmax) else {
                 continue;
             };

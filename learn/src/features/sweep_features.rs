@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::features::cluster::Clusters;
 use crate::features::difference_map::MapPair;
 use crate::features::gabor::{GABOR_FILTERS, GaborBank};
-use crate::features::grid::GridMap;
+use crate::features::grid::{GridMap, GridWindow};
 use crate::features::patch::Patch;
 use crate::features::slice::{HeightSlice, SlicedPoint};
 use crate::{FeatureParams, Result};
@@ -66,17 +66,22 @@ impl SweepFeatures {
             || HeightSlice::cut(curr, params),
         );
         let (prev_slice, curr_slice) = (prev_slice?, curr_slice?);
-        // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their difference.
-        let maps = MapPair::build(&prev_slice, &curr_slice, params);
-        // 2.2.1: single-link clusters of the sliced end points that the maps cover.
-        let window = *maps.reflection.window();
-        let points: Vec<SlicedPoint> = curr_slice
-            .points
-            .into_iter()
-            .filter(|p| window.cell_of(p.x_m, p.y_m).is_some())
-            .collect();
-        let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
-        let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
+        // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
+        // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
+        let window = GridWindow::centred(curr_slice.sensor_xy, params.half_extent_m, params.cell_m);
+        let (maps, (points, clusters)) = rayon::join(
+            || MapPair::build(&prev_slice, &curr_slice, params),
+            || {
+                let points: Vec<SlicedPoint> = curr_slice
+                    .points
+                    .iter()
+                    .filter(|p| window.cell_of(p.x_m, p.y_m).is_some())
+                    .copied()
+                    .collect();
+                let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
+                (points, Clusters::single_link(&xy, params.cluster_gap_m))
+            },
+        );
         Ok(Self {
             sensor_xy: curr_slice.sensor_xy,
             points,
