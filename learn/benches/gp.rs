@@ -24,11 +24,18 @@ fn objective_and_gradient(c: &mut Criterion) {
     for n in [1_600, 6_400, 25_600] {
         let (x, y) = data(n, 242, 1);
         for kind in [GpKind::Spgp, GpKind::SpgpHet] {
-            let params = GpParams::new(kind).check().expect("default parameters are valid");
+            let params = GpParams::new(kind)
+                .check()
+                .expect("default parameters are valid");
             let obj = GpObjective::new(&params, &x, &y);
             let theta = obj.start();
             group.bench_function(format!("{kind}/n{n}"), |b| {
-                b.iter(|| black_box(obj.value_and_gradient(black_box(&theta)).expect("evaluates")))
+                b.iter(|| {
+                    black_box(
+                        obj.value_and_gradient(black_box(&theta))
+                            .expect("evaluates"),
+                    )
+                })
             });
         }
     }
@@ -43,7 +50,10 @@ fn full_fit(c: &mut Criterion) {
         b.iter(|| {
             let model = GpParams::new(GpKind::Spgp).fit(&x, &y).expect("fits");
             let r = model.fit_report();
-            eprintln!("fit: {} evals, {} iterations, {:.2} s, nlml {:.3}, stop {}", r.evals, r.iterations, r.seconds, r.nlml, r.stop);
+            eprintln!(
+                "fit: {} evals, {} iterations, {:.2} s, nlml {:.3}, stop {}",
+                r.evals, r.iterations, r.seconds, r.nlml, r.stop
+            );
             black_box(model)
         })
     });

@@ -14,18 +14,31 @@ use rand_chacha::ChaCha8Rng;
 /// Process CPU time (user + system) in seconds, from /proc/self/stat (Linux only; 0 elsewhere).
 fn cpu_seconds() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let fields: Vec<&str> = stat.rsplit(')').next().unwrap_or("").split_whitespace().collect();
-    let ticks = |i: usize| fields.get(i).and_then(|v| v.parse::<f64>().ok()).unwrap_or(0.0);
+    let fields: Vec<&str> = stat
+        .rsplit(')')
+        .next()
+        .unwrap_or("")
+        .split_whitespace()
+        .collect();
+    let ticks = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
     (ticks(11) + ticks(12)) / 100.0
 }
 
 fn main() -> Result<(), patchflow_learn::LearnError> {
     let args: Vec<String> = std::env::args().collect();
-    let arg = |i: usize, default: usize| args.get(i).and_then(|v| v.parse().ok()).unwrap_or(default);
+    let arg =
+        |i: usize, default: usize| args.get(i).and_then(|v| v.parse().ok()).unwrap_or(default);
     let (n, d, m, evals) = (arg(1, 1_600), arg(2, 242), arg(3, 100), arg(4, 20));
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let x: DMatrix<f64> = DMatrix::from_fn(n, d, |_, _| rng.random_range(-1.0..1.0));
-    let y = DVector::from_fn(n, |i, _| (2.0 * x[(i, 0)]).sin() + x[(i, 1)] * x[(i, 2)] + 0.1 * rng.random_range(-1.0..1.0));
+    let y = DVector::from_fn(n, |i, _| {
+        (2.0 * x[(i, 0)]).sin() + x[(i, 1)] * x[(i, 2)] + 0.1 * rng.random_range(-1.0..1.0)
+    });
     let params = GpParams::new(GpKind::Spgp).pseudo_inputs(m);
     let obj = GpObjective::new(&params.check()?, &x, &y);
     let theta = obj.start();

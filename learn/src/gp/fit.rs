@@ -47,13 +47,25 @@ fn check_data(x: &DMatrix<f64>, y: &DVector<f64>, names: &[String]) -> Result<()
         return bad(format!("{} input rows but {} targets", x.nrows(), y.len()));
     }
     if x.nrows() < 2 || x.ncols() == 0 {
-        return bad(format!("need at least 2 samples and 1 input, got {}×{}", x.nrows(), x.ncols()));
+        return bad(format!(
+            "need at least 2 samples and 1 input, got {}×{}",
+            x.nrows(),
+            x.ncols()
+        ));
     }
     if names.len() != x.ncols() {
-        return bad(format!("{} input names for {} input columns", names.len(), x.ncols()));
+        return bad(format!(
+            "{} input names for {} input columns",
+            names.len(),
+            x.ncols()
+        ));
     }
     if let Some(pos) = x.iter().position(|v| !v.is_finite()) {
-        return bad(format!("input row {}, column '{}' is not finite", pos % x.nrows(), names[pos / x.nrows()]));
+        return bad(format!(
+            "input row {}, column '{}' is not finite",
+            pos % x.nrows(),
+            names[pos / x.nrows()]
+        ));
     }
     if let Some(row) = y.iter().position(|v| !v.is_finite()) {
         return bad(format!("target row {row} is not finite"));
@@ -69,7 +81,13 @@ impl GpValidParams {
     }
 
     /// Fits `x` (N×D) to `y` (N), recording column names for model files and CSV prediction.
-    pub fn fit_named(&self, x: &DMatrix<f64>, y: &DVector<f64>, input_names: &[String], target_name: &str) -> Result<GpModel> {
+    pub fn fit_named(
+        &self,
+        x: &DMatrix<f64>,
+        y: &DVector<f64>,
+        input_names: &[String],
+        target_name: &str,
+    ) -> Result<GpModel> {
         let clock = Instant::now();
         check_data(x, y, input_names)?;
         let kind = self.kind();
@@ -82,8 +100,18 @@ impl GpValidParams {
         // Maximise the marginal likelihood p(y | X, X̄, Θ) (eq. 3.30) jointly in Θ, the
         // pseudo-inputs X̄ and, for SPGP-HET, the pseudo-input noise h (eq. 3.34).
         let (grad_tol, rel_tol) = self.tolerances();
-        let options = LbfgsOptions { max_iters: self.max_iters(), max_evals: self.max_evals(), memory: LBFGS_MEMORY, grad_tol, rel_tol };
-        let outcome = minimize(|t| objective.value_and_gradient(t), objective.start(), options)?;
+        let options = LbfgsOptions {
+            max_iters: self.max_iters(),
+            max_evals: self.max_evals(),
+            memory: LBFGS_MEMORY,
+            grad_tol,
+            rel_tol,
+        };
+        let outcome = minimize(
+            |t| objective.value_and_gradient(t),
+            objective.start(),
+            options,
+        )?;
         let hyper = objective.layout.unpack(&outcome.x);
         // Condition on the data for predictions (eqs. 3.32-3.33).
         let data = &objective.data;
@@ -99,7 +127,17 @@ impl GpValidParams {
             nlml: outcome.f + data.len() as f64 * target.scale[0].ln(),
             stop: format!("{:?}", outcome.stop),
         };
-        Ok(GpModel { kind, input_names: input_names.to_vec(), target_name: target_name.to_string(), inputs, target, hyper, jitter: used_jitter, posterior, report })
+        Ok(GpModel {
+            kind,
+            input_names: input_names.to_vec(),
+            target_name: target_name.to_string(),
+            inputs,
+            target,
+            hyper,
+            jitter: used_jitter,
+            posterior,
+            report,
+        })
     }
 }
 

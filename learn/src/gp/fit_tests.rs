@@ -26,7 +26,11 @@ fn grid(a: f64, b: f64, n: usize) -> DMatrix<f64> {
 #[test]
 fn spgp_recovers_a_sine_from_noisy_samples() {
     let (x, y) = toy(80, 0.05, 0.05, 1);
-    let model = GpParams::new(GpKind::Spgp).pseudo_inputs(10).max_iters(100).fit(&x, &y).expect("fits");
+    let model = GpParams::new(GpKind::Spgp)
+        .pseudo_inputs(10)
+        .max_iters(100)
+        .fit(&x, &y)
+        .expect("fits");
     let t = grid(0.5, 9.5, 50);
     let p = model.predict(&t).expect("predicts");
     let rmse = (p.mean - t.column(0).map(f64::sin)).norm() / 50f64.sqrt();
@@ -37,27 +41,51 @@ fn spgp_recovers_a_sine_from_noisy_samples() {
 #[test]
 fn the_full_gp_recovers_a_sine_from_noisy_samples() {
     let (x, y) = toy(60, 0.05, 0.05, 2);
-    let model = GpParams::new(GpKind::Full).max_iters(100).fit(&x, &y).expect("fits");
+    let model = GpParams::new(GpKind::Full)
+        .max_iters(100)
+        .fit(&x, &y)
+        .expect("fits");
     let t = grid(0.5, 9.5, 50);
     let p = model.predict(&t).expect("predicts");
     let rmse = (p.mean - t.column(0).map(f64::sin)).norm() / 50f64.sqrt();
     assert!(rmse < 0.08, "rmse {rmse}");
-    assert!((model.noise_variance() - 0.0025).abs() < 0.003, "σ² {}", model.noise_variance());
+    assert!(
+        (model.noise_variance() - 0.0025).abs() < 0.003,
+        "σ² {}",
+        model.noise_variance()
+    );
 }
 
 #[test]
 fn spgp_het_predicts_more_variance_where_the_training_noise_is_larger() {
     let (x, y) = toy(200, 0.05, 0.5, 3);
-    let model = GpParams::new(GpKind::SpgpHet).pseudo_inputs(12).max_iters(150).fit(&x, &y).expect("fits");
-    let quiet = model.predict(&grid(0.5, 4.5, 20)).expect("predicts").var_y.mean();
-    let noisy = model.predict(&grid(5.5, 9.5, 20)).expect("predicts").var_y.mean();
-    assert!(noisy > 3.0 * quiet, "noisy side {noisy} vs quiet side {quiet}");
+    let model = GpParams::new(GpKind::SpgpHet)
+        .pseudo_inputs(12)
+        .max_iters(150)
+        .fit(&x, &y)
+        .expect("fits");
+    let quiet = model
+        .predict(&grid(0.5, 4.5, 20))
+        .expect("predicts")
+        .var_y
+        .mean();
+    let noisy = model
+        .predict(&grid(5.5, 9.5, 20))
+        .expect("predicts")
+        .var_y
+        .mean();
+    assert!(
+        noisy > 3.0 * quiet,
+        "noisy side {noisy} vs quiet side {quiet}"
+    );
 }
 
 #[test]
 fn fitting_twice_gives_the_identical_model() {
     let (x, y) = toy(300, 0.1, 0.1, 4); // two row blocks, so the parallel reduction is exercised
-    let params = GpParams::new(GpKind::SpgpHet).pseudo_inputs(6).max_iters(20);
+    let params = GpParams::new(GpKind::SpgpHet)
+        .pseudo_inputs(6)
+        .max_iters(20);
     let a = params.fit(&x, &y).expect("fits");
     let b = params.fit(&x, &y).expect("fits");
     assert_eq!(a.hyper, b.hyper);
@@ -69,9 +97,15 @@ fn fits_or_errors(kind: GpKind, x: &DMatrix<f64>, y: &DVector<f64>, m: usize) {
     match GpParams::new(kind).pseudo_inputs(m).max_iters(30).fit(x, y) {
         Ok(model) => {
             let p = model.predict(&x.rows(0, 2).into_owned()).expect("predicts");
-            assert!(p.mean.iter().chain(p.var_y.iter()).all(|v| v.is_finite()), "{kind}: non-finite prediction");
+            assert!(
+                p.mean.iter().chain(p.var_y.iter()).all(|v| v.is_finite()),
+                "{kind}: non-finite prediction"
+            );
         }
-        Err(e) => assert!(matches!(e, LearnError::DegenerateData(_) | LearnError::Numerical(_)), "{kind}: {e}"),
+        Err(e) => assert!(
+            matches!(e, LearnError::DegenerateData(_) | LearnError::Numerical(_)),
+            "{kind}: {e}"
+        ),
     }
 }
 
@@ -92,7 +126,11 @@ fn duplicate_inputs_constant_targets_and_constant_columns_give_sane_models() {
 #[test]
 fn more_pseudo_inputs_than_samples_are_capped_at_n() {
     let (x, y) = toy(7, 0.1, 0.1, 6);
-    let model = GpParams::new(GpKind::Spgp).pseudo_inputs(100).max_iters(20).fit(&x, &y).expect("fits");
+    let model = GpParams::new(GpKind::Spgp)
+        .pseudo_inputs(100)
+        .max_iters(20)
+        .fit(&x, &y)
+        .expect("fits");
     assert_eq!(model.fit_report().m, 7);
 }
 
@@ -100,8 +138,14 @@ fn more_pseudo_inputs_than_samples_are_capped_at_n() {
 fn non_finite_inputs_or_too_few_samples_are_errors() {
     let (mut x, y) = toy(10, 0.1, 0.1, 7);
     x[(3, 0)] = f64::NAN;
-    let err = GpParams::new(GpKind::Spgp).fit(&x, &y).expect_err("NaN input");
+    let err = GpParams::new(GpKind::Spgp)
+        .fit(&x, &y)
+        .expect_err("NaN input");
     assert!(matches!(err, LearnError::DegenerateData(_)), "{err}");
     let one = DMatrix::from_element(1, 1, 0.5);
-    assert!(GpParams::new(GpKind::Full).fit(&one, &DVector::from_element(1, 1.0)).is_err());
+    assert!(
+        GpParams::new(GpKind::Full)
+            .fit(&one, &DVector::from_element(1, 1.0))
+            .is_err()
+    );
 }

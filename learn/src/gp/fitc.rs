@@ -54,7 +54,14 @@ pub(crate) struct Evaluation {
     pub d_jitter: f64,
 }
 
-fn pass1(data: &TrainData, side: &ScaledPoints, l_inv: &DMatrix<f64>, h: &Hyper, inv_sq: &DVector<f64>, (start, len): (usize, usize)) -> Pass1 {
+fn pass1(
+    data: &TrainData,
+    side: &ScaledPoints,
+    l_inv: &DMatrix<f64>,
+    h: &Hyper,
+    inv_sq: &DVector<f64>,
+    (start, len): (usize, usize),
+) -> Pass1 {
     let s = h.signal_variance;
     let x_sq = column_sqnorms(&data.xt_sq_block(start, len), inv_sq);
     let k = cross_covariance(side, &data.xt_block(start, len), &x_sq, s);
@@ -67,7 +74,15 @@ fn pass1(data: &TrainData, side: &ScaledPoints, l_inv: &DMatrix<f64>, h: &Hyper,
     let yt = data.y.rows(start, len).component_mul(&g_isqrt);
     let vvt = mul(&vt, &t_view(&vt));
     let vy = &vt * &yt;
-    Pass1 { yy: yt.dot(&yt), log_g: g.iter().map(|x| x.ln()).sum(), k, v, g, vvt, vy }
+    Pass1 {
+        yy: yt.dot(&yt),
+        log_g: g.iter().map(|x| x.ln()).sum(),
+        k,
+        v,
+        g,
+        vvt,
+        vy,
+    }
 }
 
 /// Factors the model at `h` (gp.md §1 steps 1-8).
@@ -107,7 +122,15 @@ pub(crate) fn factor(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Factors
         + 0.5 * n * (2.0 * std::f64::consts::PI).ln(); // step 8
     let u = lb_inv.tr_mul(&c);
     let b_inv = mul(&t_view(&lb_inv), &lb_inv);
-    Ok(Factors { k_m, l_inv, b_inv, u, jitter: chol.jitter, nlml, blocks })
+    Ok(Factors {
+        k_m,
+        l_inv,
+        b_inv,
+        u,
+        jitter: chol.jitter,
+        nlml,
+        blocks,
+    })
 }
 
 /// Pass 2 of one row block: the block's shares of V diag(d) Vᵀ, E X, r, Σ c'x², ΣE and Σd.
@@ -129,7 +152,9 @@ fn pass2(data: &TrainData, f: &Factors, p: &Pass1, (start, len): (usize, usize))
     let vu = p.v.tr_mul(&f.u);
     let y = data.y.rows(start, len);
     let alpha = DVector::from_fn(len, |n, _| (y[n] - vu[n]) / p.g[n]); // α = C⁻¹y
-    let d = DVector::from_fn(len, |n, _| 0.5 * ((1.0 - w1_sq[n]) / p.g[n] - alpha[n] * alpha[n]));
+    let d = DVector::from_fn(len, |n, _| {
+        0.5 * ((1.0 - w1_sq[n]) / p.g[n] - alpha[n] * alpha[n])
+    });
     for (n, mut col) in r_mat.column_iter_mut().enumerate() {
         // R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d)
         for (m, x) in col.iter_mut().enumerate() {
@@ -163,7 +188,11 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
         .collect();
     let (m, dims) = (h.pseudo_inputs.nrows(), data.dims());
     let mut s_mat = (&f.b_inv - DMatrix::identity(m, m)) * 0.5 + &f.u * f.u.transpose() * 0.5;
-    let (mut ex, mut r, mut x_sq_c) = (DMatrix::zeros(m, dims), DVector::zeros(m), DVector::zeros(dims));
+    let (mut ex, mut r, mut x_sq_c) = (
+        DMatrix::zeros(m, dims),
+        DVector::zeros(m),
+        DVector::zeros(dims),
+    );
     let (mut sum_e, mut sum_d) = (0.0, 0.0);
     for p in &parts {
         s_mat += &p.vdvt;
@@ -186,7 +215,8 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
         let mut acc = x_sq_c[d];
         for i in 0..m {
             let zi = z[(i, d)];
-            acc += r[i] * zi * zi - 2.0 * zi * ex[(i, d)] + 2.0 * f_row[i] * zi * zi - 2.0 * zi * fz[(i, d)];
+            acc += r[i] * zi * zi - 2.0 * zi * ex[(i, d)] + 2.0 * f_row[i] * zi * zi
+                - 2.0 * zi * fz[(i, d)];
             d_z[(i, d)] = inv_sq[d] * (ex[(i, d)] - r[i] * zi + 2.0 * (fz[(i, d)] - f_row[i] * zi));
         }
         d_log_l[d] = inv_sq[d] * acc;
@@ -196,9 +226,16 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
         log_signal_variance: sum_e + f_mat.sum() + h.signal_variance * sum_d,
         log_noise_variance: h.noise_variance * sum_d,
         pseudo_inputs: d_z,
-        log_pseudo_noise: h.pseudo_noise.as_ref().map(|p| p.component_mul(&d_bu.diagonal())),
+        log_pseudo_noise: h
+            .pseudo_noise
+            .as_ref()
+            .map(|p| p.component_mul(&d_bu.diagonal())),
     };
-    Ok(Evaluation { nlml: f.nlml, grad, d_jitter: d_bu.trace() })
+    Ok(Evaluation {
+        nlml: f.nlml,
+        grad,
+        d_jitter: d_bu.trace(),
+    })
 }
 
 #[cfg(test)]

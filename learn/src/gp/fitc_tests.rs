@@ -12,7 +12,13 @@ use super::objective;
 
 /// The N = 8, D = 2, M = 3 problem of gp.md §6.4.
 fn reference_problem(het: bool) -> (TrainData, Hyper) {
-    let x = DMatrix::from_fn(8, 2, |n, d| if d == 0 { 2.0 * n as f64 / 7.0 - 1.0 } else { (n as f64).sin() });
+    let x = DMatrix::from_fn(8, 2, |n, d| {
+        if d == 0 {
+            2.0 * n as f64 / 7.0 - 1.0
+        } else {
+            (n as f64).sin()
+        }
+    });
     let y = DVector::from_fn(8, |n, _| (3.0 * x[(n, 0)]).cos() + 0.1 * x[(n, 1)]);
     let h = Hyper {
         lengthscales: DVector::from_vec(vec![0.6, 1.5]),
@@ -44,11 +50,23 @@ fn fitc_objective_and_gradient_match_the_gp_md_reference_vectors() {
     let e = objective(&data, &h, 1e-6).expect("reference problem factors");
     let rel = 1e-8;
     assert!(close(e.nlml, 8.196028616783465, rel), "nlml {}", e.nlml);
-    assert_all_close(e.grad.log_lengthscales.as_slice(), &[3.604387926454, -3.477760952753], rel, "dℓ");
+    assert_all_close(
+        e.grad.log_lengthscales.as_slice(),
+        &[3.604387926454, -3.477760952753],
+        rel,
+        "dℓ",
+    );
     assert!(close(e.grad.log_signal_variance, 1.521041978253, rel));
     assert!(close(e.grad.log_noise_variance, 0.083979925757, rel));
     let dz = e.grad.pseudo_inputs.transpose(); // row-major order below
-    let want = [0.390743584068, -0.401165770616, 0.600952929246, -1.016703748027, -2.190255802733, 1.324508204459];
+    let want = [
+        0.390743584068,
+        -0.401165770616,
+        0.600952929246,
+        -1.016703748027,
+        -2.190255802733,
+        1.324508204459,
+    ];
     assert_all_close(dz.as_slice(), &want, rel, "dZ");
 }
 
@@ -57,8 +75,18 @@ fn fitc_predictions_match_the_gp_md_reference_vectors() {
     let (data, h) = reference_problem(false);
     let (post, _) = SparsePosterior::new(&data, &h, 1e-6).expect("factors");
     let (mean, var) = post.predict(&h, &test_points());
-    assert_all_close(mean.as_slice(), &[0.191910136857, -0.633577239843], 1e-8, "mean");
-    assert_all_close(var.as_slice(), &[0.254655089316, 0.574999892186], 1e-8, "var");
+    assert_all_close(
+        mean.as_slice(),
+        &[0.191910136857, -0.633577239843],
+        1e-8,
+        "mean",
+    );
+    assert_all_close(
+        var.as_slice(),
+        &[0.254655089316, 0.574999892186],
+        1e-8,
+        "var",
+    );
 }
 
 #[test]
@@ -67,25 +95,54 @@ fn het_objective_gradient_and_predictions_match_the_gp_md_reference_vectors() {
     let e = objective(&data, &h, 0.0).expect("reference problem factors");
     let rel = 1e-8;
     assert!(close(e.nlml, 8.573182153511636, rel), "nlml {}", e.nlml);
-    assert_all_close(e.grad.log_lengthscales.as_slice(), &[3.055207396048, -2.689013980586], rel, "dℓ");
+    assert_all_close(
+        e.grad.log_lengthscales.as_slice(),
+        &[3.055207396048, -2.689013980586],
+        rel,
+        "dℓ",
+    );
     assert!(close(e.grad.log_signal_variance, 1.335131496405, rel));
     assert!(close(e.grad.log_noise_variance, 0.074762013190, rel));
     let dh = e.grad.log_pseudo_noise.clone().expect("het gradient");
-    assert_all_close(dh.as_slice(), &[0.011346182701, 0.269439332820, 0.011590296570], rel, "dh");
+    assert_all_close(
+        dh.as_slice(),
+        &[0.011346182701, 0.269439332820, 0.011590296570],
+        rel,
+        "dh",
+    );
     let dz = e.grad.pseudo_inputs.transpose();
-    let want = [0.461983451017, -0.388970192645, 0.593690951300, -0.801465784796, -1.990366954661, 1.068983522654];
+    let want = [
+        0.461983451017,
+        -0.388970192645,
+        0.593690951300,
+        -0.801465784796,
+        -1.990366954661,
+        1.068983522654,
+    ];
     assert_all_close(dz.as_slice(), &want, rel, "dZ");
     let (post, _) = SparsePosterior::new(&data, &h, 0.0).expect("factors");
     let (mean, var) = post.predict(&h, &test_points());
-    assert_all_close(mean.as_slice(), &[0.153050981003, -0.579852842191], rel, "mean");
-    assert_all_close(var.as_slice(), &[0.346153203210, 0.628926722720], rel, "var");
+    assert_all_close(
+        mean.as_slice(),
+        &[0.153050981003, -0.579852842191],
+        rel,
+        "mean",
+    );
+    assert_all_close(
+        var.as_slice(),
+        &[0.346153203210, 0.628926722720],
+        rel,
+        "var",
+    );
 }
 
 /// A random problem with `n` samples, 3 inputs and `m` pseudo-inputs.
 fn random_problem(n: usize, m: usize, het: bool, seed: u64) -> (TrainData, Hyper) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let x: DMatrix<f64> = DMatrix::from_fn(n, 3, |_, _| rng.random_range(-2.0..2.0));
-    let y = DVector::from_fn(n, |i, _| x[(i, 0)].sin() + 0.3 * x[(i, 1)] + rng.random_range(-0.2..0.2));
+    let y = DVector::from_fn(n, |i, _| {
+        x[(i, 0)].sin() + 0.3 * x[(i, 1)] + rng.random_range(-0.2..0.2)
+    });
     let h = Hyper {
         lengthscales: DVector::from_fn(3, |_, _| rng.random_range(0.5..2.0)),
         signal_variance: rng.random_range(0.5..1.5),
@@ -99,7 +156,12 @@ fn random_problem(n: usize, m: usize, het: bool, seed: u64) -> (TrainData, Hyper
 /// Central differences of 𝓛 in the flat log-coordinates against the packed analytic gradient.
 fn check_gradient(het: bool, seed: u64) {
     let (data, h) = random_problem(23, 5, het, seed);
-    let layout = Layout { dims: 3, pseudo: 5, het, noise_floor: 0.0 };
+    let layout = Layout {
+        dims: 3,
+        pseudo: 5,
+        het,
+        noise_floor: 0.0,
+    };
     let theta = layout.pack(&h);
     let e = objective(&data, &h, 1e-8).expect("factors");
     let analytic = layout.pack_grad(&h, &e.grad);
@@ -108,12 +170,20 @@ fn check_gradient(het: bool, seed: u64) {
         let (mut up, mut down) = (theta.clone(), theta.clone());
         up[i] += step;
         down[i] -= step;
-        let fu = objective(&data, &layout.unpack(&up), 1e-8).expect("factors").nlml;
-        let fd = objective(&data, &layout.unpack(&down), 1e-8).expect("factors").nlml;
+        let fu = objective(&data, &layout.unpack(&up), 1e-8)
+            .expect("factors")
+            .nlml;
+        let fd = objective(&data, &layout.unpack(&down), 1e-8)
+            .expect("factors")
+            .nlml;
         let numeric = (fu - fd) / (2.0 * step);
         // Relative tolerance 1e-6 on the larger of |gradient| and 1 (central differences, h = 1e-5).
         let tol = 1e-6 * analytic[i].abs().max(1.0);
-        assert!((numeric - analytic[i]).abs() < tol, "param {i}: fd {numeric} vs analytic {}", analytic[i]);
+        assert!(
+            (numeric - analytic[i]).abs() < tol,
+            "param {i}: fd {numeric} vs analytic {}",
+            analytic[i]
+        );
     }
 }
 
@@ -136,7 +206,12 @@ fn dense_nlml(data: &TrainData, h: &Hyper, jitter: f64) -> f64 {
     let x = data.x_rows();
     let inv_sq = inverse_squares(&h.lengthscales);
     let m = h.pseudo_inputs.nrows();
-    let mut b_u = covariance_rows(&h.pseudo_inputs, &h.pseudo_inputs, &inv_sq, h.signal_variance);
+    let mut b_u = covariance_rows(
+        &h.pseudo_inputs,
+        &h.pseudo_inputs,
+        &inv_sq,
+        h.signal_variance,
+    );
     for i in 0..m {
         b_u[(i, i)] += jitter + h.pseudo_noise.as_ref().map_or(0.0, |p| p[i]);
     }
@@ -149,7 +224,9 @@ fn dense_nlml(data: &TrainData, h: &Hyper, jitter: f64) -> f64 {
     let chol = nalgebra::Cholesky::new(c).expect("C is positive definite");
     let alpha = chol.solve(&data.y);
     let log_det: f64 = chol.l().diagonal().iter().map(|v| 2.0 * v.ln()).sum();
-    0.5 * log_det + 0.5 * data.y.dot(&alpha) + 0.5 * x.nrows() as f64 * (2.0 * std::f64::consts::PI).ln()
+    0.5 * log_det
+        + 0.5 * data.y.dot(&alpha)
+        + 0.5 * x.nrows() as f64 * (2.0 * std::f64::consts::PI).ln()
 }
 
 #[test]
@@ -179,7 +256,10 @@ fn permuting_the_pseudo_inputs_leaves_the_objective_unchanged() {
     let mut p = h.clone();
     let order = [3, 0, 4, 1, 2];
     p.pseudo_inputs = DMatrix::from_fn(5, 3, |i, d| h.pseudo_inputs[(order[i], d)]);
-    p.pseudo_noise = h.pseudo_noise.as_ref().map(|v| DVector::from_fn(5, |i, _| v[order[i]]));
+    p.pseudo_noise = h
+        .pseudo_noise
+        .as_ref()
+        .map(|v| DVector::from_fn(5, |i, _| v[order[i]]));
     let a = objective(&data, &h, 1e-6).expect("factors").nlml;
     let b = objective(&data, &p, 1e-6).expect("factors").nlml;
     assert!(close(a, b, 1e-12), "{a} vs {b}");

@@ -7,7 +7,9 @@ use nalgebra::{DMatrix, DVector};
 use super::fitc::Evaluation;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{covariance_rows, inverse_squares};
-use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse, mul, t_view};
+use super::linalg::{
+    cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse, mul, t_view,
+};
 use super::train_data::TrainData;
 use crate::{LearnError, Result};
 
@@ -39,7 +41,8 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
     let c_inv = mul(&t_view(&l_inv), &l_inv);
     let alpha = &c_inv * &data.y;
     let n = data.len() as f64;
-    let nlml = 0.5 * data.y.dot(&alpha) + log_diag_sum(&l) + 0.5 * n * (2.0 * std::f64::consts::PI).ln();
+    let nlml =
+        0.5 * data.y.dot(&alpha) + log_diag_sum(&l) + 0.5 * n * (2.0 * std::f64::consts::PI).ln();
     let g = (c_inv - &alpha * alpha.transpose()) * 0.5; // ∂𝓛/∂C
     let gk = g.component_mul(&k);
     let row = gk.column_sum();
@@ -59,7 +62,11 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
         pseudo_inputs: DMatrix::zeros(0, data.dims()),
         log_pseudo_noise: None,
     };
-    Ok(Evaluation { nlml, grad, d_jitter: trace })
+    Ok(Evaluation {
+        nlml,
+        grad,
+        d_jitter: trace,
+    })
 }
 
 /// What the exact GP keeps for prediction: the training inputs, C⁻¹y and chol(C).
@@ -82,12 +89,29 @@ impl FullPosterior {
         let (_, l, used) = factor(&x, h, jitter)?;
         let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
         let alpha = l_inv.tr_mul(&(&l_inv * &data.y));
-        Ok((Self { x, y: data.y.clone(), alpha, l }, used))
+        Ok((
+            Self {
+                x,
+                y: data.y.clone(),
+                alpha,
+                l,
+            },
+            used,
+        ))
     }
 
     /// Mean (eq. 3.20) and latent variance (eq. 3.21) at the rows of `x_test` (standardised).
-    pub fn predict(&self, h: &Hyper, x_test: &DMatrix<f64>) -> Result<(DVector<f64>, DVector<f64>)> {
-        let k_star = covariance_rows(&self.x, x_test, &inverse_squares(&h.lengthscales), h.signal_variance);
+    pub fn predict(
+        &self,
+        h: &Hyper,
+        x_test: &DMatrix<f64>,
+    ) -> Result<(DVector<f64>, DVector<f64>)> {
+        let k_star = covariance_rows(
+            &self.x,
+            x_test,
+            &inverse_squares(&h.lengthscales),
+            h.signal_variance,
+        );
         let mean = k_star.tr_mul(&self.alpha);
         let v = self
             .l
@@ -122,7 +146,12 @@ mod tests {
     fn the_full_gp_gradient_matches_central_differences() {
         let (data, mut h) = problem();
         h.pseudo_inputs = DMatrix::zeros(0, 2);
-        let layout = Layout { dims: 2, pseudo: 0, het: false, noise_floor: 0.0 };
+        let layout = Layout {
+            dims: 2,
+            pseudo: 0,
+            het: false,
+            noise_floor: 0.0,
+        };
         let theta = layout.pack(&h);
         let e = objective(&data, &h, 0.0).expect("factors");
         let analytic = layout.pack_grad(&h, &e.grad);
@@ -130,11 +159,18 @@ mod tests {
             let (mut up, mut down) = (theta.clone(), theta.clone());
             up[i] += 1e-5;
             down[i] -= 1e-5;
-            let fu = objective(&data, &layout.unpack(&up), 0.0).expect("factors").nlml;
-            let fd = objective(&data, &layout.unpack(&down), 0.0).expect("factors").nlml;
+            let fu = objective(&data, &layout.unpack(&up), 0.0)
+                .expect("factors")
+                .nlml;
+            let fd = objective(&data, &layout.unpack(&down), 0.0)
+                .expect("factors")
+                .nlml;
             let numeric = (fu - fd) / 2e-5;
             // Relative tolerance 1e-6 on max(|gradient|, 1).
-            assert!((numeric - analytic[i]).abs() < 1e-6 * analytic[i].abs().max(1.0), "param {i}");
+            assert!(
+                (numeric - analytic[i]).abs() < 1e-6 * analytic[i].abs().max(1.0),
+                "param {i}"
+            );
         }
     }
 
@@ -143,7 +179,10 @@ mod tests {
         let (data, h) = problem();
         let full = objective(&data, &h, 0.0).expect("factors").nlml;
         let sparse = fitc::objective(&data, &h, 1e-10).expect("factors").nlml;
-        assert!((full - sparse).abs() < 1e-6 * full.abs(), "{full} vs {sparse}");
+        assert!(
+            (full - sparse).abs() < 1e-6 * full.abs(),
+            "{full} vs {sparse}"
+        );
         let test = DMatrix::from_row_slice(3, 2, &[0.1, 0.2, -0.7, 0.9, 1.5, -1.5]);
         let (fp, _) = FullPosterior::new(&data, &h, 0.0).expect("factors");
         let (sp, _) = SparsePosterior::new(&data, &h, 1e-10).expect("factors");

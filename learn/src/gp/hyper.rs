@@ -112,7 +112,12 @@ mod tests {
 
     #[test]
     fn packing_and_unpacking_round_trips() {
-        let layout = Layout { dims: 2, pseudo: 3, het: true, noise_floor: 1e-6 };
+        let layout = Layout {
+            dims: 2,
+            pseudo: 3,
+            het: true,
+            noise_floor: 1e-6,
+        };
         let h = Hyper {
             lengthscales: DVector::from_vec(vec![0.5, 2.0]),
             signal_variance: 1.3,

@@ -37,7 +37,11 @@ pub(crate) fn initial_hyper(data: &TrainData, kind: GpKind, m: usize, seed: u64)
         data.xt.row_iter().map(|row| {
             let mean = row.mean();
             let spread = (row.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
-            if spread > 1e-12 { spread * root_d } else { root_d }
+            if spread > 1e-12 {
+                spread * root_d
+            } else {
+                root_d
+            }
         }),
     );
     let mean_y = data.y.mean();
@@ -49,11 +53,18 @@ pub(crate) fn initial_hyper(data: &TrainData, kind: GpKind, m: usize, seed: u64)
         GpKind::Spgp | GpKind::SpgpHet => {
             let rows = random_subset(n, m, seed);
             let z = DMatrix::from_fn(rows.len(), dims, |i, d| data.xt[(d, rows[i])]);
-            let h = (kind == GpKind::SpgpHet).then(|| DVector::from_element(rows.len(), noise_variance / 10.0));
+            let h = (kind == GpKind::SpgpHet)
+                .then(|| DVector::from_element(rows.len(), noise_variance / 10.0));
             (z, h)
         }
     };
-    Hyper { lengthscales, signal_variance, noise_variance, pseudo_inputs, pseudo_noise }
+    Hyper {
+        lengthscales,
+        signal_variance,
+        noise_variance,
+        pseudo_inputs,
+        pseudo_noise,
+    }
 }
 
 #[cfg(test)]

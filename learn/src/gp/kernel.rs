@@ -27,7 +27,10 @@ pub(crate) fn scale_points(points: &DMatrix<f64>, inv_sq: &DVector<f64>) -> Scal
     }
     let sqnorm = DVector::from_iterator(
         points.nrows(),
-        points.row_iter().zip(scaled.row_iter()).map(|(p, q)| p.dot(&q)),
+        points
+            .row_iter()
+            .zip(scaled.row_iter())
+            .map(|(p, q)| p.dot(&q)),
     );
     ScaledPoints { scaled, sqnorm }
 }
@@ -99,7 +102,9 @@ mod tests {
         let k = covariance_rows(&a, &b, &inverse_squares(&ls), 1.7);
         for p in 0..7 {
             for q in 0..9 {
-                let r2: f64 = (0..3).map(|d| ((a[(p, d)] - b[(q, d)]) / ls[d]).powi(2)).sum();
+                let r2: f64 = (0..3)
+                    .map(|d| ((a[(p, d)] - b[(q, d)]) / ls[d]).powi(2))
+                    .sum();
                 let want = 1.7 * (-0.5 * r2).exp();
                 assert!((k[(p, q)] - want).abs() < 1e-13, "{p},{q}");
             }

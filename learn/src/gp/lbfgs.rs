@@ -79,10 +79,20 @@ impl<F: FnMut(&DVector<f64>) -> Result<(f64, DVector<f64>)>> Counted<F> {
         self.evals += 1;
         let x = x0 + p * a;
         match (self.f)(&x) {
-            Ok((f, g)) if f.is_finite() && g.iter().all(|v| v.is_finite()) => {
-                Point { a, f, d: Some(g.dot(p)), x, g }
-            }
-            _ => Point { a, f: f64::INFINITY, d: None, x, g: DVector::zeros(0) },
+            Ok((f, g)) if f.is_finite() && g.iter().all(|v| v.is_finite()) => Point {
+                a,
+                f,
+                d: Some(g.dot(p)),
+                x,
+                g,
+            },
+            _ => Point {
+                a,
+                f: f64::INFINITY,
+                d: None,
+                x,
+                g: DVector::zeros(0),
+            },
         }
     }
 }
@@ -103,7 +113,10 @@ where
             hi = Some(pt);
         } else if wolfe(&pt) {
             return Some(pt);
-        } else if pt.d.is_some_and(|d| d * (hi.as_ref().map_or(f64::INFINITY, |h| h.a) - lo.a) >= 0.0) {
+        } else if pt
+            .d
+            .is_some_and(|d| d * (hi.as_ref().map_or(f64::INFINITY, |h| h.a) - lo.a) >= 0.0)
+        {
             // The slope points back towards lo: the minimum lies between pt and lo.
             hi = Some(lo);
             lo = pt;
@@ -122,7 +135,9 @@ where
 /// safely inside, else the midpoint.
 fn interpolate(lo: &Point, hi: &Point) -> f64 {
     let mid = 0.5 * (lo.a + hi.a);
-    let (Some(d1), Some(d2)) = (lo.d, hi.d) else { return mid };
+    let (Some(d1), Some(d2)) = (lo.d, hi.d) else {
+        return mid;
+    };
     let (a1, a2) = (lo.a, hi.a);
     let e1 = d1 + d2 - 3.0 * (lo.f - hi.f) / (a1 - a2);
     let rad = e1 * e1 - d1 * d2;
@@ -133,11 +148,18 @@ fn interpolate(lo: &Point, hi: &Point) -> f64 {
     let a = a2 - (a2 - a1) * (d2 + e2 - e1) / (d2 - d1 + 2.0 * e2);
     let (left, right) = (a1.min(a2), a1.max(a2));
     let margin = 0.1 * (right - left);
-    if a.is_finite() && a > left + margin && a < right - margin { a } else { mid }
+    if a.is_finite() && a > left + margin && a < right - margin {
+        a
+    } else {
+        mid
+    }
 }
 
 /// The L-BFGS direction −H g from the stored pairs (two-loop recursion).
-fn direction(g: &DVector<f64>, pairs: &VecDeque<(DVector<f64>, DVector<f64>, f64)>) -> DVector<f64> {
+fn direction(
+    g: &DVector<f64>,
+    pairs: &VecDeque<(DVector<f64>, DVector<f64>, f64)>,
+) -> DVector<f64> {
     let mut q = -g;
     let mut alphas = Vec::with_capacity(pairs.len());
     for (s, y, rho) in pairs.iter().rev() {
@@ -163,9 +185,17 @@ where
     let mut obj = Counted { f, evals: 1 };
     let (f0, g0) = (obj.f)(&x0)?;
     if !f0.is_finite() || g0.iter().any(|v| !v.is_finite()) {
-        return Err(LearnError::Numerical("the objective is not finite at the starting point".into()));
+        return Err(LearnError::Numerical(
+            "the objective is not finite at the starting point".into(),
+        ));
     }
-    let mut cur = Point { a: 0.0, f: f0, d: None, x: x0, g: g0 };
+    let mut cur = Point {
+        a: 0.0,
+        f: f0,
+        d: None,
+        x: x0,
+        g: g0,
+    };
     let mut pairs = VecDeque::with_capacity(opts.memory);
     let mut iterations = 0;
     let stop = loop {
@@ -183,8 +213,16 @@ where
             pairs.clear();
             p = -&cur.g;
         }
-        let a0 = if pairs.is_empty() { (1.0 / p.norm()).min(1.0) } else { 1.0 };
-        let start = Point { a: 0.0, d: Some(cur.g.dot(&p)), ..cur.clone() };
+        let a0 = if pairs.is_empty() {
+            (1.0 / p.norm()).min(1.0)
+        } else {
+            1.0
+        };
+        let start = Point {
+            a: 0.0,
+            d: Some(cur.g.dot(&p)),
+            ..cur.clone()
+        };
         let Some(next) = line_search(&mut obj, &start, &p, a0) else {
             if pairs.is_empty() {
                 break StopReason::LineSearchFailed;
@@ -203,12 +241,22 @@ where
             pairs.push_back((s, y, 1.0 / sy));
         }
         let change = (cur.f - next.f) / cur.f.abs().max(next.f.abs()).max(1.0);
-        cur = Point { a: 0.0, d: None, ..next };
+        cur = Point {
+            a: 0.0,
+            d: None,
+            ..next
+        };
         if change <= opts.rel_tol {
             break StopReason::ObjectiveChange;
         }
     };
-    Ok(LbfgsOutcome { x: cur.x, f: cur.f, iterations, evals: obj.evals, stop })
+    Ok(LbfgsOutcome {
+        x: cur.x,
+        f: cur.f,
+        iterations,
+        evals: obj.evals,
+        stop,
+    })
 }
 
 #[cfg(test)]
@@ -216,7 +264,13 @@ mod tests {
     use super::*;
 
     fn options() -> LbfgsOptions {
-        LbfgsOptions { max_iters: 500, max_evals: 2000, memory: 10, grad_tol: 1e-8, rel_tol: 0.0 }
+        LbfgsOptions {
+            max_iters: 500,
+            max_evals: 2000,
+            memory: 10,
+            grad_tol: 1e-8,
+            rel_tol: 0.0,
+        }
     }
 
     fn rosenbrock(x: &DVector<f64>) -> Result<(f64, DVector<f64>)> {
@@ -249,7 +303,10 @@ mod tests {
             if x[0] > 3.2 {
                 return Ok((f64::NAN, DVector::from_element(1, f64::NAN)));
             }
-            Ok(((x[0] - 3.0).powi(2), DVector::from_element(1, 2.0 * (x[0] - 3.0))))
+            Ok((
+                (x[0] - 3.0).powi(2),
+                DVector::from_element(1, 2.0 * (x[0] - 3.0)),
+            ))
         };
         let out = minimize(f, DVector::from_element(1, -20.0), options()).expect("runs");
         assert!((out.x[0] - 3.0).abs() < 1e-6, "ended at {}", out.x[0]);
@@ -257,7 +314,8 @@ mod tests {
 
     #[test]
     fn a_failing_start_is_an_error() {
-        let f = |_: &DVector<f64>| -> Result<(f64, DVector<f64>)> { Ok((f64::NAN, DVector::zeros(1))) };
+        let f =
+            |_: &DVector<f64>| -> Result<(f64, DVector<f64>)> { Ok((f64::NAN, DVector::zeros(1))) };
         assert!(minimize(f, DVector::zeros(1), options()).is_err());
     }
 }

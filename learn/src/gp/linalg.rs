@@ -27,7 +27,10 @@ pub(crate) fn t_view(a: &DMatrix<f64>) -> StridedView<'_> {
 }
 
 /// `a * b` through matrixmultiply's gemm.
-pub(crate) fn mul<S1, S2>(a: &Matrix<f64, Dyn, Dyn, S1>, b: &Matrix<f64, Dyn, Dyn, S2>) -> DMatrix<f64>
+pub(crate) fn mul<S1, S2>(
+    a: &Matrix<f64, Dyn, Dyn, S1>,
+    b: &Matrix<f64, Dyn, Dyn, S2>,
+) -> DMatrix<f64>
 where
     S1: Storage<f64, Dyn, Dyn>,
     S2: Storage<f64, Dyn, Dyn>,
@@ -58,10 +61,16 @@ pub(crate) fn cholesky_with_jitter(
     what: &str,
 ) -> Result<JitteredCholesky> {
     if a.iter().any(|v| !v.is_finite()) {
-        return Err(LearnError::Numerical(format!("{what} has non-finite entries")));
+        return Err(LearnError::Numerical(format!(
+            "{what} has non-finite entries"
+        )));
     }
     let n = a.nrows();
-    let mean_diag = if n == 0 { 1.0 } else { a.diagonal().mean().abs().max(f64::MIN_POSITIVE) };
+    let mean_diag = if n == 0 {
+        1.0
+    } else {
+        a.diagonal().mean().abs().max(f64::MIN_POSITIVE)
+    };
     let mut eps = jitter.max(0.0);
     for attempt in 0..=JITTER_RETRIES {
         let mut m = a.clone();
@@ -69,7 +78,10 @@ pub(crate) fn cholesky_with_jitter(
             m[(i, i)] += eps;
         }
         if let Some(chol) = nalgebra::Cholesky::new(m) {
-            return Ok(JitteredCholesky { l: chol.unpack(), jitter: eps });
+            return Ok(JitteredCholesky {
+                l: chol.unpack(),
+                jitter: eps,
+            });
         }
         if attempt < JITTER_RETRIES {
             eps = (eps * 10.0).max(1e-10 * mean_diag);
@@ -104,7 +116,9 @@ pub(crate) fn scale_columns(a: &mut DMatrix<f64>, s: &DVector<f64>) {
 pub(crate) fn colsum_product(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DVector<f64> {
     DVector::from_iterator(
         a.ncols(),
-        a.column_iter().zip(b.column_iter()).map(|(ca, cb)| ca.dot(&cb)),
+        a.column_iter()
+            .zip(b.column_iter())
+            .map(|(ca, cb)| ca.dot(&cb)),
     )
 }
 
@@ -135,6 +149,9 @@ mod tests {
         assert!(chol.jitter > 0.0);
         let mut bad = DMatrix::identity(2, 2);
         bad[(0, 1)] = f64::NAN;
-        assert!(matches!(cholesky_with_jitter(&bad, 1e-6, "K"), Err(LearnError::Numerical(_))));
+        assert!(matches!(
+            cholesky_with_jitter(&bad, 1e-6, "K"),
+            Err(LearnError::Numerical(_))
+        ));
     }
 }

@@ -25,7 +25,12 @@ impl GpPrediction {
     /// The prediction as CSV with header `mean,var,var_y` (SPEC §7), one line per test point.
     pub fn to_csv(&self) -> String {
         let mut out = String::from("mean,var,var_y\n");
-        for ((m, v), vy) in self.mean.iter().zip(self.var_latent.iter()).zip(self.var_y.iter()) {
+        for ((m, v), vy) in self
+            .mean
+            .iter()
+            .zip(self.var_latent.iter())
+            .zip(self.var_y.iter())
+        {
             out.push_str(&format!("{m},{v},{vy}\n"));
         }
         out
@@ -152,6 +157,8 @@ impl GpModel {
                 rows[bad].len()
             )));
         }
-        self.predict(&DMatrix::from_fn(rows.len(), d, |i, j| f64::from(rows[i][j])))
+        self.predict(&DMatrix::from_fn(rows.len(), d, |i, j| {
+            f64::from(rows[i][j])
+        }))
     }
 }

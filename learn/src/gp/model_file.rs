@@ -25,8 +25,14 @@ pub const GP_MODEL_VERSION: u32 = 1;
 #[derive(Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "kebab-case")]
 enum PosteriorFile {
-    Sparse { weights: Vec<f64>, var_matrix: Vec<Vec<f64>> },
-    Full { x_train: Vec<Vec<f64>>, y_train: Vec<f64> },
+    Sparse {
+        weights: Vec<f64>,
+        var_matrix: Vec<Vec<f64>>,
+    },
+    Full {
+        x_train: Vec<Vec<f64>>,
+        y_train: Vec<f64>,
+    },
 }
 
 #[derive(Serialize, Deserialize)]
@@ -55,7 +61,10 @@ fn rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
 
 fn matrix(rows: &[Vec<f64>], cols: usize, what: &str) -> std::result::Result<DMatrix<f64>, String> {
     if let Some(i) = rows.iter().position(|r| r.len() != cols) {
-        return Err(format!("{what} row {i} has {} values, expected {cols}", rows[i].len()));
+        return Err(format!(
+            "{what} row {i} has {} values, expected {cols}",
+            rows[i].len()
+        ));
     }
     Ok(DMatrix::from_fn(rows.len(), cols, |i, j| rows[i][j]))
 }
@@ -70,28 +79,61 @@ fn finite(values: &[f64]) -> bool {
 
 impl ModelFile {
     fn into_model(self) -> std::result::Result<GpModel, String> {
-        check(self.format == GP_MODEL_FORMAT, &format!("not a patchflow GP model (format '{}')", self.format))?;
+        check(
+            self.format == GP_MODEL_FORMAT,
+            &format!("not a patchflow GP model (format '{}')", self.format),
+        )?;
         check(
             self.version == GP_MODEL_VERSION,
-            &format!("model file version {}; this build reads version {GP_MODEL_VERSION}", self.version),
+            &format!(
+                "model file version {}; this build reads version {GP_MODEL_VERSION}",
+                self.version
+            ),
         )?;
         let d = self.input_names.len();
-        check(d > 0 && self.lengthscales.len() == d, "lengthscales do not match the input columns")?;
-        check(self.lengthscales.iter().all(|l| l.is_finite() && *l > 0.0), "lengthscales must be positive")?;
+        check(
+            d > 0 && self.lengthscales.len() == d,
+            "lengthscales do not match the input columns",
+        )?;
+        check(
+            self.lengthscales.iter().all(|l| l.is_finite() && *l > 0.0),
+            "lengthscales must be positive",
+        )?;
         let positive = |v: f64| v.is_finite() && v > 0.0;
-        check(positive(self.signal_variance) && positive(self.noise_variance), "variances must be positive")?;
-        check(self.jitter.is_finite() && self.jitter >= 0.0, "jitter must be non-negative")?;
-        for (t, n, what) in [(&self.input_transform, d, "input"), (&self.target_transform, 1, "target")] {
-            check(t.mean.len() == n && t.scale.len() == n, &format!("{what} transform has the wrong length"))?;
-            check(finite(&t.mean) && t.scale.iter().all(|s| positive(*s)), &format!("{what} transform is invalid"))?;
+        check(
+            positive(self.signal_variance) && positive(self.noise_variance),
+            "variances must be positive",
+        )?;
+        check(
+            self.jitter.is_finite() && self.jitter >= 0.0,
+            "jitter must be non-negative",
+        )?;
+        for (t, n, what) in [
+            (&self.input_transform, d, "input"),
+            (&self.target_transform, 1, "target"),
+        ] {
+            check(
+                t.mean.len() == n && t.scale.len() == n,
+                &format!("{what} transform has the wrong length"),
+            )?;
+            check(
+                finite(&t.mean) && t.scale.iter().all(|s| positive(*s)),
+                &format!("{what} transform is invalid"),
+            )?;
         }
         let z = matrix(&self.pseudo_inputs, d, "pseudo_inputs")?;
         let m = z.nrows();
         check(finite(z.as_slice()), "pseudo-inputs must be finite")?;
         let pseudo_noise = self.pseudo_noise.map(DVector::from_vec);
-        check(pseudo_noise.is_some() == (self.kind == GpKind::SpgpHet), "pseudo_noise is present iff kind is spgp-het")?;
+        check(
+            pseudo_noise.is_some() == (self.kind == GpKind::SpgpHet),
+            "pseudo_noise is present iff kind is spgp-het",
+        )?;
         if let Some(h) = &pseudo_noise {
-            check(h.len() == m && h.iter().all(|v| v.is_finite() && *v >= 0.0), "pseudo_noise is invalid")?;
+            check(
+                h.len() == m && h.iter().all(|v| v.is_finite() && *v >= 0.0),
+                "pseudo_noise is invalid",
+            )?;
         }
         let hyper = Hyper {
             lengthscales: DVector::from_vec(self.lengthscales),
@@ -101,18 +143,40 @@ impl ModelFile {
             pseudo_noise,
         };
         let posterior = match (self.kind, self.posterior) {
-            (GpKind::Spgp | GpKind::SpgpHet, PosteriorFile::Sparse { weights, var_matrix }) => {
-                check(m > 0 && weights.len() == m && var_matrix.len() == m, "posterior does not match the pseudo-inputs")?;
+            (
+                GpKind::Spgp | GpKind::SpgpHet,
+                PosteriorFile::Sparse {
+                    weights,
+                    var_matrix,
+                },
+            ) => {
+                check(
+                    m > 0 && weights.len() == m && var_matrix.len() == m,
+                    "posterior does not match the pseudo-inputs",
+                )?;
                 let var_matrix = matrix(&var_matrix, m, "var_matrix")?;
-                check(finite(&weights) && finite(var_matrix.as_slice()), "posterior must be finite")?;
-                Posterior::Sparse(SparsePosterior { weights: DVector::from_vec(weights), var_matrix })
+                check(
+                    finite(&weights) && finite(var_matrix.as_slice()),
+                    "posterior must be finite",
+                )?;
+                Posterior::Sparse(SparsePosterior {
+                    weights: DVector::from_vec(weights),
+                    var_matrix,
+                })
             }
             (GpKind::Full, PosteriorFile::Full { x_train, y_train }) => {
                 let x = matrix(&x_train, d, "x_train")?;
-                check(x.nrows() == y_train.len() && x.nrows() > 0, "x_train and y_train differ in length")?;
-                check(finite(x.as_slice()) && finite(&y_train), "training data must be finite")?;
+                check(
+                    x.nrows() == y_train.len() && x.nrows() > 0,
+                    "x_train and y_train differ in length",
+                )?;
+                check(
+                    finite(x.as_slice()) && finite(&y_train),
+                    "training data must be finite",
+                )?;
                 let data = TrainData::new(&x, &DVector::from_vec(y_train));
-                let (p, _) = FullPosterior::new(&data, &hyper, self.jitter).map_err(|e| e.to_string())?;
+                let (p, _) =
+                    FullPosterior::new(&data, &hyper, self.jitter).map_err(|e| e.to_string())?;
                 Posterior::Full(p)
             }
             _ => return Err("the posterior does not match the model kind".into()),
@@ -153,7 +217,10 @@ impl GpModel {
                     weights: p.weights.iter().copied().collect(),
                     var_matrix: rows(&p.var_matrix),
                 },
-                Posterior::Full(p) => PosteriorFile::Full { x_train: rows(&p.x), y_train: p.y.iter().copied().collect() },
+                Posterior::Full(p) => PosteriorFile::Full {
+                    x_train: rows(&p.x),
+                    y_train: p.y.iter().copied().collect(),
+                },
             },
             fit_report: self.report.clone(),
         }
@@ -161,26 +228,37 @@ impl GpModel {
 
     /// The model as a JSON value, e.g. to embed it in a larger model file.
     pub fn to_json_value(&self) -> Result<serde_json::Value> {
-        serde_json::to_value(self.to_file())
-            .map_err(|e| LearnError::Model { path: "<GP model>".into(), reason: e.to_string() })
+        serde_json::to_value(self.to_file()).map_err(|e| LearnError::Model {
+            path: "<GP model>".into(),
+            reason: e.to_string(),
+        })
     }
 
     /// Reads a model from a JSON value; `origin` names the file it came from in errors.
     pub fn from_json_value(value: serde_json::Value, origin: &Path) -> Result<Self> {
-        let err = |reason: String| LearnError::Model { path: origin.to_path_buf(), reason };
+        let err = |reason: String| LearnError::Model {
+            path: origin.to_path_buf(),
+            reason,
+        };
         let format = value.get("format").and_then(|f| f.as_str()).unwrap_or("");
         if format != GP_MODEL_FORMAT {
             return Err(err(format!("not a patchflow GP model (format '{format}')")));
         }
-        let file: ModelFile = serde_json::from_value(value).map_err(|e| err(format!("corrupt GP model: {e}")))?;
+        let file: ModelFile =
+            serde_json::from_value(value).map_err(|e| err(format!("corrupt GP model: {e}")))?;
         file.into_model().map_err(err)
     }
 
     /// Writes the model to `path` (atomically: a temporary file renamed into place).
     pub fn save(&self, path: &Path) -> Result<()> {
-        let io = |source| LearnError::Io { path: path.to_path_buf(), source };
-        let mut bytes = serde_json::to_vec(&self.to_file())
-            .map_err(|e| LearnError::Model { path: path.to_path_buf(), reason: e.to_string() })?;
+        let io = |source| LearnError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let mut bytes = serde_json::to_vec(&self.to_file()).map_err(|e| LearnError::Model {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        })?;
         bytes.push(b'\n');
         let tmp = path.with_extension("json.tmp");
         std::fs::write(&tmp, bytes).map_err(io)?;
@@ -189,9 +267,15 @@ impl GpModel {
 
     /// Reads a model written by [`GpModel::save`].
     pub fn load(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|source| LearnError::Io { path: path.to_path_buf(), source })?;
-        let value: serde_json::Value = serde_json::from_slice(&bytes)
-            .map_err(|e| LearnError::Model { path: path.to_path_buf(), reason: format!("not valid JSON: {e}") })?;
+        let bytes = std::fs::read(path).map_err(|source| LearnError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let value: serde_json::Value =
+            serde_json::from_slice(&bytes).map_err(|e| LearnError::Model {
+                path: path.to_path_buf(),
+                reason: format!("not valid JSON: {e}"),
+            })?;
         Self::from_json_value(value, path)
     }
 }

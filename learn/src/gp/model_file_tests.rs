@@ -7,7 +7,11 @@ use crate::{GpKind, GpModel, GpParams, LearnError};
 fn fitted(kind: GpKind) -> GpModel {
     let x = DMatrix::from_fn(30, 2, |i, d| (i as f64 * 0.37 + d as f64).sin() * 3.0);
     let y = DVector::from_fn(30, |i, _| x[(i, 0)].cos() + 0.2 * x[(i, 1)]);
-    GpParams::new(kind).pseudo_inputs(6).max_iters(15).fit(&x, &y).expect("fits")
+    GpParams::new(kind)
+        .pseudo_inputs(6)
+        .max_iters(15)
+        .fit(&x, &y)
+        .expect("fits")
 }
 
 #[test]
@@ -19,7 +23,10 @@ fn every_kind_round_trips_through_a_file_with_identical_predictions() {
         let path = dir.path().join(format!("{kind}.json"));
         model.save(&path).expect("saves");
         let back = GpModel::load(&path).expect("loads");
-        assert_eq!(back.predict(&test).expect("predicts"), model.predict(&test).expect("predicts"));
+        assert_eq!(
+            back.predict(&test).expect("predicts"),
+            model.predict(&test).expect("predicts")
+        );
         assert_eq!(back.fit_report(), model.fit_report());
         let value = model.to_json_value().expect("serialises");
         assert_eq!(value["kind"], kind.name());
@@ -35,16 +42,25 @@ fn another_version_a_foreign_file_and_broken_json_are_model_errors_naming_the_fi
     value["version"] = 99.into();
     let cases = [
         ("version.json", value.to_string()),
-        ("foreign.json", r#"{"format": "something-else", "version": 1}"#.to_string()),
+        (
+            "foreign.json",
+            r#"{"format": "something-else", "version": 1}"#.to_string(),
+        ),
         ("broken.json", "{\"format\": \"patchflow-gp-mo".to_string()),
-        ("fields.json", r#"{"format": "patchflow-gp-model", "version": 1, "kind": "spgp"}"#.to_string()),
+        (
+            "fields.json",
+            r#"{"format": "patchflow-gp-model", "version": 1, "kind": "spgp"}"#.to_string(),
+        ),
     ];
     for (name, text) in cases {
         let path = dir.path().join(name);
         std::fs::write(&path, text).expect("writes");
         let err = GpModel::load(&path).expect_err("must be rejected");
         assert!(matches!(err, LearnError::Model { .. }), "{name}: {err}");
-        assert!(err.to_string().contains(name), "{name}: message does not name the file: {err}");
+        assert!(
+            err.to_string().contains(name),
+            "{name}: message does not name the file: {err}"
+        );
     }
 }
 

@@ -28,7 +28,10 @@ impl GpObjective {
     pub fn new(params: &GpValidParams, x: &DMatrix<f64>, y: &DVector<f64>) -> Self {
         let inputs = Standardiser::of_columns(x);
         let target = Standardiser::of_vector(y);
-        Self::standardised(params, TrainData::new(&inputs.apply(x), &target.apply_vector(y)))
+        Self::standardised(
+            params,
+            TrainData::new(&inputs.apply(x), &target.apply_vector(y)),
+        )
     }
 
     /// The objective on already standardised data.
@@ -42,7 +45,13 @@ impl GpObjective {
             het: kind == GpKind::SpgpHet,
             noise_floor: params.noise_floor(),
         };
-        Self { data, kind, layout, jitter: params.jitter(), start }
+        Self {
+            data,
+            kind,
+            layout,
+            jitter: params.jitter(),
+            start,
+        }
     }
 
     /// Length of θ.
@@ -78,7 +87,11 @@ mod tests {
     fn the_relative_jitter_term_makes_the_signal_gradient_exact() {
         let x = DMatrix::from_fn(30, 2, |i, d| ((i * (d + 2)) % 7) as f64 - 3.0);
         let y = DVector::from_fn(30, |i, _| (i as f64 * 0.3).sin());
-        let params = GpParams::new(GpKind::Spgp).pseudo_inputs(4).jitter(1e-3).check().expect("valid");
+        let params = GpParams::new(GpKind::Spgp)
+            .pseudo_inputs(4)
+            .jitter(1e-3)
+            .check()
+            .expect("valid");
         let obj = GpObjective::new(&params, &x, &y);
         let theta = obj.start();
         let (_, g) = obj.value_and_gradient(&theta).expect("evaluates");
@@ -86,7 +99,13 @@ mod tests {
         let (mut up, mut down) = (theta.clone(), theta.clone());
         up[i] += 1e-5;
         down[i] -= 1e-5;
-        let fd = (obj.value_and_gradient(&up).expect("ok").0 - obj.value_and_gradient(&down).expect("ok").0) / 2e-5;
-        assert!((fd - g[i]).abs() < 1e-6 * g[i].abs().max(1.0), "fd {fd} vs {}", g[i]);
+        let fd = (obj.value_and_gradient(&up).expect("ok").0
+            - obj.value_and_gradient(&down).expect("ok").0)
+            / 2e-5;
+        assert!(
+            (fd - g[i]).abs() < 1e-6 * g[i].abs().max(1.0),
+            "fd {fd} vs {}",
+            g[i]
+        );
     }
 }

@@ -196,7 +196,12 @@ mod tests {
 
     #[test]
     fn zero_pseudo_inputs_fail_the_check() {
-        assert!(GpParams::new(GpKind::Spgp).pseudo_inputs(0).check().is_err());
+        assert!(
+            GpParams::new(GpKind::Spgp)
+                .pseudo_inputs(0)
+                .check()
+                .is_err()
+        );
         assert!(GpParams::new(GpKind::Full).pseudo_inputs(0).check().is_ok());
     }
 }

@@ -33,7 +33,13 @@ impl SparsePosterior {
         let middle = DMatrix::identity(m, m) - &f.b_inv;
         let var = mul(&mul(&t_view(&f.l_inv), &middle), &f.l_inv);
         let var_matrix = (&var + var.transpose()) * 0.5;
-        Ok((Self { weights, var_matrix }, f.jitter))
+        Ok((
+            Self {
+                weights,
+                var_matrix,
+            },
+            f.jitter,
+        ))
     }
 
     /// Mean and latent variance at the rows of `x` (T×D, standardised).

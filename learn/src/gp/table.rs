@@ -30,10 +30,22 @@ pub struct Table {
 impl Table {
     /// Reads the selected columns of `path`.
     pub fn read(path: &Path, select: Columns<'_>) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| LearnError::Io { path: path.to_path_buf(), source })?;
-        let err = |line: usize, reason: String| LearnError::Parse { path: path.to_path_buf(), line, reason };
-        let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l.trim_end_matches('\r')));
-        let Some((_, header)) = lines.next() else { return Err(err(1, "empty file: expected a header line".into())) };
+        let text = std::fs::read_to_string(path).map_err(|source| LearnError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let err = |line: usize, reason: String| LearnError::Parse {
+            path: path.to_path_buf(),
+            line,
+            reason,
+        };
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| (i + 1, l.trim_end_matches('\r')));
+        let Some((_, header)) = lines.next() else {
+            return Err(err(1, "empty file: expected a header line".into()));
+        };
         let header: Vec<String> = split(header.trim_start_matches('\u{feff}'), 1, &err)?;
         for (i, name) in header.iter().enumerate() {
             if name.is_empty() {
@@ -43,7 +55,9 @@ impl Table {
                 return Err(err(1, format!("column '{name}' appears twice")));
             }
         }
-        let listed = match select { Columns::AllExcept(names) | Columns::Only(names) => names };
+        let listed = match select {
+            Columns::AllExcept(names) | Columns::Only(names) => names,
+        };
         if let Some(missing) = listed.iter().find(|n| !header.contains(n)) {
             return Err(err(1, format!("column '{missing}' is not in the header")));
         }
@@ -61,7 +75,10 @@ impl Table {
             }
             let cells = split(line, line_no, &err)?;
             if cells.len() != header.len() {
-                return Err(err(line_no, format!("{} cells, but the header has {}", cells.len(), header.len())));
+                return Err(err(
+                    line_no,
+                    format!("{} cells, but the header has {}", cells.len(), header.len()),
+                ));
             }
             for &c in &keep {
                 values.push(parse_cell(&cells[c], &header[c]).map_err(|why| err(line_no, why))?);
@@ -80,40 +97,64 @@ impl Table {
 
     /// Index of the column `name`.
     pub fn column_index(&self, name: &str) -> Result<usize> {
-        self.columns.iter().position(|c| c == name).ok_or_else(|| LearnError::Parse {
-            path: self.path.clone(),
-            line: 1,
-            reason: format!("column '{name}' is not among the numeric columns read"),
-        })
+        self.columns
+            .iter()
+            .position(|c| c == name)
+            .ok_or_else(|| LearnError::Parse {
+                path: self.path.clone(),
+                line: 1,
+                reason: format!("column '{name}' is not among the numeric columns read"),
+            })
     }
 
     /// Splits into inputs (every other column) and the target (`target`, or the last column).
-    pub fn inputs_and_target(&self, target: Option<&str>) -> Result<(DMatrix<f64>, DVector<f64>, Vec<String>, String)> {
+    pub fn inputs_and_target(
+        &self,
+        target: Option<&str>,
+    ) -> Result<(DMatrix<f64>, DVector<f64>, Vec<String>, String)> {
         let t = match target {
             Some(name) => self.column_index(name)?,
             None => self.columns.len() - 1,
         };
         let inputs: Vec<usize> = (0..self.columns.len()).filter(|&c| c != t).collect();
         if inputs.is_empty() {
-            return Err(LearnError::Parse { path: self.path.clone(), line: 1, reason: "no input columns besides the target".into() });
+            return Err(LearnError::Parse {
+                path: self.path.clone(),
+                line: 1,
+                reason: "no input columns besides the target".into(),
+            });
         }
         let x = self.select_indices(&inputs);
         let names = inputs.iter().map(|&c| self.columns[c].clone()).collect();
-        Ok((x, self.values.column(t).into_owned(), names, self.columns[t].clone()))
+        Ok((
+            x,
+            self.values.column(t).into_owned(),
+            names,
+            self.columns[t].clone(),
+        ))
     }
 
     /// The named columns, in the order given.
     pub fn select(&self, names: &[String]) -> Result<DMatrix<f64>> {
-        let idx = names.iter().map(|n| self.column_index(n)).collect::<Result<Vec<_>>>()?;
+        let idx = names
+            .iter()
+            .map(|n| self.column_index(n))
+            .collect::<Result<Vec<_>>>()?;
         Ok(self.select_indices(&idx))
     }
 
     fn select_indices(&self, idx: &[usize]) -> DMatrix<f64> {
-        DMatrix::from_fn(self.values.nrows(), idx.len(), |i, j| self.values[(i, idx[j])])
+        DMatrix::from_fn(self.values.nrows(), idx.len(), |i, j| {
+            self.values[(i, idx[j])]
+        })
     }
 }
 
-fn split<E>(line: &str, line_no: usize, err: &impl Fn(usize, String) -> E) -> std::result::Result<Vec<String>, E> {
+fn split<E>(
+    line: &str,
+    line_no: usize,
+    err: &impl Fn(usize, String) -> E,
+) -> std::result::Result<Vec<String>, E> {
     if line.contains('"') {
         return Err(err(line_no, "quoted fields are not supported".into()));
     }
@@ -123,9 +164,13 @@ fn split<E>(line: &str, line_no: usize, err: &impl Fn(usize, String) -> E) -> st
 fn parse_cell(cell: &str, column: &str) -> std::result::Result<f64, String> {
     match cell.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
-        Ok(_) => Err(format!("column '{column}': '{cell}' is not a finite number")),
+        Ok(_) => Err(format!(
+            "column '{column}': '{cell}' is not a finite number"
+        )),
         Err(_) if cell.is_empty() => Err(format!("column '{column}' is empty")),
-        Err(_) => Err(format!("column '{column}': '{cell}' is not a number (leave the column out with --ignore {column})")),
+        Err(_) => Err(format!(
+            "column '{column}': '{cell}' is not a number (leave the column out with --ignore {column})"
+        )),
     }
 }
 
@@ -146,7 +191,10 @@ mod tests {
         let ignore = vec!["label".to_string()];
         let t = Table::read(&path, Columns::AllExcept(&ignore)).expect("reads");
         let (x, y, names, target) = t.inputs_and_target(None).expect("splits");
-        assert_eq!((names, target), (vec!["a".to_string(), "b".to_string()], "y".to_string()));
+        assert_eq!(
+            (names, target),
+            (vec!["a".to_string(), "b".to_string()], "y".to_string())
+        );
         assert_eq!(x, DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 4.0, 5.0]));
         assert_eq!(y, DVector::from_vec(vec![3.0, 6.0]));
         let (_, y, _, _) = t.inputs_and_target(Some("a")).expect("splits");
@@ -179,6 +227,9 @@ mod tests {
         let (_dir, path) = write("note,b,a\nhello,2,1\n");
         let want = vec!["a".to_string(), "b".to_string()];
         let t = Table::read(&path, Columns::Only(&want)).expect("reads");
-        assert_eq!(t.select(&want).expect("selects"), DMatrix::from_row_slice(1, 2, &[1.0, 2.0]));
+        assert_eq!(
+            t.select(&want).expect("selects"),
+            DMatrix::from_row_slice(1, 2, &[1.0, 2.0])
+        );
     }
 }

@@ -24,7 +24,11 @@ impl TrainData {
     pub fn new(x: &DMatrix<f64>, y: &DVector<f64>) -> Self {
         let xt = x.transpose();
         let xt_sq = xt.map(|v| v * v);
-        Self { xt, xt_sq, y: y.clone() }
+        Self {
+            xt,
+            xt_sq,
+            y: y.clone(),
+        }
     }
 
     /// Number of samples N.

@@ -21,21 +21,31 @@ fn mean_and_scale(values: impl Iterator<Item = f64> + Clone, n: usize) -> (f64, 
     let mean = values.clone().sum::<f64>() / n as f64;
     let var = values.map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64;
     let sd = var.sqrt();
-    let scale = if sd > CONSTANT_SPREAD * mean.abs().max(1.0) { sd } else { 1.0 };
+    let scale = if sd > CONSTANT_SPREAD * mean.abs().max(1.0) {
+        sd
+    } else {
+        1.0
+    };
     (mean, scale)
 }
 
 impl Standardiser {
     /// Fits one transform per column of `x` (N×D, N ≥ 1).
     pub fn of_columns(x: &DMatrix<f64>) -> Self {
-        let (mean, scale) = x.column_iter().map(|c| mean_and_scale(c.iter().copied(), c.len())).unzip();
+        let (mean, scale) = x
+            .column_iter()
+            .map(|c| mean_and_scale(c.iter().copied(), c.len()))
+            .unzip();
         Self { mean, scale }
     }
 
     /// Fits the transform of a target vector (N ≥ 1).
     pub fn of_vector(y: &DVector<f64>) -> Self {
         let (m, s) = mean_and_scale(y.iter().copied(), y.len());
-        Self { mean: vec![m], scale: vec![s] }
+        Self {
+            mean: vec![m],
+            scale: vec![s],
+        }
     }
 
     /// Number of columns transformed.
@@ -50,7 +60,9 @@ impl Standardiser {
 
     /// Applies the transform to the columns of `x`.
     pub fn apply(&self, x: &DMatrix<f64>) -> DMatrix<f64> {
-        DMatrix::from_fn(x.nrows(), x.ncols(), |i, j| (x[(i, j)] - self.mean[j]) / self.scale[j])
+        DMatrix::from_fn(x.nrows(), x.ncols(), |i, j| {
+            (x[(i, j)] - self.mean[j]) / self.scale[j]
+        })
     }
 
     /// Applies the (single-column) transform to a vector.

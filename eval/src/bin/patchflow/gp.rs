@@ -73,17 +73,31 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 fn fit(a: FitArgs) -> anyhow::Result<()> {
     let kind: GpKind = a.kind.parse()?;
-    let ignore: Vec<String> = a.ignore.iter().flat_map(|s| s.split(',')).map(|s| s.trim().to_string()).filter(|s| !s.is_empty()).collect();
+    let ignore: Vec<String> = a
+        .ignore
+        .iter()
+        .flat_map(|s| s.split(','))
+        .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
+        .collect();
     let table = Table::read(&a.csv, Columns::AllExcept(&ignore))?;
     let (x, y, names, target) = table.inputs_and_target(a.target.as_deref())?;
-    let params = GpParams::new(kind).pseudo_inputs(a.pseudo).max_iters(a.iters).seed(a.seed);
+    let params = GpParams::new(kind)
+        .pseudo_inputs(a.pseudo)
+        .max_iters(a.iters)
+        .seed(a.seed);
     let model = params
         .check()?
         .fit_named(&x, &y, &names, &target)
         .with_context(|| format!("fitting {}", a.csv.display()))?;
     model.save(&a.out)?;
     let r = model.fit_report();
-    eprintln!("{kind}: {} iterations, stopped by {}; wrote {}", r.iterations, r.stop, a.out.display());
+    eprintln!(
+        "{kind}: {} iterations, stopped by {}; wrote {}",
+        r.iterations,
+        r.stop,
+        a.out.display()
+    );
     let summary = serde_json::json!({
         "kind": kind.name(), "n": r.n, "d": r.d, "m": r.m, "evals": r.evals, "seconds": r.seconds, "nlml": r.nlml,
     });
@@ -95,9 +109,13 @@ fn predict(a: PredictArgs) -> anyhow::Result<()> {
     let model = GpModel::load(&a.model)?;
     let table = Table::read(&a.csv, Columns::Only(model.input_names()))?;
     let x = table.select(model.input_names())?;
-    let csv = model.predict(&x).with_context(|| format!("predicting at {}", a.csv.display()))?.to_csv();
+    let csv = model
+        .predict(&x)
+        .with_context(|| format!("predicting at {}", a.csv.display()))?
+        .to_csv();
     match a.out {
-        Some(path) => std::fs::write(&path, csv).with_context(|| format!("{}: cannot write", path.display()))?,
+        Some(path) => std::fs::write(&path, csv)
+            .with_context(|| format!("{}: cannot write", path.display()))?,
         None => print!("{csv}"),
     }
     Ok(())
