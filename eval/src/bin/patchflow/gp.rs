@@ -81,14 +81,14 @@ fn fit(a: FitArgs) -> anyhow::Result<()> {
         .filter(|s| !s.is_empty())
         .collect();
     let table = Table::read(&a.csv, Columns::AllExcept(&ignore))?;
-    let (x, y, names, target) = table.inputs_and_target(a.target.as_deref())?;
+    let cols = table.inputs_and_target(a.target.as_deref())?;
     let params = GpParams::new(kind)
         .pseudo_inputs(a.pseudo)
         .max_iters(a.iters)
         .seed(a.seed);
     let model = params
         .check()?
-        .fit_named(&x, &y, &names, &target)
+        .fit_named(&cols.x, &cols.y, &cols.input_names, &cols.target_name)
         .with_context(|| format!("fitting {}", a.csv.display()))?;
     model.save(&a.out)?;
     let r = model.fit_report();
