@@ -65,7 +65,7 @@ fn pass1(
     let s = h.signal_variance;
     let x_sq = column_sqnorms(&data.xt_sq_block(start, len), inv_sq);
     let k = cross_covariance(side, &data.xt_block(start, len), &x_sq, s);
-    let v = mul(&l_inv, &k); // step 3: V = L⁻¹U
+    let v = mul(l_inv, &k); // step 3: V = L⁻¹U
     let q = colsum_product(&v, &v);
     let g = q.map(|qn| (s - qn).max(0.0) + h.noise_variance); // step 4: λ clamped at 0
     let g_isqrt = g.map(|x| 1.0 / x.sqrt());
@@ -207,7 +207,7 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
     let f_mat = d_bu.component_mul(&f.k_m); // F = ∂𝓛/∂B_u ∘ K_M
     let f_row = f_mat.column_sum();
     let z = &h.pseudo_inputs;
-    let fz = mul(&f_mat, &z);
+    let fz = mul(&f_mat, z);
     let inv_sq = inverse_squares(&h.lengthscales);
     let mut d_z = DMatrix::zeros(m, dims);
     let mut d_log_l = DVector::zeros(dims);

@@ -264,3 +264,16 @@ fn permuting_the_pseudo_inputs_leaves_the_objective_unchanged() {
     let b = objective(&data, &p, 1e-6).expect("factors").nlml;
     assert!(close(a, b, 1e-12), "{a} vs {b}");
 }
+
+#[test]
+fn the_objective_is_bit_identical_on_one_and_two_threads() {
+    let (data, h) = random_problem(700, 6, true, 12); // three row blocks
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        pool.install(|| objective(&data, &h, 1e-6).expect("factors"))
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one.nlml.to_bits(), two.nlml.to_bits());
+    assert_eq!(one.grad.pseudo_inputs, two.grad.pseudo_inputs);
+    assert_eq!(one.grad.log_lengthscales, two.grad.log_lengthscales);
+}

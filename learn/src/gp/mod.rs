@@ -34,5 +34,5 @@ pub use model::{FitReport, GpModel, GpPrediction};
 pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
 pub use objective::GpObjective;
 pub use params::{GpKind, GpParams, GpValidParams};
-pub use table::{Columns, Table};
+pub use table::{Columns, Table, TrainingColumns};
 pub use transform::Standardiser;

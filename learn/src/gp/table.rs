@@ -16,6 +16,19 @@ pub enum Columns<'a> {
     Only(&'a [String]),
 }
 
+/// A table split into inputs and target, with their column names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrainingColumns {
+    /// Inputs, one sample per row (N×D).
+    pub x: DMatrix<f64>,
+    /// Targets (N).
+    pub y: DVector<f64>,
+    /// Names of the input columns, in order.
+    pub input_names: Vec<String>,
+    /// Name of the target column.
+    pub target_name: String,
+}
+
 /// The numeric columns read from a CSV file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
@@ -108,13 +121,18 @@ impl Table {
     }
 
     /// Splits into inputs (every other column) and the target (`target`, or the last column).
-    pub fn inputs_and_target(
-        &self,
-        target: Option<&str>,
-    ) -> Result<(DMatrix<f64>, DVector<f64>, Vec<String>, String)> {
+    pub fn inputs_and_target(&self, target: Option<&str>) -> Result<TrainingColumns> {
         let t = match target {
             Some(name) => self.column_index(name)?,
-            None => self.columns.len() - 1,
+            None => self
+                .columns
+                .len()
+                .checked_sub(1)
+                .ok_or_else(|| LearnError::Parse {
+                    path: self.path.clone(),
+                    line: 1,
+                    reason: "no numeric columns left".into(),
+                })?,
         };
         let inputs: Vec<usize> = (0..self.columns.len()).filter(|&c| c != t).collect();
         if inputs.is_empty() {
@@ -124,14 +142,12 @@ impl Table {
                 reason: "no input columns besides the target".into(),
             });
         }
-        let x = self.select_indices(&inputs);
-        let names = inputs.iter().map(|&c| self.columns[c].clone()).collect();
-        Ok((
-            x,
-            self.values.column(t).into_owned(),
-            names,
-            self.columns[t].clone(),
-        ))
+        Ok(TrainingColumns {
+            x: self.select_indices(&inputs),
+            y: self.values.column(t).into_owned(),
+            input_names: inputs.iter().map(|&c| self.columns[c].clone()).collect(),
+            target_name: self.columns[t].clone(),
+        })
     }
 
     /// The named columns, in the order given.
@@ -190,15 +206,16 @@ mod tests {
         let (_dir, path) = write("a, b ,label,y\n1,2,car,3\n4,5,bus,6\n\n");
         let ignore = vec!["label".to_string()];
         let t = Table::read(&path, Columns::AllExcept(&ignore)).expect("reads");
-        let (x, y, names, target) = t.inputs_and_target(None).expect("splits");
-        assert_eq!(
-            (names, target),
-            (vec!["a".to_string(), "b".to_string()], "y".to_string())
-        );
-        assert_eq!(x, DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 4.0, 5.0]));
-        assert_eq!(y, DVector::from_vec(vec![3.0, 6.0]));
-        let (_, y, _, _) = t.inputs_and_target(Some("a")).expect("splits");
-        assert_eq!(y, DVector::from_vec(vec![1.0, 4.0]));
+        let cols = t.inputs_and_target(None).expect("splits");
+        assert_eq!(cols.input_names, vec!["a".to_string(), "b".to_string()]);
+        assert_eq!(cols.target_name, "y");
+        assert_eq!(cols.x, DMatrix::from_row_slice(2, 2, &[1.0, 2.0, 4.0, 5.0]));
+        assert_eq!(cols.y, DVector::from_vec(vec![3.0, 6.0]));
+        let by_name = t.inputs_and_target(Some("a")).expect("splits");
+        assert_eq!(by_name.y, DVector::from_vec(vec![1.0, 4.0]));
+        let all: Vec<String> = ["a", "b", "label", "y"].map(String::from).to_vec();
+        let empty = Table::read(&path, Columns::AllExcept(&all)).expect("reads");
+        assert!(empty.inputs_and_target(None).is_err());
     }
 
     fn error_of(text: &str, ignore: &[String]) -> String {

@@ -81,14 +81,14 @@ fn fit(a: FitArgs) -> anyhow::Result<()> {
         .filter(|s| !s.is_empty())
         .collect();
     let table = Table::read(&a.csv, Columns::AllExcept(&ignore))?;
-    let (x, y, names, target) = table.inputs_and_target(a.target.as_deref())?;
+    let cols = table.inputs_and_target(a.target.as_deref())?;
     let params = GpParams::new(kind)
         .pseudo_inputs(a.pseudo)
         .max_iters(a.iters)
         .seed(a.seed);
     let model = params
         .check()?
-        .fit_named(&x, &y, &names, &target)
+        .fit_named(&cols.x, &cols.y, &cols.input_names, &cols.target_name)
         .with_context(|| format!("fitting {}", a.csv.display()))?;
     model.save(&a.out)?;
     let r = model.fit_report();
@@ -119,4 +119,56 @@ fn predict(a: PredictArgs) -> anyhow::Result<()> {
         None => print!("{csv}"),
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gp_fit_then_predict_writes_mean_var_and_var_y_for_every_row() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let train = dir.path().join("train.csv");
+        let mut text = String::from("x,tag,y\n");
+        for i in 0..30 {
+            let x = i as f64 * 0.3;
+            text.push_str(&format!("{x},t{i},{}\n", x.sin()));
+        }
+        std::fs::write(&train, text).expect("writes");
+        let test = dir.path().join("test.csv");
+        std::fs::write(&test, "y,x\n0,1.0\n0,2.5\n").expect("writes");
+        let (model, out) = (dir.path().join("m.json"), dir.path().join("p.csv"));
+        let fit_args = |ignore: Option<&str>| FitArgs {
+            csv: train.clone(),
+            out: model.clone(),
+            kind: "spgp-het".into(),
+            pseudo: 5,
+            iters: 20,
+            seed: 1,
+            target: None,
+            ignore: ignore.map(String::from),
+        };
+        let err = fit(fit_args(None)).expect_err("a text column must be ignored explicitly");
+        assert!(format!("{err:#}").contains("train.csv"));
+        fit(fit_args(Some("tag"))).expect("fits");
+        predict(PredictArgs {
+            model: model.clone(),
+            csv: test,
+            out: Some(out.clone()),
+        })
+        .expect("predicts");
+        let lines: Vec<String> = std::fs::read_to_string(&out)
+            .expect("reads")
+            .lines()
+            .map(String::from)
+            .collect();
+        assert_eq!(lines[0], "mean,var,var_y");
+        assert_eq!(lines.len(), 3);
+        let mean: f64 = lines[1]
+            .split(',')
+            .next()
+            .and_then(|v| v.parse().ok())
+            .expect("a number");
+        assert!((mean - 1f64.sin()).abs() < 0.1, "mean {mean}");
+    }
 }
