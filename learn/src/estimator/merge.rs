@@ -107,7 +107,7 @@ pub fn merge_heading(votes: &[HeadingVote], rule: MergeRule) -> Option<MergedHea
             .map(|(v, info)| info * v.mean)
             .sum::<Vector2<f64>>();
     let norm2 = mean.norm_squared();
-    if !(norm2 > 1e-12) {
+    if norm2.is_nan() || norm2 <= 1e-12 {
         return None;
     }
     // Delta method: the angle's gradient w.r.t. (x, y) is (−y, x) / |m|².
