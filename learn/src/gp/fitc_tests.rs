@@ -269,7 +269,10 @@ fn permuting_the_pseudo_inputs_leaves_the_objective_unchanged() {
 fn the_objective_is_bit_identical_on_one_and_two_threads() {
     let (data, h) = random_problem(700, 6, true, 12); // three row blocks
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
         pool.install(|| objective(&data, &h, 1e-6).expect("factors"))
     };
     let (one, two) = (run(1), run(2));

@@ -1,10 +1,17 @@
 //! The hyperparameters of the SE-ARD sparse GP and the optimiser's parameter vector (gp.md §5.2):
-//! log ℓ, log s, log(σ² − floor), raw pseudo-inputs Z and, for SPGP-HET, log h.
+//! log ℓ, log s, log(σ² − floor), raw pseudo-inputs Z and, for SPGP-HET, logit(h / h_max).
+//!
+//! h is bounded by h_max = 10 × the (standardised, hence unit) target variance, gp.md §5.5 item 6:
+//! an unbounded h_m silently deletes its pseudo-input and all-large h is the trivial all-noise fit.
+//! For h ≪ h_max the logit coordinate is log h.
 
 use nalgebra::{DMatrix, DVector};
 
 /// Largest magnitude of a log-parameter; keeps exp() finite when the optimiser strays.
 const LOG_LIMIT: f64 = 40.0;
+
+/// Upper bound of each pseudo-input noise h_m, in units of the standardised target variance.
+pub(crate) const PSEUDO_NOISE_MAX: f64 = 10.0;
 
 /// Kernel, noise and pseudo-input parameters in the standardised space of a fit.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,7 +43,8 @@ pub(crate) struct HyperGrad {
     pub log_pseudo_noise: Option<DVector<f64>>,
 }
 
-/// How a [`Hyper`] maps to a flat vector: [log ℓ (D), log s, log(σ² − floor), Z (column-major), log h].
+/// How a [`Hyper`] maps to a flat vector: [log ℓ (D), log s, log(σ² − floor), Z (column-major),
+/// logit(h/h_max)].
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Layout {
     /// Input dimension D.
@@ -63,7 +71,11 @@ impl Layout {
         v.push((h.noise_variance - self.noise_floor).max(1e-300).ln());
         v.extend(h.pseudo_inputs.iter().copied());
         if let Some(p) = &h.pseudo_noise {
-            v.extend(p.iter().map(|x| x.max(1e-300).ln()));
+            let top = PSEUDO_NOISE_MAX * (1.0 - 1e-12);
+            v.extend(p.iter().map(|x| {
+                let h = x.clamp(1e-300, top);
+                h.ln() - (PSEUDO_NOISE_MAX - h).ln()
+            }));
         }
         DVector::from_vec(v)
     }
@@ -75,9 +87,15 @@ impl Layout {
         let lengthscales = DVector::from_iterator(d, v.rows(0, d).iter().map(|x| ex(*x)));
         let z0 = d + 2;
         let pseudo_inputs = DMatrix::from_column_slice(m, d, &v.as_slice()[z0..z0 + m * d]);
-        let pseudo_noise = self
-            .het
-            .then(|| DVector::from_iterator(m, v.rows(z0 + m * d, m).iter().map(|x| ex(*x))));
+        let sigmoid = |x: f64| 1.0 / (1.0 + (-x.clamp(-LOG_LIMIT, LOG_LIMIT)).exp());
+        let pseudo_noise = self.het.then(|| {
+            DVector::from_iterator(
+                m,
+                v.rows(z0 + m * d, m)
+                    .iter()
+                    .map(|x| PSEUDO_NOISE_MAX * sigmoid(*x)),
+            )
+        });
         Hyper {
             lengthscales,
             signal_variance: ex(v[d]),
@@ -96,8 +114,13 @@ impl Layout {
         v.push(g.log_noise_variance * (h.noise_variance - self.noise_floor) / h.noise_variance);
         v.extend(g.pseudo_inputs.iter().copied());
         if self.het {
-            if let Some(p) = &g.log_pseudo_noise {
-                v.extend(p.iter().copied());
+            if let (Some(p), Some(hv)) = (&g.log_pseudo_noise, &h.pseudo_noise) {
+                // h = h_max·sigmoid(θ): ∂/∂θ = ∂/∂log h · (1 − h/h_max).
+                v.extend(
+                    p.iter()
+                        .zip(hv.iter())
+                        .map(|(gi, hi)| gi * (1.0 - hi / PSEUDO_NOISE_MAX)),
+                );
             } else {
                 v.extend(std::iter::repeat_n(0.0, self.pseudo));
             }
