@@ -1,6 +1,8 @@
 //! Generating the same scenario with the same seed gives byte-identical files; another seed
 //! changes the noise; an interrupted run resumes to the same bytes.
 
+#![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
+
 use std::path::{Path, PathBuf};
 
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};

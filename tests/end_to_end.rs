@@ -1,6 +1,8 @@
 //! End to end on a small scene: generate → train SPGP and SPGP-HET → evaluate → report. Checks
 //! that every stage hands the next what it needs and that metrics.json has the SPEC §7 shape.
 
+#![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
+
 use patchflow_eval::{BaselineParams, GpMethod, evaluate_dataset, method_prefix, write_report};
 use patchflow_learn::{
     EstimatorParams, FeatureKind, FeatureParams, GpKind, MotionEstimator, SampleSet,

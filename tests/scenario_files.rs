@@ -2,6 +2,8 @@
 //! (60,000 to 130,000 in open streets) and the situations' target is hit. The full check over
 //! every sweep is run by hand (see `scenarios/README.md`), not in CI.
 
+#![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
+
 use patchflow_sim::{EMBEDDED_SCENARIOS, Scenario, Simulation};
 
 fn shipped() -> Vec<Scenario> {

@@ -273,20 +273,20 @@ fn print_headline(report: &patchflow_eval::BenchmarkReport) -> anyhow::Result<()
     println!(
         "\n{:<12} {}",
         "situation",
-        methods.map(|m| format!("{m:>26}")).join("")
+        methods.map(|m| format!("{m:>28}")).join("")
     );
     println!(
         "{:<12} {}",
         "",
         methods
-            .map(|_| format!("{:>26}", "heading° / speed m/s / cov"))
+            .map(|_| format!("{:>28}", "heading° / speed m/s / cov"))
             .join("")
     );
     for situation in &report.situations {
         let metrics = situation.metrics()?;
         let cells = methods.map(|m| match metrics.get(m) {
             Some(x) => format!(
-                "{:>26}",
+                "{:>28}",
                 format!(
                     "{} / {} / {:.2}",
                     x.heading_rmse_deg.map_or("-".into(), |v| format!("{v:.1}")),
@@ -294,7 +294,7 @@ fn print_headline(report: &patchflow_eval::BenchmarkReport) -> anyhow::Result<()
                     x.coverage
                 )
             ),
-            None => format!("{:>26}", "-"),
+            None => format!("{:>28}", "-"),
         });
         println!("{:<12} {}", situation.name, cells.join(""));
     }
