@@ -8,42 +8,11 @@ use patchflow_learn::{
     EstimatorParams, FeatureKind, FeatureParams, GpKind, MotionEstimator, SampleSet,
 };
 
-/// Two moving cars pass a slow ego car with a reduced lidar; `crossing` is the target.
-const SCENE: &str = r#"
-description = "end-to-end test scene"
-sweeps = 10
-
-[lidar]
-channels = 32
-azimuth_steps = 720
-blocks = 36
-
-[ego]
-path_m = [[0.0, 0.0], [100.0, 0.0]]
-speed_mps = 2.0
-
-[[actors]]
-name = "crossing"
-target = true
-path_m = [[14.0, -8.0], [14.0, 60.0]]
-speed_mps = 8.0
-
-[[actors]]
-name = "oncoming"
-path_m = [[40.0, 4.0], [-60.0, 4.0]]
-speed_mps = 6.0
-
-[[structures]]
-kind = "wall"
-centre_m = [30.0, -10.0]
-size_m = [20.0, 0.5, 3.0]
-yaw_deg = 0.0
-"#;
-
 #[test]
 fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
     let dir = tempfile::tempdir().unwrap();
-    let dataset = patchflow_tests::generate_scene(dir.path(), "e2e", SCENE, 3);
+    let dataset =
+        patchflow_tests::generate_scene(dir.path(), "e2e", patchflow_tests::TRAFFIC_SCENE, 3);
 
     let features = FeatureParams {
         half_extent_m: 30.0,
@@ -86,7 +55,7 @@ fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
     let metrics: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&files.metrics_json).unwrap()).unwrap();
     let situation = &metrics["situations"]["e2e"];
-    assert_eq!(situation["scans"], 9, "{metrics}");
+    assert_eq!(situation["scans"], 13, "{metrics}");
     let methods = situation["methods"].as_object().unwrap();
     let names: Vec<&str> = methods.keys().map(String::as_str).collect();
     for name in [

@@ -8,37 +8,6 @@
 
 use patchflow_eval::{CvGp, CvParams, cross_validate};
 
-/// Cars crossing, oncoming and leaving at three speeds, seen from a slowly moving ego car.
-const SCENE: &str = r#"
-description = "training regression scene"
-sweeps = 14
-
-[lidar]
-channels = 32
-azimuth_steps = 900
-blocks = 36
-
-[ego]
-path_m = [[0.0, 0.0], [100.0, 0.0]]
-speed_mps = 2.0
-
-[[actors]]
-name = "crossing"
-target = true
-path_m = [[14.0, -8.0], [14.0, 60.0]]
-speed_mps = 8.0
-
-[[actors]]
-name = "oncoming"
-path_m = [[40.0, 4.0], [-60.0, 4.0]]
-speed_mps = 6.0
-
-[[actors]]
-name = "leaving"
-path_m = [[8.0, -4.0], [120.0, -4.0]]
-speed_mps = 4.0
-"#;
-
 /// Recorded on the commit that added this test (see the module docs).
 /// Measured 11.82° (2026-11-22).
 const HEADING_RMSE_BOUND_DEG: f64 = 14.0;
@@ -48,7 +17,12 @@ const SPEED_RMSE_BOUND_MPS: f64 = 1.2;
 #[test]
 fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
     let dir = tempfile::tempdir().unwrap();
-    let dataset = patchflow_tests::generate_scene(dir.path(), "regression", SCENE, 11);
+    let dataset = patchflow_tests::generate_scene(
+        dir.path(),
+        "regression",
+        patchflow_tests::TRAFFIC_SCENE,
+        11,
+    );
     let params = CvParams {
         folds: 2,
         samples: 300,

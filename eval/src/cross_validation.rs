@@ -225,6 +225,17 @@ struct FoldErrors {
     low_var: Vec<bool>,
 }
 
+impl FoldErrors {
+    fn low_var_errors(&self) -> Vec<f64> {
+        self.errors
+            .iter()
+            .zip(&self.low_var)
+            .filter(|(_, low)| **low)
+            .map(|(e, _)| *e)
+            .collect()
+    }
+}
+
 fn heading_fold(
     set: &SampleSet,
     x: &DMatrix<f64>,
@@ -297,13 +308,7 @@ struct FoldAccumulator {
 
 impl FoldAccumulator {
     fn add_heading(&mut self, fold: FoldErrors) {
-        let low: Vec<f64> = fold
-            .errors
-            .iter()
-            .zip(&fold.low_var)
-            .filter(|(_, l)| **l)
-            .map(|(e, _)| *e)
-            .collect();
+        let low = fold.low_var_errors();
         self.n_test += fold.errors.len();
         self.n_low_var += low.len();
         self.heading.extend(rmse(&fold.errors));
@@ -311,13 +316,7 @@ impl FoldAccumulator {
     }
 
     fn add_speed(&mut self, fold: FoldErrors) {
-        let low: Vec<f64> = fold
-            .errors
-            .iter()
-            .zip(&fold.low_var)
-            .filter(|(_, l)| **l)
-            .map(|(e, _)| *e)
-            .collect();
+        let low = fold.low_var_errors();
         self.speed.extend(rmse(&fold.errors));
         self.speed_low.extend(rmse(&low));
     }

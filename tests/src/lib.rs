@@ -30,3 +30,34 @@ pub fn generate_scene(
     .expect("generating the scene");
     patchflow_dataset::Dataset::open(&data).expect("opening the generated dataset")
 }
+
+/// Cars crossing, oncoming and leaving at three speeds, seen from a slowly moving ego car.
+pub const TRAFFIC_SCENE: &str = r#"
+description = "three cars around a slow ego car (test scene)"
+sweeps = 14
+
+[lidar]
+channels = 32
+azimuth_steps = 900
+blocks = 36
+
+[ego]
+path_m = [[0.0, 0.0], [100.0, 0.0]]
+speed_mps = 2.0
+
+[[actors]]
+name = "crossing"
+target = true
+path_m = [[14.0, -8.0], [14.0, 60.0]]
+speed_mps = 8.0
+
+[[actors]]
+name = "oncoming"
+path_m = [[40.0, 4.0], [-60.0, 4.0]]
+speed_mps = 6.0
+
+[[actors]]
+name = "leaving"
+path_m = [[8.0, -4.0], [120.0, -4.0]]
+speed_mps = 4.0
+"#;

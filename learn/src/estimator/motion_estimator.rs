@@ -88,20 +88,9 @@ impl MotionEstimator {
             params.seed,
             progress,
         )?;
-        let estimator = Self::fit_samples(&set, params)?;
-        let sequences = dataset.sequences().iter().map(|s| s.name.clone()).collect();
-        let training = TrainingRecord {
-            sequences,
-            pool_size: set.pool_size,
-            samples: set.samples.len(),
-            pseudo_inputs: params.pseudo_inputs,
-            seed: params.seed,
-            seconds: start.elapsed().as_secs_f64(),
-        };
-        Ok(Self {
-            training,
-            ..estimator
-        })
+        let mut estimator = Self::fit_samples(&set, params)?.with_sequences(dataset);
+        estimator.training.seconds = start.elapsed().as_secs_f64();
+        Ok(estimator)
     }
 
     /// Fits the three GPs to an already drawn sample set (thesis 3.1.1, 3.1.3).

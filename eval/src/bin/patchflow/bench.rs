@@ -10,12 +10,10 @@ use patchflow_dataset::Dataset;
 use patchflow_eval::{
     CvParams, GpMethod, StageTimer, method_prefix, write_cv_report, write_report,
 };
-use patchflow_learn::{
-    EstimatorParams, FeatureKind, FeatureParams, GpKind, MotionEstimator, SampleSet,
-};
+use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
-use crate::cv::cv_with_samples;
+use crate::cv::{collect_samples, cv_with_samples};
 use crate::evaluate::evaluate_with_bar;
 
 /// Arguments of `patchflow bench`.
@@ -108,7 +106,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         plan.cv
             .priors
             .iter()
-            .map(|&prior| collect_samples(&train, prior, plan.samples))
+            .map(|&prior| collect_samples(&train, prior, plan.samples, SEED))
             .collect::<anyhow::Result<Vec<_>>>()
     })?;
     let training_set = sets
@@ -181,23 +179,6 @@ fn generate(names: &[&'static str], out: &Path) -> anyhow::Result<Dataset> {
     };
     crate::generate::generate_with_progress(&sources, &options)?;
     Ok(Dataset::open(out)?)
-}
-
-fn collect_samples(train: &Dataset, prior: f64, n: usize) -> anyhow::Result<SampleSet> {
-    let bar = patchflow_eval::progress_bar(0, &format!("samples, prior {prior}"));
-    let set = SampleSet::collect_with_progress(
-        train,
-        &FeatureParams::with_prior(prior),
-        FeatureKind::Patch,
-        n,
-        SEED,
-        &|done, total| {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
-        },
-    );
-    bar.finish_and_clear();
-    Ok(set?)
 }
 
 fn train_estimator(

@@ -3,10 +3,8 @@
 use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
-use patchflow_eval::{
-    CvParams, CvReport, cross_validate, cross_validate_samples, progress_bar, write_cv_report,
-};
-use patchflow_learn::SampleSet;
+use patchflow_eval::{CvParams, CvReport, cross_validate_samples, progress_bar, write_cv_report};
+use patchflow_learn::{FeatureKind, FeatureParams, SampleSet};
 
 /// Arguments of `patchflow cv`.
 #[derive(Debug, clap::Args)]
@@ -29,21 +27,39 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         folds: args.folds,
         ..CvParams::default()
     };
-    let report = cv_with_bar(&dataset, &params)?;
+    let sets = params
+        .priors
+        .iter()
+        .map(|&prior| collect_samples(&dataset, prior, params.samples, params.seed))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let report = cv_with_samples(&sets, &params)?;
     write_cv_report(&report, &args.out)?;
     println!("wrote {}", args.out.join("cv.md").display());
     Ok(())
 }
 
-/// Cross-validates with a progress bar over configurations × folds.
-pub fn cv_with_bar(dataset: &Dataset, params: &CvParams) -> anyhow::Result<CvReport> {
-    let bar = progress_bar(0, "cross-validation");
-    let report = cross_validate(dataset, params, &|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
+/// Importance-samples map patches for one prior with a progress bar (thesis 3.1.2).
+pub fn collect_samples(
+    dataset: &Dataset,
+    prior: f64,
+    n: usize,
+    seed: u64,
+) -> anyhow::Result<SampleSet> {
+    let bar = progress_bar(0, &format!("samples, prior {prior}"));
+    let params = FeatureParams::with_prior(prior);
+    let set = SampleSet::collect_with_progress(
+        dataset,
+        &params,
+        FeatureKind::Patch,
+        n,
+        seed,
+        &|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    );
     bar.finish_and_clear();
-    Ok(report?)
+    Ok(set?)
 }
 
 /// Cross-validates sample sets already drawn (one per prior), with a progress bar.
