@@ -1,5 +1,6 @@
 //! The Rapier scene: ground, static boxes, kinematic actors and the ego car.
 
+mod collider_tables;
 mod rapier_scene;
 mod surface;
 
