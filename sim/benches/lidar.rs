@@ -5,7 +5,7 @@
 //! The ratio itself is printed by `cargo run --release -p patchflow-sim --example sweep_timing`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use patchflow_sim::{EMBEDDED_SCENARIOS, Scenario, Simulation};
+use patchflow_sim::{EMBEDDED_SCENARIOS, QueryTree, Scenario, Simulation};
 
 fn situation1() -> Simulation {
     let (name, text) = EMBEDDED_SCENARIOS[0];
@@ -22,11 +22,17 @@ fn bench_lidar(c: &mut Criterion) {
     group.bench_function("labelled_rolling_shutter", |b| {
         b.iter(|| sim.sweep(index).len())
     });
-    // The same scene (moved to the sweep's reference instant), the same rays from the same pose.
+    // The same scene (moved to the sweep's reference instant, its ray-cast tree rebuilt as the
+    // lidar does every sweep), the same rays from the same pose, through the same tree; then
+    // through Rapier's own broad-phase BVH as the sweeps left it (same hits, other tree).
     sim.scene_mut().move_to(start_secs);
+    sim.scene_mut().rebuild_ray_tree();
     let (lidar, scene) = (sim.lidar(), sim.scene());
     group.bench_function("bare_cast_ray_loop", |b| {
-        b.iter(|| lidar.bare_cast_ray_hits(scene, start_secs))
+        b.iter(|| lidar.bare_cast_ray_hits(scene, start_secs, QueryTree::RayCast))
+    });
+    group.bench_function("bare_cast_ray_loop_rapier_broad_phase_bvh", |b| {
+        b.iter(|| lidar.bare_cast_ray_hits(scene, start_secs, QueryTree::RapierBroadPhase))
     });
     group.finish();
 }

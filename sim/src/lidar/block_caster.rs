@@ -99,7 +99,8 @@ impl<'a> BlockCaster<'a> {
         let qp = self.scene.query_pipeline();
         for &ray in self.table.column(j) {
             let dir = rotate_z(self.yaw_cos_sin, ray);
-            let Some((handle, toi)) = qp.cast_ray(&Ray::new(self.origin, dir), self.max_range_m, true)
+            let Some((handle, toi)) =
+                qp.cast_ray(&Ray::new(self.origin, dir), self.max_range_m, true)
             else {
                 continue;
             };
@@ -121,9 +122,10 @@ impl<'a> BlockCaster<'a> {
             let range_m = (toi + noise_m).max(0.0);
             let point = self.origin_in_reference
                 + rotate_z(self.yaw_since_reference_cos_sin, ray) * range_m;
-            let (label, flow_mps) = match surface.actor.and_then(|a| {
-                Some((*self.actor_labels.get(a)?, self.states.get(a)?))
-            }) {
+            let (label, flow_mps) = match surface
+                .actor
+                .and_then(|a| Some((*self.actor_labels.get(a)?, self.states.get(a)?)))
+            {
                 Some((label, state)) => {
                     let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);
                     (label, [v[0] as f32, v[1] as f32, 0.0])

@@ -111,8 +111,12 @@ mod tests {
         assert_eq!(blocks.len(), 7);
         assert_eq!(blocks[0].columns.start, 0);
         assert_eq!(blocks[6].columns.end, 100);
-        assert!(blocks.windows(2).all(|w| w[0].columns.end == w[1].columns.start
-            && w[0].offset_secs < w[1].offset_secs));
+        assert!(
+            blocks
+                .windows(2)
+                .all(|w| w[0].columns.end == w[1].columns.start
+                    && w[0].offset_secs < w[1].offset_secs)
+        );
         assert!(blocks[6].offset_secs < config.period_secs());
     }
 
@@ -126,6 +130,11 @@ mod tests {
                 .iter()
                 .all(|d| (d.length() - 1.0).abs() < 1e-6)
         );
-        assert!(table.column(0).iter().all(|d| d.x < 0.0 && d.y.abs() < 1e-6));
+        assert!(
+            table
+                .column(0)
+                .iter()
+                .all(|d| d.x < 0.0 && d.y.abs() < 1e-6)
+        );
     }
 }

@@ -101,18 +101,20 @@ impl ScanSlots {
             .zip(s.time_in_sweep_secs[rays].par_chunks_mut(ch))
             .zip(self.returns_per_column[columns.clone()].par_iter_mut())
             .enumerate()
-            .for_each(|(k, (((((points, intensities), labels), flows), times), n))| {
-                let mut slots = ColumnSlots {
-                    points,
-                    intensities,
-                    labels,
-                    flows,
-                    times,
-                    len: 0,
-                };
-                cast(columns.start + k, &mut slots);
-                *n = slots.len as u32;
-            });
+            .for_each(
+                |(k, (((((points, intensities), labels), flows), times), n))| {
+                    let mut slots = ColumnSlots {
+                        points,
+                        intensities,
+                        labels,
+                        flows,
+                        times,
+                        len: 0,
+                    };
+                    cast(columns.start + k, &mut slots);
+                    *n = slots.len as u32;
+                },
+            );
     }
 
     /// Closes the gaps between columns (each field compacted by its own task) and counts the

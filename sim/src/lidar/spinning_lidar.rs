@@ -11,7 +11,7 @@ use super::firing_table::FiringTable;
 use super::scan::{Scan, ScanSlots};
 use crate::motion::MotionState;
 use crate::scenario::LidarConfig;
-use crate::scene::Scene;
+use crate::scene::{QueryTree, Scene};
 
 /// A spinning multi-beam lidar with its firing pattern computed once.
 #[derive(Debug, Clone)]
@@ -61,6 +61,8 @@ impl Lidar {
     /// stream per column derived from `noise_key`, so the result does not depend on threads.
     pub fn scan(&self, scene: &mut Scene, start_secs: f64, noise_key: u64) -> Scan {
         let ego_ref = scene.ego().trajectory.state_at(start_secs);
+        scene.move_to(start_secs);
+        scene.rebuild_ray_tree();
         let mut slots = ScanSlots::new(self.config.azimuth_steps as usize, self.table.channels());
         for block in self.table.blocks() {
             let t = start_secs + block.offset_secs;
@@ -83,9 +85,9 @@ impl Lidar {
     }
 
     /// The bare Rapier loop over the same rays: `cast_ray` only, from the sensor pose at
-    /// `start_secs`, into the scene as it stands, one rayon task per azimuth column like
-    /// [`Lidar::scan`]. Returns the number of hits. The yardstick of the SPEC §8 target.
-    pub fn bare_cast_ray_hits(&self, scene: &Scene, start_secs: f64) -> usize {
+    /// `start_secs`, into the scene as it stands through `tree`, one rayon task per azimuth
+    /// column like [`Lidar::scan`]. Returns the number of hits. The yardstick of SPEC §8.
+    pub fn bare_cast_ray_hits(&self, scene: &Scene, start_secs: f64, tree: QueryTree) -> usize {
         let ego = scene.ego().trajectory.state_at(start_secs);
         let origin = Vector::new(
             ego.position_m[0] as f32,
@@ -98,7 +100,7 @@ impl Lidar {
         (0..self.config.azimuth_steps as usize)
             .into_par_iter()
             .map(|j| {
-                let qp = scene.query_pipeline();
+                let qp = scene.query_pipeline_on(tree);
                 self.table
                     .column(j)
                     .iter()

@@ -2,7 +2,8 @@
 
 mod collider_tables;
 mod rapier_scene;
+mod ray_tree;
 mod surface;
 
-pub use rapier_scene::{Scene, SceneActor};
+pub use rapier_scene::{QueryTree, Scene, SceneActor};
 pub use surface::Surface;

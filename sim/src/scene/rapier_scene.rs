@@ -8,6 +8,7 @@ use rapier3d::prelude::*;
 
 use super::Surface;
 use super::collider_tables::ColliderTables;
+use super::ray_tree::RayTree;
 use crate::error::{Result, SimError};
 use crate::motion::{MotionState, Trajectory};
 use crate::scenario::{ActorConfig, Scenario};
@@ -64,6 +65,16 @@ pub struct Scene {
     actor_states: Vec<MotionState>,
     ego: SceneActor,
     ego_surface: usize,
+    ray_tree: RayTree,
+}
+
+/// Which bounding-volume tree a query pipeline traverses (the hits are the same).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QueryTree {
+    /// The scene's ray-cast tree, rebuilt every sweep (what the lidar uses).
+    RayCast,
+    /// Rapier's own broad-phase BVH, shaped by its incremental optimizer.
+    RapierBroadPhase,
 }
 
 impl Scene {
@@ -107,6 +118,12 @@ impl Scene {
             scene_actors.push(actor);
             actor_surfaces.push(surface);
         }
+        let moving = std::iter::once(&ego)
+            .chain(&scene_actors)
+            .filter_map(|a| tables.bodies.get(a.body))
+            .flat_map(|b| b.colliders().iter().copied())
+            .collect();
+        let ray_tree = RayTree::new(&tables.colliders, moving);
         let mut scene = Self {
             bodies: tables.bodies,
             colliders: tables.colliders,
@@ -122,8 +139,10 @@ impl Scene {
             actor_surfaces,
             ego,
             ego_surface,
+            ray_tree,
         };
         scene.move_to(scenario.start_secs);
+        scene.rebuild_ray_tree();
         Ok(scene)
     }
 
@@ -135,14 +154,13 @@ impl Scene {
         self.actor_states
             .extend(self.actors.iter().map(|a| a.trajectory.state_at(t_secs)));
         let ego_state = self.ego.trajectory.state_at(t_secs);
-        let moves = std::iter::once((&self.ego, &ego_state, self.ego_surface))
-            .chain(
-                self.actors
-                    .iter()
-                    .zip(&self.actor_states)
-                    .zip(&self.actor_surfaces)
-                    .map(|((a, s), &i)| (a, s, i)),
-            );
+        let moves = std::iter::once((&self.ego, &ego_state, self.ego_surface)).chain(
+            self.actors
+                .iter()
+                .zip(&self.actor_states)
+                .zip(&self.actor_surfaces)
+                .map(|((a, s), &i)| (a, s, i)),
+        );
         for (actor, state, surface) in moves {
             let pose = actor.pose_of(state);
             if let Some(body) = self.bodies.get_mut(actor.body) {
@@ -162,17 +180,37 @@ impl Scene {
             &(),
             &(),
         );
+        self.ray_tree.refit_moving(&self.colliders);
     }
 
-    /// A query pipeline over the scene as last moved, with the ego car excluded from its rays.
+    /// Rebuilds the ray-cast tree from scratch over the scene as last moved; the lidar calls it
+    /// once per sweep, so a sweep's cost does not depend on what the scene did before.
+    pub fn rebuild_ray_tree(&mut self) {
+        self.ray_tree.rebuild(&self.colliders);
+    }
+
+    /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego
+    /// car excluded from its rays.
     pub fn query_pipeline(&self) -> QueryPipeline<'_> {
+        self.query_pipeline_on(QueryTree::RayCast)
+    }
+
+    /// A query pipeline over the scene as last moved through the given tree, ego car excluded.
+    pub fn query_pipeline_on(&self, tree: QueryTree) -> QueryPipeline<'_> {
         let filter = QueryFilter::default().exclude_rigid_body(self.ego.body);
-        self.broad_phase.as_query_pipeline(
+        let rapier = self.broad_phase.as_query_pipeline(
             self.narrow_phase.query_dispatcher(),
             &self.bodies,
             &self.colliders,
             filter,
-        )
+        );
+        match tree {
+            QueryTree::RayCast => QueryPipeline {
+                bvh: self.ray_tree.bvh(),
+                ..rapier
+            },
+            QueryTree::RapierBroadPhase => rapier,
+        }
     }
 
     /// The surface a collider stands for, placed as the scene was last moved (one array read).
@@ -244,6 +282,7 @@ impl Scene {
             .get_mut(surface)?
             .place(after.translation, state.yaw_rad as f32);
         *self.actor_states.get_mut(index)? = state;
+        self.ray_tree.refit_moving(&self.colliders);
         let body = self.bodies.get(actor.body)?;
         let (v, w) = (body.linvel(), body.angvel());
         Some((
