@@ -1,7 +1,7 @@
 //! The per-point output of one sweep and how it is assembled without per-point allocation: every
-//! ray owns a slot in preallocated arrays, each column writes its returns to the front of its
-//! slots in parallel, and one in-place compaction (one field per task) closes the gaps in column
-//! order, so the bytes do not depend on the number of threads.
+//! ray owns a slot in scratch arrays kept by the lidar from sweep to sweep, each column writes its
+//! returns to the front of its slots in parallel, and one copy per field (the fields in parallel)
+//! gathers them in column order into exactly sized arrays, so the bytes do not depend on threads.
 
 use std::ops::Range;
 
@@ -59,29 +59,30 @@ impl ColumnSlots<'_> {
     }
 }
 
-/// One slot per ray of a sweep, plus the number of returns of each column.
+/// One slot per ray of a sweep, plus the number of returns of each column (scratch space).
+#[derive(Debug, Clone, Default)]
 pub(super) struct ScanSlots {
     channels: usize,
-    scan: Scan,
+    points: Vec<[f32; 3]>,
+    intensities: Vec<f32>,
+    labels: Vec<PointLabel>,
+    flows: Vec<[f32; 3]>,
+    times: Vec<f32>,
     returns_per_column: Vec<u32>,
 }
 
 impl ScanSlots {
-    /// Slots for `columns` columns of `channels` rays each.
-    pub(super) fn new(columns: usize, channels: usize) -> Self {
+    /// Slots for `columns` columns of `channels` rays each; reuses the arrays already there.
+    pub(super) fn reset(&mut self, columns: usize, channels: usize) {
         let rays = columns * channels;
-        Self {
-            channels,
-            scan: Scan {
-                points_in_sensor: vec![[0.0; 3]; rays],
-                intensities: vec![0.0; rays],
-                labels: vec![PointLabel::default(); rays],
-                flow_in_world_mps: vec![[0.0; 3]; rays],
-                time_in_sweep_secs: vec![0.0; rays],
-                actor_point_counts: Vec::new(),
-            },
-            returns_per_column: vec![0; columns],
-        }
+        self.channels = channels;
+        self.points.resize(rays, [0.0; 3]);
+        self.intensities.resize(rays, 0.0);
+        self.labels.resize(rays, PointLabel::default());
+        self.flows.resize(rays, [0.0; 3]);
+        self.times.resize(rays, 0.0);
+        self.returns_per_column.clear();
+        self.returns_per_column.resize(columns, 0);
     }
 
     /// Runs `cast(j, slots)` for every column `j` in `columns`, columns in parallel (one rayon
@@ -92,13 +93,12 @@ impl ScanSlots {
     {
         let ch = self.channels;
         let rays = columns.start * ch..columns.end * ch;
-        let s = &mut self.scan;
-        s.points_in_sensor[rays.clone()]
+        self.points[rays.clone()]
             .par_chunks_mut(ch)
-            .zip(s.intensities[rays.clone()].par_chunks_mut(ch))
-            .zip(s.labels[rays.clone()].par_chunks_mut(ch))
-            .zip(s.flow_in_world_mps[rays.clone()].par_chunks_mut(ch))
-            .zip(s.time_in_sweep_secs[rays].par_chunks_mut(ch))
+            .zip(self.intensities[rays.clone()].par_chunks_mut(ch))
+            .zip(self.labels[rays.clone()].par_chunks_mut(ch))
+            .zip(self.flows[rays.clone()].par_chunks_mut(ch))
+            .zip(self.times[rays].par_chunks_mut(ch))
             .zip(self.returns_per_column[columns.clone()].par_iter_mut())
             .enumerate()
             .for_each(
@@ -117,57 +117,67 @@ impl ScanSlots {
             );
     }
 
-    /// Closes the gaps between columns (each field compacted by its own task) and counts the
-    /// points of each of `actor_count` actors from the instance ids (instance id = index + 1).
-    pub(super) fn into_scan(self, actor_count: usize) -> Scan {
-        let Self {
-            channels,
-            mut scan,
-            returns_per_column: counts,
-        } = self;
-        let counts = &counts;
-        let mut actor_point_counts = vec![0; actor_count];
-        rayon::join(
+    /// Gathers the returns in column order (each field by its own task) and counts the points of
+    /// each of `actor_count` actors from the instance ids (instance id = actor index + 1).
+    pub(super) fn gather(&self, actor_count: usize) -> Scan {
+        let (ch, counts) = (self.channels, self.returns_per_column.as_slice());
+        let (
+            (points_in_sensor, flow_in_world_mps),
+            ((labels, actor_point_counts), (intensities, time_in_sweep_secs)),
+        ) = rayon::join(
             || {
                 rayon::join(
-                    || compact(&mut scan.points_in_sensor, counts, channels),
-                    || compact(&mut scan.flow_in_world_mps, counts, channels),
+                    || gather(&self.points, counts, ch),
+                    || gather(&self.flows, counts, ch),
                 )
             },
             || {
                 rayon::join(
                     || {
-                        compact(&mut scan.labels, counts, channels);
-                        for label in &scan.labels {
-                            let actor = usize::from(label.instance()).wrapping_sub(1);
-                            if let Some(count) = actor_point_counts.get_mut(actor) {
-                                *count += 1;
-                            }
-                        }
+                        let labels = gather(&self.labels, counts, ch);
+                        let per_actor = count_per_actor(&labels, actor_count);
+                        (labels, per_actor)
                     },
                     || {
-                        compact(&mut scan.intensities, counts, channels);
-                        compact(&mut scan.time_in_sweep_secs, counts, channels);
+                        (
+                            gather(&self.intensities, counts, ch),
+                            gather(&self.times, counts, ch),
+                        )
                     },
                 )
             },
         );
-        scan.actor_point_counts = actor_point_counts;
-        scan
+        Scan {
+            points_in_sensor,
+            intensities,
+            labels,
+            flow_in_world_mps,
+            time_in_sweep_secs,
+            actor_point_counts,
+        }
     }
 }
 
-/// Moves the first `counts[j]` slots of every column `j` (of `channels` slots) together, in order.
-fn compact<T: Copy>(slots: &mut Vec<T>, counts: &[u32], channels: usize) {
-    let mut end = 0;
-    for (j, &n) in counts.iter().enumerate() {
-        let (start, n) = (j * channels, n as usize);
-        if start != end {
-            slots.copy_within(start..start + n, end);
-        }
-        end += n;
+/// The first `counts[j]` slots of every column `j` (of `channels` slots), in column order.
+fn gather<T: Copy>(slots: &[T], counts: &[u32], channels: usize) -> Vec<T> {
+    let total = counts.iter().map(|&n| n as usize).sum();
+    let mut out = Vec::with_capacity(total);
+    for (column, &n) in slots.chunks(channels).zip(counts) {
+        out.extend_from_slice(&column[..n as usize]);
     }
-    slots.truncate(end);
+    out
+}
+
+/// Points per actor from the labels' instance ids (0 is the static world).
+fn count_per_actor(labels: &[PointLabel], actor_count: usize) -> Vec<u32> {
+    let mut counts = vec![0; actor_count];
+    for label in labels {
+        let actor = usize::from(label.instance()).wrapping_sub(1);
+        if let Some(count) = counts.get_mut(actor) {
+            *count += 1;
+        }
+    }
+    counts
 }
 
 #[cfg(test)]
@@ -175,15 +185,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn compaction_keeps_each_columns_returns_in_column_order() {
-        let mut slots = vec![1, 2, 0, 3, 0, 0, 4, 5, 6];
-        compact(&mut slots, &[2, 1, 3], 3);
-        assert_eq!(slots, vec![1, 2, 3, 4, 5, 6]);
+    fn gathering_keeps_each_columns_returns_in_column_order() {
+        let slots = [1, 2, 0, 3, 0, 0, 4, 5, 6];
+        assert_eq!(gather(&slots, &[2, 1, 3], 3), vec![1, 2, 3, 4, 5, 6]);
     }
 
     #[test]
     fn returns_land_in_column_order_whatever_the_parallel_split() {
-        let mut slots = ScanSlots::new(50, 4);
+        let mut slots = ScanSlots::default();
+        slots.reset(50, 4);
         slots.fill_columns(0..50, |j, column| {
             // Column j returns j % 5 points (at most the 4 channels) tagged with its index.
             for c in 0..(j % 5).min(4) {
@@ -196,7 +206,7 @@ mod tests {
                 });
             }
         });
-        let scan = slots.into_scan(1);
+        let scan = slots.gather(1);
         let expected: Vec<[f32; 3]> = (0..50)
             .flat_map(|j| (0..(j % 5).min(4)).map(move |c| [j as f32, c as f32, 0.0]))
             .collect();
