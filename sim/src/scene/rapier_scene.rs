@@ -1,53 +1,20 @@
 //! The Rapier scene built from a scenario: a ground slab, fixed cuboids for static structures,
 //! kinematic position-based cuboids for the actors and the ego car. Moving the scene to an instant
 //! teleports every kinematic body to its exact pose and commits the poses with
-//! `CollisionPipeline::step`, which refreshes colliders and the broad-phase BVH without dynamics.
+//! `CollisionPipeline::step`, which refreshes colliders and the broad-phase BVH without dynamics,
+//! then refits the lidar's ray-cast tree.
 
-use patchflow_dataset::ActorClass;
 use rapier3d::prelude::*;
 
-use super::Surface;
 use super::collider_tables::ColliderTables;
-use super::ray_tree::RayTree;
+use super::ray_tree::{QueryTree, RayTree};
+use super::{SceneActor, Surface};
 use crate::error::{Result, SimError};
-use crate::motion::{MotionState, Trajectory};
+use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
 
 /// Half size of the square ground slab, metres.
 const GROUND_HALF_M: f32 = 2000.0;
-
-/// One moving actor (or the ego car) in the scene.
-#[derive(Debug, Clone)]
-pub struct SceneActor {
-    /// Instance id in labels and object truth (never 0; the ego car has 0 and is never hit).
-    pub id: u16,
-    /// Name from the scenario.
-    pub name: String,
-    /// Class.
-    pub class: ActorClass,
-    /// True for the benchmark target.
-    pub target: bool,
-    /// Length, width, height, metres.
-    pub size_m: [f64; 3],
-    /// Its motion.
-    pub trajectory: Trajectory,
-    /// The kinematic body carrying its collider.
-    pub body: RigidBodyHandle,
-}
-
-impl SceneActor {
-    /// Rapier pose of the box centre for a motion state.
-    pub fn pose_of(&self, state: &MotionState) -> Pose {
-        Pose::new(
-            Vector::new(
-                state.position_m[0] as f32,
-                state.position_m[1] as f32,
-                (self.size_m[2] / 2.0) as f32,
-            ),
-            Vector::new(0.0, 0.0, state.yaw_rad as f32),
-        )
-    }
-}
 
 /// Rapier sets and pipelines plus the actor and surface tables.
 pub struct Scene {
@@ -66,15 +33,6 @@ pub struct Scene {
     ego: SceneActor,
     ego_surface: usize,
     ray_tree: RayTree,
-}
-
-/// Which bounding-volume tree a query pipeline traverses (the hits are the same).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum QueryTree {
-    /// The scene's ray-cast tree, rebuilt every sweep (what the lidar uses).
-    RayCast,
-    /// Rapier's own broad-phase BVH, shaped by its incremental optimizer.
-    RapierBroadPhase,
 }
 
 impl Scene {

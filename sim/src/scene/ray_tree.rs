@@ -10,6 +10,15 @@
 use rapier3d::parry::partitioning::{Bvh, BvhBuildStrategy};
 use rapier3d::prelude::{ColliderHandle, ColliderSet};
 
+/// Which bounding-volume tree a query pipeline traverses (the hits are the same).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QueryTree {
+    /// The scene's ray-cast tree, rebuilt every sweep (what the lidar uses).
+    RayCast,
+    /// Rapier's own broad-phase BVH, shaped by its incremental optimizer.
+    RapierBroadPhase,
+}
+
 /// A ray-cast BVH over every collider, leaf index = collider arena index (as Rapier's own).
 #[derive(Clone, Default)]
 pub(super) struct RayTree {
