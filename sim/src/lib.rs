@@ -30,6 +30,6 @@ pub use scenario::{
     ActorConfig, CarModel, EMBEDDED_SCENARIOS, ElevationSpacing, LidarConfig, Scenario,
     StructureConfig, StructureKind, TrafficConfig,
 };
-pub use scene::{Scene, SceneActor};
+pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;
 pub use simulation::{MOVING_SPEED_MPS, Simulation};

@@ -1,9 +1,12 @@
 //! The spinning lidar: beam pattern, intensity model, rolling-shutter ray casting.
 
 mod beams;
+mod block_caster;
+mod firing_table;
 mod intensity;
+mod scan;
 mod spinning_lidar;
 
 pub use beams::elevations_deg;
-
-pub use spinning_lidar::{Lidar, Scan};
+pub use scan::Scan;
+pub use spinning_lidar::Lidar;

@@ -1,89 +1,34 @@
 //! The spinning lidar: casts one sweep into a scene, azimuth block by azimuth block, each block
-//! with the scene moved to its own instant (rolling shutter), rays of a block in parallel.
+//! with the scene moved to its own instant (rolling shutter), the columns of a block in parallel.
+//! Also the bare `cast_ray` loop over the same rays, the yardstick of the SPEC §8 speed target.
 
-use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
-use patchflow_dataset::PointLabel;
-use rand::{RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use rand_distr::StandardNormal;
-use rapier3d::prelude::{QueryPipeline, Ray, Vector};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use rapier3d::prelude::{Ray, Vector};
 use rayon::prelude::*;
 
-use super::beams::{azimuth_rad, elevations_deg};
-use super::intensity::intensity;
+use super::block_caster::BlockCaster;
+use super::firing_table::FiringTable;
+use super::scan::{Scan, ScanSlots};
 use crate::motion::MotionState;
 use crate::scenario::LidarConfig;
-use crate::scene::Scene;
-use crate::seed::sub_seed;
+use crate::scene::{QueryTree, Scene};
 
-/// Rays shorter than this (the origin inside a shape) are not returns, metres.
-const MIN_RANGE_M: f32 = 0.05;
-
-/// The per-point output of one sweep, parallel arrays in firing order (column by column).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Scan {
-    /// Points in the sensor frame at the sweep's reference time, ego motion removed.
-    pub points_in_sensor: Vec<[f32; 3]>,
-    /// Intensity in [0, 1].
-    pub intensities: Vec<f32>,
-    /// SemanticKITTI labels.
-    pub labels: Vec<PointLabel>,
-    /// True velocity of the hit surface point, world frame, m/s.
-    pub flow_in_world_mps: Vec<[f32; 3]>,
-    /// Seconds since the sweep started at which the point's block was cast.
-    pub time_in_sweep_secs: Vec<f32>,
-    /// Points per actor (index = actor index, i.e. instance id − 1).
-    pub actor_point_counts: Vec<u32>,
-}
-
-/// One return before it is appended to the scan.
-#[derive(Debug, Clone, Copy)]
-struct Return {
-    point_in_sensor: [f32; 3],
-    intensity: f32,
-    label: PointLabel,
-    flow_mps: [f32; 3],
-    actor: Option<usize>,
-}
-
-/// What every ray of one azimuth block shares.
-struct Block<'a> {
-    time_in_sweep_secs: f32,
-    origin: Vector,
-    yaw_cos_sin: (f32, f32),
-    states: &'a [MotionState],
-    sensor_from_world_ref: &'a Isometry3<f64>,
-    noise_key: u64,
-}
-
-/// A spinning multi-beam lidar with precomputed beam directions.
+/// A spinning multi-beam lidar with its firing pattern computed once.
 #[derive(Debug, Clone)]
 pub struct Lidar {
     config: LidarConfig,
-    elevation_sin_cos: Vec<(f32, f32)>,
-    azimuth_sin_cos: Vec<(f32, f32)>,
+    table: FiringTable,
+    /// Scratch slots reused by every sweep (no per-sweep zeroing or page faults).
+    slots: ScanSlots,
 }
 
 impl Lidar {
     /// A lidar with the given settings.
     pub fn new(config: &LidarConfig) -> Self {
-        let elevation_sin_cos = elevations_deg(config)
-            .into_iter()
-            .map(|e| {
-                let (s, c) = e.to_radians().sin_cos();
-                (s as f32, c as f32)
-            })
-            .collect();
-        let azimuth_sin_cos = (0..config.azimuth_steps)
-            .map(|j| {
-                let (s, c) = azimuth_rad(j, config.azimuth_steps).sin_cos();
-                (s as f32, c as f32)
-            })
-            .collect();
         Self {
             config: config.clone(),
-            elevation_sin_cos,
-            azimuth_sin_cos,
+            table: FiringTable::new(config),
+            slots: ScanSlots::default(),
         }
     }
 
@@ -106,13 +51,10 @@ impl Lidar {
 
     /// Unit ray directions in the sensor frame, column by column (channel fastest).
     pub fn rays_in_sensor(&self) -> Vec<[f32; 3]> {
-        self.azimuth_sin_cos
+        self.table
+            .rays_in_sensor()
             .iter()
-            .flat_map(|&(sa, ca)| {
-                self.elevation_sin_cos
-                    .iter()
-                    .map(move |&(se, ce)| [ce * ca, ce * sa, se])
-            })
+            .map(|d| [d.x, d.y, d.z])
             .collect()
     }
 
@@ -120,147 +62,111 @@ impl Lidar {
     /// rolling shutter on, azimuth block `b` is cast with the scene moved to the block's middle
     /// instant; otherwise the whole sweep sees the scene at `start_secs`. Noise is drawn from one
     /// stream per column derived from `noise_key`, so the result does not depend on threads.
-    pub fn scan(&self, scene: &mut Scene, start_secs: f64, noise_key: u64) -> Scan {
-        let period = self.config.period_secs();
-        let steps = self.config.azimuth_steps;
-        let blocks = if self.config.rolling_shutter {
-            self.config.blocks.max(1)
-        } else {
-            1
-        };
+    /// Takes `&mut self` only to reuse its scratch slots.
+    pub fn scan(&mut self, scene: &mut Scene, start_secs: f64, noise_key: u64) -> Scan {
         let ego_ref = scene.ego().trajectory.state_at(start_secs);
-        let sensor_from_world_ref = self.world_from_sensor(&ego_ref).inverse();
-        let rays = self.azimuth_sin_cos.len() * self.elevation_sin_cos.len();
-        let mut scan = Scan {
-            points_in_sensor: Vec::with_capacity(rays),
-            intensities: Vec::with_capacity(rays),
-            labels: Vec::with_capacity(rays),
-            flow_in_world_mps: Vec::with_capacity(rays),
-            time_in_sweep_secs: Vec::with_capacity(rays),
-            actor_point_counts: vec![0; scene.actors().len()],
-        };
-        for b in 0..blocks {
-            let (first, end) = (b * steps / blocks, (b + 1) * steps / blocks);
-            let offset_secs = if self.config.rolling_shutter {
-                period * (f64::from(first) + f64::from(end)) / 2.0 / f64::from(steps)
-            } else {
-                0.0
-            };
-            let t = start_secs + offset_secs;
+        scene.move_to(start_secs);
+        scene.rebuild_ray_tree();
+        let slots = &mut self.slots;
+        slots.reset(self.config.azimuth_steps as usize, self.table.channels());
+        for block in self.table.blocks() {
+            let t = start_secs + block.offset_secs;
             scene.move_to(t);
-            let states: Vec<MotionState> = scene
-                .actors()
-                .iter()
-                .map(|a| a.trajectory.state_at(t))
-                .collect();
             let ego = scene.ego().trajectory.state_at(t);
-            let block = Block {
-                time_in_sweep_secs: offset_secs as f32,
-                origin: Vector::new(
-                    ego.position_m[0] as f32,
-                    ego.position_m[1] as f32,
-                    self.config.mount_height_m as f32,
-                ),
-                yaw_cos_sin: (ego.yaw_rad.cos() as f32, ego.yaw_rad.sin() as f32),
-                states: &states,
-                sensor_from_world_ref: &sensor_from_world_ref,
+            let caster = BlockCaster::new(
+                scene,
+                &self.table,
+                &self.config,
+                block.offset_secs,
+                &ego,
+                &ego_ref,
                 noise_key,
-            };
-            let scene_ref: &Scene = scene;
-            let block_returns: Vec<Vec<Return>> = (first..end)
-                .into_par_iter()
-                .map(|j| self.cast_column(scene_ref, &scene_ref.query_pipeline(), &block, j))
-                .collect();
-            let time = block.time_in_sweep_secs;
-            for r in block_returns.iter().flatten() {
-                scan.points_in_sensor.push(r.point_in_sensor);
-                scan.intensities.push(r.intensity);
-                scan.labels.push(r.label);
-                scan.flow_in_world_mps.push(r.flow_mps);
-                scan.time_in_sweep_secs.push(time);
-                if let Some(count) = r.actor.and_then(|a| scan.actor_point_counts.get_mut(a)) {
-                    *count += 1;
-                }
-            }
-        }
-        scan
-    }
-
-    /// Casts the rays of azimuth column `j` and turns hits into labelled returns.
-    fn cast_column(
-        &self,
-        scene: &Scene,
-        qp: &QueryPipeline<'_>,
-        block: &Block<'_>,
-        j: u32,
-    ) -> Vec<Return> {
-        let mut rng = ChaCha8Rng::seed_from_u64(sub_seed(block.noise_key, u64::from(j)));
-        let (sa, ca) = self.azimuth_sin_cos[j as usize];
-        let (cy, sy) = block.yaw_cos_sin;
-        let max_range = self.config.max_range_m as f32;
-        let noise_std = self.config.range_noise_std_m as f32;
-        let dropout = self.config.dropout_probability as f32;
-        let attenuation = self.config.attenuation_per_m as f32;
-        let mut out = Vec::with_capacity(self.elevation_sin_cos.len());
-        for &(se, ce) in &self.elevation_sin_cos {
-            let (dx, dy) = (ce * ca, ce * sa);
-            let dir = Vector::new(cy * dx - sy * dy, sy * dx + cy * dy, se);
-            let Some((handle, toi)) = qp.cast_ray(&Ray::new(block.origin, dir), max_range, true)
-            else {
-                continue;
-            };
-            if toi < MIN_RANGE_M {
-                continue;
-            }
-            if dropout > 0.0 && rng.random::<f32>() < dropout {
-                continue;
-            }
-            let noise = if noise_std > 0.0 {
-                noise_std * rng.sample::<f32, _>(StandardNormal)
-            } else {
-                0.0
-            };
-            let Some((surface, pose)) = scene.surface(handle) else {
-                continue;
-            };
-            let hit = block.origin + dir * toi;
-            let cos_incidence = dir.dot(surface.normal_at(pose, hit));
-            let measured = block.origin + dir * (toi + noise).max(0.0);
-            let in_sensor = block.sensor_from_world_ref
-                * Point3::new(
-                    f64::from(measured.x),
-                    f64::from(measured.y),
-                    f64::from(measured.z),
-                );
-            let (label, flow_mps) = match surface
-                .actor
-                .and_then(|a| block.states.get(a).map(|s| (a, s)))
-            {
-                Some((a, state)) => {
-                    let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);
-                    let class = scene.actors()[a].class.semantic(state.speed_mps >= 0.05);
-                    (
-                        PointLabel::new(class, scene.actors()[a].id),
-                        [v[0] as f32, v[1] as f32, 0.0],
-                    )
-                }
-                None => (PointLabel::new(surface.semantic, 0), [0.0; 3]),
-            };
-            out.push(Return {
-                point_in_sensor: [in_sensor.x as f32, in_sensor.y as f32, in_sensor.z as f32],
-                intensity: intensity(surface.reflectivity, cos_incidence, toi, attenuation),
-                label,
-                flow_mps,
-                actor: surface.actor,
+            );
+            slots.fill_columns(block.columns.clone(), |j, column| {
+                caster.cast_column(j, column)
             });
         }
-        out
+        slots.gather(scene.actors().len())
+    }
+
+    /// The bare Rapier loop over the same rays: `cast_ray` only, from the sensor pose at
+    /// `start_secs`, into the scene as it stands through `tree`, one rayon task per azimuth
+    /// column like [`Lidar::scan`]. Returns the number of hits. The yardstick of SPEC §8.
+    pub fn bare_cast_ray_hits(&self, scene: &Scene, start_secs: f64, tree: QueryTree) -> usize {
+        let ego = scene.ego().trajectory.state_at(start_secs);
+        let origin = Vector::new(
+            ego.position_m[0] as f32,
+            ego.position_m[1] as f32,
+            self.config.mount_height_m as f32,
+        );
+        let (s, c) = ego.yaw_rad.sin_cos();
+        let (c, s) = (c as f32, s as f32);
+        let max_range_m = self.config.max_range_m as f32;
+        (0..self.config.azimuth_steps as usize)
+            .into_par_iter()
+            .map(|j| {
+                let qp = scene.query_pipeline_on(tree);
+                self.table
+                    .column(j)
+                    .iter()
+                    .filter(|d| {
+                        let dir = Vector::new(c * d.x - s * d.y, s * d.x + c * d.y, d.z);
+                        qp.cast_ray(&Ray::new(origin, dir), max_range_m, true)
+                            .is_some()
+                    })
+                    .count()
+            })
+            .sum()
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::{Scenario, Simulation};
+    use crate::{QueryTree, Scenario, Simulation};
+
+    const TINY: &str = include_str!("../../../scenarios/tiny.toml");
+
+    fn tiny_with_noise_and_dropout() -> Simulation {
+        let text = TINY.replace("blocks = 36", "blocks = 36\ndropout_probability = 0.1");
+        let scenario = Scenario::from_toml(&text, "tiny.toml", "tiny").unwrap();
+        Simulation::new(&scenario, 3).unwrap()
+    }
+
+    #[test]
+    fn a_sweep_is_byte_identical_on_one_and_on_three_threads() {
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| tiny_with_noise_and_dropout().sweep(1))
+        };
+        let (one, three) = (on(1), on(3));
+        assert!(one.len() > 1000, "{} points", one.len());
+        assert_eq!(one, three);
+    }
+
+    #[test]
+    fn a_sweep_does_not_depend_on_the_sweeps_made_before_it() {
+        let mut walked = tiny_with_noise_and_dropout();
+        walked.sweep(0);
+        walked.sweep(2);
+        assert_eq!(walked.sweep(1), tiny_with_noise_and_dropout().sweep(1));
+    }
+
+    #[test]
+    fn the_ray_tree_and_rapiers_broad_phase_tree_give_the_same_hits() {
+        let mut sim = tiny_with_noise_and_dropout();
+        sim.sweep(0);
+        sim.sweep(1);
+        let t = sim.stamp_secs(2);
+        sim.scene_mut().move_to(t);
+        let (lidar, scene) = (sim.lidar(), sim.scene());
+        let ours = lidar.bare_cast_ray_hits(scene, t, QueryTree::RayCast);
+        let rapier = lidar.bare_cast_ray_hits(scene, t, QueryTree::RapierBroadPhase);
+        assert!(ours > 1000, "{ours} hits");
+        assert_eq!(ours, rapier);
+    }
 
     /// A car 6 m ahead drives across the view at 15 m/s in the direction the beam sweeps.
     fn crossing(rolling: bool) -> patchflow_dataset::Sweep {

@@ -1,51 +1,20 @@
 //! The Rapier scene built from a scenario: a ground slab, fixed cuboids for static structures,
 //! kinematic position-based cuboids for the actors and the ego car. Moving the scene to an instant
 //! teleports every kinematic body to its exact pose and commits the poses with
-//! `CollisionPipeline::step`, which refreshes colliders and the broad-phase BVH without dynamics.
+//! `CollisionPipeline::step`, which refreshes colliders and the broad-phase BVH without dynamics,
+//! then refits the lidar's ray-cast tree.
 
-use patchflow_dataset::{ActorClass, SemanticClass};
 use rapier3d::prelude::*;
 
-use super::Surface;
+use super::collider_tables::ColliderTables;
+use super::ray_tree::{QueryTree, RayTree};
+use super::{SceneActor, Surface};
 use crate::error::{Result, SimError};
-use crate::motion::{MotionState, Trajectory};
+use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
 
 /// Half size of the square ground slab, metres.
 const GROUND_HALF_M: f32 = 2000.0;
-
-/// One moving actor (or the ego car) in the scene.
-#[derive(Debug, Clone)]
-pub struct SceneActor {
-    /// Instance id in labels and object truth (never 0; the ego car has 0 and is never hit).
-    pub id: u16,
-    /// Name from the scenario.
-    pub name: String,
-    /// Class.
-    pub class: ActorClass,
-    /// True for the benchmark target.
-    pub target: bool,
-    /// Length, width, height, metres.
-    pub size_m: [f64; 3],
-    /// Its motion.
-    pub trajectory: Trajectory,
-    /// The kinematic body carrying its collider.
-    pub body: RigidBodyHandle,
-}
-
-impl SceneActor {
-    /// Rapier pose of the box centre for a motion state.
-    pub fn pose_of(&self, state: &MotionState) -> Pose {
-        Pose::new(
-            Vector::new(
-                state.position_m[0] as f32,
-                state.position_m[1] as f32,
-                (self.size_m[2] / 2.0) as f32,
-            ),
-            Vector::new(0.0, 0.0, state.yaw_rad as f32),
-        )
-    }
-}
 
 /// Rapier sets and pipelines plus the actor and surface tables.
 pub struct Scene {
@@ -57,54 +26,62 @@ pub struct Scene {
     collision_pipeline: CollisionPipeline,
     params: IntegrationParameters,
     surfaces: Vec<Surface>,
+    surface_of_collider: Vec<u32>,
     actors: Vec<SceneActor>,
+    actor_surfaces: Vec<usize>,
+    actor_states: Vec<MotionState>,
     ego: SceneActor,
+    ego_surface: usize,
+    ray_tree: RayTree,
 }
 
 impl Scene {
     /// Builds the scene of a validated scenario; `actors` are its actors plus any random traffic.
     pub fn build(scenario: &Scenario, actors: &[ActorConfig]) -> Result<Self> {
-        let mut tables = Tables::default();
-        let ground = Surface {
-            semantic: SemanticClass::Road,
-            actor: None,
-            half_extents_m: [GROUND_HALF_M, GROUND_HALF_M, 0.5],
-            reflectivity: scenario.ground_reflectivity as f32,
-        };
-        tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5));
+        let mut tables = ColliderTables::default();
+        let ground = ColliderTables::ground(GROUND_HALF_M, scenario.ground_reflectivity as f32);
+        tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5), 0.0);
         for structure in &scenario.structures {
             let size = structure.size_m.unwrap_or(structure.kind.default_size());
-            let surface = Surface {
-                semantic: structure.kind.semantic(),
-                actor: None,
-                half_extents_m: [
+            let surface = Surface::new(
+                structure.kind.semantic(),
+                None,
+                [
                     size[0] as f32 / 2.0,
                     size[1] as f32 / 2.0,
                     size[2] as f32 / 2.0,
                 ],
-                reflectivity: structure.reflectivity.unwrap_or(0.5) as f32,
-            };
+                structure.reflectivity.unwrap_or(0.5) as f32,
+            );
+            let yaw_rad = structure.yaw_deg.to_radians() as f32;
             for c in structure.centres_m() {
                 let pose = Pose::new(
                     Vector::new(c[0] as f32, c[1] as f32, size[2] as f32 / 2.0),
-                    Vector::new(0.0, 0.0, structure.yaw_deg.to_radians() as f32),
+                    Vector::new(0.0, 0.0, yaw_rad),
                 );
-                tables.add_fixed(surface, pose);
+                tables.add_fixed(surface, pose, yaw_rad);
             }
         }
-        let ego = tables
+        let (ego, ego_surface) = tables
             .add_actor(&scenario.ego, 0, None)
             .map_err(|r| invalid(scenario, r))?;
         let mut scene_actors = Vec::with_capacity(actors.len());
+        let mut actor_surfaces = Vec::with_capacity(actors.len());
         for (i, config) in actors.iter().enumerate() {
             let id = u16::try_from(i + 1)
                 .map_err(|_| invalid(scenario, "more than 65535 actors".to_owned()))?;
-            scene_actors.push(
-                tables
-                    .add_actor(config, id, Some(i))
-                    .map_err(|r| invalid(scenario, r))?,
-            );
+            let (actor, surface) = tables
+                .add_actor(config, id, Some(i))
+                .map_err(|r| invalid(scenario, r))?;
+            scene_actors.push(actor);
+            actor_surfaces.push(surface);
         }
+        let moving = std::iter::once(&ego)
+            .chain(&scene_actors)
+            .filter_map(|a| tables.bodies.get(a.body))
+            .flat_map(|b| b.colliders().iter().copied())
+            .collect();
+        let ray_tree = RayTree::new(&tables.colliders, moving);
         let mut scene = Self {
             bodies: tables.bodies,
             colliders: tables.colliders,
@@ -114,20 +91,41 @@ impl Scene {
             collision_pipeline: CollisionPipeline::new(),
             params: IntegrationParameters::default(),
             surfaces: tables.surfaces,
+            surface_of_collider: tables.surface_of_collider,
+            actor_states: Vec::with_capacity(scene_actors.len()),
             actors: scene_actors,
+            actor_surfaces,
             ego,
+            ego_surface,
+            ray_tree,
         };
         scene.move_to(scenario.start_secs);
+        scene.rebuild_ray_tree();
         Ok(scene)
     }
 
     /// Moves every actor and the ego car to its exact pose at `t_secs` and commits the poses to
-    /// the colliders and the BVH, so ray casts see the scene at that instant.
+    /// the colliders and the BVH, so ray casts see the scene at that instant. The actors' motion
+    /// states at `t_secs` are kept for labelling ([`Scene::actor_states`]).
     pub fn move_to(&mut self, t_secs: f64) {
-        for actor in std::iter::once(&self.ego).chain(&self.actors) {
-            let pose = actor.pose_of(&actor.trajectory.state_at(t_secs));
+        self.actor_states.clear();
+        self.actor_states
+            .extend(self.actors.iter().map(|a| a.trajectory.state_at(t_secs)));
+        let ego_state = self.ego.trajectory.state_at(t_secs);
+        let moves = std::iter::once((&self.ego, &ego_state, self.ego_surface)).chain(
+            self.actors
+                .iter()
+                .zip(&self.actor_states)
+                .zip(&self.actor_surfaces)
+                .map(|((a, s), &i)| (a, s, i)),
+        );
+        for (actor, state, surface) in moves {
+            let pose = actor.pose_of(state);
             if let Some(body) = self.bodies.get_mut(actor.body) {
                 body.set_position(pose, false);
+            }
+            if let Some(surface) = self.surfaces.get_mut(surface) {
+                surface.place(pose.translation, state.yaw_rad as f32);
             }
         }
         self.collision_pipeline.step(
@@ -140,26 +138,51 @@ impl Scene {
             &(),
             &(),
         );
+        self.ray_tree.refit_moving(&self.colliders);
     }
 
-    /// A query pipeline over the scene as last moved, with the ego car excluded from its rays.
+    /// Rebuilds the ray-cast tree from scratch over the scene as last moved; the lidar calls it
+    /// once per sweep, so a sweep's cost does not depend on what the scene did before.
+    pub fn rebuild_ray_tree(&mut self) {
+        self.ray_tree.rebuild(&self.colliders);
+    }
+
+    /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego
+    /// car excluded from its rays.
     pub fn query_pipeline(&self) -> QueryPipeline<'_> {
+        self.query_pipeline_on(QueryTree::RayCast)
+    }
+
+    /// A query pipeline over the scene as last moved through the given tree, ego car excluded.
+    pub fn query_pipeline_on(&self, tree: QueryTree) -> QueryPipeline<'_> {
         let filter = QueryFilter::default().exclude_rigid_body(self.ego.body);
-        self.broad_phase.as_query_pipeline(
+        let rapier = self.broad_phase.as_query_pipeline(
             self.narrow_phase.query_dispatcher(),
             &self.bodies,
             &self.colliders,
             filter,
-        )
+        );
+        match tree {
+            QueryTree::RayCast => QueryPipeline {
+                bvh: self.ray_tree.bvh(),
+                ..rapier
+            },
+            QueryTree::RapierBroadPhase => rapier,
+        }
     }
 
-    /// The surface a collider stands for.
-    pub fn surface(&self, handle: ColliderHandle) -> Option<(&Surface, &Pose)> {
-        let collider = self.colliders.get(handle)?;
-        Some((
-            self.surfaces.get(collider.user_data as usize)?,
-            collider.position(),
-        ))
+    /// The surface a collider stands for, placed as the scene was last moved (one array read).
+    #[inline]
+    pub fn surface(&self, handle: ColliderHandle) -> Option<&Surface> {
+        let index = *self
+            .surface_of_collider
+            .get(handle.into_raw_parts().0 as usize)?;
+        self.surfaces.get(index as usize)
+    }
+
+    /// Motion state of every actor at the instant the scene was last moved, in actor order.
+    pub fn actor_states(&self) -> &[MotionState] {
+        &self.actor_states
     }
 
     /// The moving actors, in instance-id order.
@@ -188,7 +211,8 @@ impl Scene {
     ) -> Option<([f64; 3], f64)> {
         let actor = self.actors.get(index)?.clone();
         let before = actor.pose_of(&actor.trajectory.state_at(t_secs - dt_secs));
-        let after = actor.pose_of(&actor.trajectory.state_at(t_secs));
+        let state = actor.trajectory.state_at(t_secs);
+        let after = actor.pose_of(&state);
         self.bodies.get_mut(actor.body)?.set_position(before, true);
         self.bodies
             .get_mut(actor.body)?
@@ -210,6 +234,13 @@ impl Scene {
             &(),
             &(),
         );
+        // Keep the lidar's tables in step with the collider that moved.
+        let surface = *self.actor_surfaces.get(index)?;
+        self.surfaces
+            .get_mut(surface)?
+            .place(after.translation, state.yaw_rad as f32);
+        *self.actor_states.get_mut(index)? = state;
+        self.ray_tree.refit_moving(&self.colliders);
         let body = self.bodies.get(actor.body)?;
         let (v, w) = (body.linvel(), body.angvel());
         Some((
@@ -221,66 +252,6 @@ impl Scene {
 
 fn invalid(scenario: &Scenario, reason: String) -> SimError {
     SimError::Options(format!("scenario {}: {reason}", scenario.name))
-}
-
-/// The collider tables while the scene is being built.
-#[derive(Default)]
-struct Tables {
-    bodies: RigidBodySet,
-    colliders: ColliderSet,
-    surfaces: Vec<Surface>,
-}
-
-impl Tables {
-    fn add_fixed(&mut self, surface: Surface, pose: Pose) {
-        let h = surface.half_extents_m;
-        let collider = ColliderBuilder::cuboid(h[0], h[1], h[2])
-            .position(pose)
-            .user_data(self.surfaces.len() as u128)
-            .build();
-        self.surfaces.push(surface);
-        self.colliders.insert(collider);
-    }
-
-    fn add_actor(
-        &mut self,
-        config: &ActorConfig,
-        id: u16,
-        index: Option<usize>,
-    ) -> std::result::Result<SceneActor, String> {
-        let size = config.size_m.unwrap_or([4.5, 1.8, 1.5]);
-        let trajectory = Trajectory::from_config(config)
-            .map_err(|(field, reason)| format!("{}.{field}: {reason}", config.name))?;
-        let body = self
-            .bodies
-            .insert(RigidBodyBuilder::kinematic_position_based().build());
-        let surface = Surface {
-            semantic: config.class.semantic(false),
-            actor: index,
-            half_extents_m: [
-                size[0] as f32 / 2.0,
-                size[1] as f32 / 2.0,
-                size[2] as f32 / 2.0,
-            ],
-            reflectivity: config.reflectivity.unwrap_or(0.5) as f32,
-        };
-        let h = surface.half_extents_m;
-        let collider = ColliderBuilder::cuboid(h[0], h[1], h[2])
-            .user_data(self.surfaces.len() as u128)
-            .build();
-        self.surfaces.push(surface);
-        self.colliders
-            .insert_with_parent(collider, body, &mut self.bodies);
-        Ok(SceneActor {
-            id,
-            name: config.name.clone(),
-            class: config.class,
-            target: config.target,
-            size_m: size,
-            trajectory,
-            body,
-        })
-    }
 }
 
 #[cfg(test)]

@@ -1,9 +1,10 @@
-//! What a collider is to the lidar: its label, reflectivity and box, and the analytic normal of a
-//! hit on it (every collider is a cuboid, so the face is found from the hit point alone; this
-//! lets the lidar use the cheap `cast_ray` instead of `cast_ray_and_get_normal`).
+//! What a collider is to the lidar: its label, reflectivity, box and current placement, and the
+//! analytic normal of a hit on it. Every collider is a cuboid yawed about z, so the face is found
+//! from the hit point alone; this lets the lidar use the cheap `cast_ray` instead of
+//! `cast_ray_and_get_normal`, and never touch the (large, cache-cold) Rapier collider per point.
 
 use patchflow_dataset::SemanticClass;
-use rapier3d::math::{Pose, Vector};
+use rapier3d::math::Vector;
 
 /// Lidar-relevant facts of one collider; `Collider::user_data` indexes a table of these.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -16,17 +17,72 @@ pub struct Surface {
     pub half_extents_m: [f32; 3],
     /// Reflectivity in [0, 1].
     pub reflectivity: f32,
+    /// Box centre, world frame, metres (kept equal to the collider's pose by the scene).
+    centre_m: Vector,
+    /// Cosine and sine of the box yaw about z.
+    yaw_cos_sin: (f32, f32),
+    /// 1 / half extents, so the face test multiplies instead of divides.
+    inverse_half_extents: [f32; 3],
 }
 
 impl Surface {
-    /// Outward unit normal of the cuboid face that contains the world point `p` (the collider at `pose`).
-    pub fn normal_at(&self, pose: &Pose, p: Vector) -> Vector {
-        let local = pose.inverse_transform_point(p);
-        let h = self.half_extents_m;
+    /// A box surface with its centre at the origin and no yaw; place it with [`Surface::place`].
+    pub fn new(
+        semantic: SemanticClass,
+        actor: Option<usize>,
+        half_extents_m: [f32; 3],
+        reflectivity: f32,
+    ) -> Self {
+        Self {
+            semantic,
+            actor,
+            half_extents_m,
+            reflectivity,
+            centre_m: Vector::ZERO,
+            yaw_cos_sin: (1.0, 0.0),
+            inverse_half_extents: half_extents_m.map(|h| 1.0 / h),
+        }
+    }
+
+    /// Moves the box to `centre_m` with yaw `yaw_rad` about z (the pose of its collider).
+    pub fn place(&mut self, centre_m: Vector, yaw_rad: f32) {
+        self.centre_m = centre_m;
+        let (s, c) = yaw_rad.sin_cos();
+        self.yaw_cos_sin = (c, s);
+    }
+
+    /// Outward unit normal, world frame, of the box face that contains the world point `p`.
+    pub fn normal_at(&self, p: Vector) -> Vector {
+        let (axis, sign) = self.face_of(p);
+        let (c, s) = self.yaw_cos_sin;
+        match axis {
+            0 => Vector::new(sign * c, sign * s, 0.0),
+            1 => Vector::new(-sign * s, sign * c, 0.0),
+            _ => Vector::new(0.0, 0.0, sign),
+        }
+    }
+
+    /// |cos| of the angle between the world direction `dir` (unit) and the face containing `p`.
+    pub fn cos_incidence(&self, p: Vector, dir: Vector) -> f32 {
+        let (c, s) = self.yaw_cos_sin;
+        match self.face_of(p).0 {
+            0 => (c * dir.x + s * dir.y).abs(),
+            1 => (c * dir.y - s * dir.x).abs(),
+            _ => dir.z.abs(),
+        }
+    }
+
+    /// The face containing `p`: the local axis whose |coordinate| / half extent is largest, and
+    /// the sign of that coordinate.
+    fn face_of(&self, p: Vector) -> (usize, f32) {
+        let (c, s) = self.yaw_cos_sin;
+        let d = p - self.centre_m;
+        let local = [c * d.x + s * d.y, c * d.y - s * d.x, d.z];
+        let k = self.inverse_half_extents;
         let ratios = [
-            local.x.abs() / h[0],
-            local.y.abs() / h[1],
-            local.z.abs() / h[2],
+            local[0].abs() * k[0],
+            local[1].abs() * k[1],
+            local[2].abs() * k[2],
         ];
         let axis = if ratios[0] >= ratios[1] && ratios[0] >= ratios[2] {
             0
@@ -35,9 +91,7 @@ impl Surface {
         } else {
             2
         };
-        let mut n = Vector::ZERO;
-        n[axis] = local[axis].signum();
-        pose.transform_vector(n)
+        (axis, local[axis].signum())
     }
 }
 
@@ -45,20 +99,32 @@ impl Surface {
 mod tests {
     use super::*;
 
+    fn rotated_car() -> Surface {
+        let mut surface = Surface::new(SemanticClass::Car, None, [2.0, 1.0, 0.7], 0.5);
+        surface.place(Vector::new(10.0, 0.0, 0.7), std::f32::consts::FRAC_PI_2);
+        surface
+    }
+
     #[test]
     fn a_point_on_the_side_face_of_a_rotated_box_gets_that_face_normal() {
-        let surface = Surface {
-            semantic: SemanticClass::Car,
-            actor: None,
-            half_extents_m: [2.0, 1.0, 0.7],
-            reflectivity: 0.5,
-        };
-        let pose = Pose::new(
-            Vector::new(10.0, 0.0, 0.7),
-            Vector::new(0.0, 0.0, std::f32::consts::FRAC_PI_2),
-        );
         // The box's +y face (local) points along world −x after a 90° yaw.
-        let n = surface.normal_at(&pose, Vector::new(9.0, 0.5, 0.9));
+        let n = rotated_car().normal_at(Vector::new(9.0, 0.5, 0.9));
         assert!((n - Vector::new(-1.0, 0.0, 0.0)).length() < 1e-5, "{n:?}");
+    }
+
+    #[test]
+    fn a_point_on_the_roof_gets_the_up_normal() {
+        let n = rotated_car().normal_at(Vector::new(10.3, 1.2, 1.4));
+        assert!((n - Vector::new(0.0, 0.0, 1.0)).length() < 1e-6, "{n:?}");
+    }
+
+    #[test]
+    fn the_incidence_cosine_is_the_absolute_dot_product_with_the_face_normal() {
+        let surface = rotated_car();
+        let p = Vector::new(9.0, 0.5, 0.9);
+        let dir = Vector::new(0.6, 0.0, -0.8);
+        let expected = dir.dot(surface.normal_at(p)).abs();
+        assert!((surface.cos_incidence(p, dir) - expected).abs() < 1e-6);
+        assert!((expected - 0.6).abs() < 1e-5);
     }
 }

@@ -1,0 +1,140 @@
+//! The firing pattern of one lidar, computed once: the unit direction of every ray in the sensor
+//! frame (column by column, channel fastest) and the azimuth blocks with the instant each is cast.
+
+use std::ops::Range;
+
+use rapier3d::prelude::Vector;
+
+use super::beams::{azimuth_rad, elevations_deg};
+use crate::scenario::LidarConfig;
+
+/// One azimuth block: its columns and when (after the sweep start) the scene is frozen for it.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct BlockSpan {
+    /// Azimuth columns of the block.
+    pub columns: Range<usize>,
+    /// Instant the block is cast, seconds after the sweep start (0 without rolling shutter).
+    pub offset_secs: f64,
+}
+
+/// Ray directions and azimuth blocks of a lidar.
+#[derive(Debug, Clone)]
+pub(super) struct FiringTable {
+    channels: usize,
+    rays_in_sensor: Vec<Vector>,
+    blocks: Vec<BlockSpan>,
+}
+
+impl FiringTable {
+    /// The table for `config`. With the rolling shutter on, block `b` is cast at the middle of its
+    /// azimuth span; otherwise one block holds every column and is cast at the sweep start.
+    pub(super) fn new(config: &LidarConfig) -> Self {
+        let elevation_sin_cos: Vec<(f32, f32)> = elevations_deg(config)
+            .into_iter()
+            .map(|e| {
+                let (s, c) = e.to_radians().sin_cos();
+                (s as f32, c as f32)
+            })
+            .collect();
+        let steps = config.azimuth_steps;
+        let rays_in_sensor = (0..steps)
+            .flat_map(|j| {
+                let (sa, ca) = azimuth_rad(j, steps).sin_cos();
+                let (sa, ca) = (sa as f32, ca as f32);
+                elevation_sin_cos
+                    .iter()
+                    .map(move |&(se, ce)| Vector::new(ce * ca, ce * sa, se))
+            })
+            .collect();
+        let blocks = if config.rolling_shutter {
+            let n = config.blocks.max(1);
+            let period = config.period_secs();
+            (0..n)
+                .map(|b| {
+                    let (first, end) = (b * steps / n, (b + 1) * steps / n);
+                    BlockSpan {
+                        columns: first as usize..end as usize,
+                        offset_secs: period * (f64::from(first) + f64::from(end))
+                            / 2.0
+                            / f64::from(steps),
+                    }
+                })
+                .collect()
+        } else {
+            vec![BlockSpan {
+                columns: 0..steps as usize,
+                offset_secs: 0.0,
+            }]
+        };
+        Self {
+            channels: elevation_sin_cos.len(),
+            rays_in_sensor,
+            blocks,
+        }
+    }
+
+    /// Rays per column.
+    pub(super) fn channels(&self) -> usize {
+        self.channels
+    }
+
+    /// Unit directions of the rays of column `j`, sensor frame, highest channel first.
+    #[inline]
+    pub(super) fn column(&self, j: usize) -> &[Vector] {
+        &self.rays_in_sensor[j * self.channels..(j + 1) * self.channels]
+    }
+
+    /// Every ray direction, sensor frame, column by column.
+    pub(super) fn rays_in_sensor(&self) -> &[Vector] {
+        &self.rays_in_sensor
+    }
+
+    /// The azimuth blocks in firing order.
+    pub(super) fn blocks(&self) -> &[BlockSpan] {
+        &self.blocks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_blocks_partition_the_columns_in_firing_order() {
+        let config = LidarConfig {
+            azimuth_steps: 100,
+            blocks: 7,
+            ..LidarConfig::default()
+        };
+        let table = FiringTable::new(&config);
+        let blocks = table.blocks();
+        assert_eq!(blocks.len(), 7);
+        assert_eq!(blocks[0].columns.start, 0);
+        assert_eq!(blocks[6].columns.end, 100);
+        assert!(
+            blocks
+                .windows(2)
+                .all(|w| w[0].columns.end == w[1].columns.start
+                    && w[0].offset_secs < w[1].offset_secs)
+        );
+        assert!(blocks[6].offset_secs < config.period_secs());
+    }
+
+    #[test]
+    fn every_ray_is_a_unit_vector_and_the_first_column_looks_backwards() {
+        let table = FiringTable::new(&LidarConfig::default());
+        assert_eq!(table.rays_in_sensor().len(), 64 * 1800);
+        assert!(
+            table
+                .rays_in_sensor()
+                .iter()
+                .all(|d| (d.length() - 1.0).abs() < 1e-6)
+        );
+        assert!(
+            table
+                .column(0)
+                .iter()
+                .all(|d| d.x < 0.0 && d.y.abs() < 1e-6)
+        );
+    }
+}
