@@ -1,14 +1,35 @@
-//! Per-sweep feature pipeline on a realistic synthetic HDL-64E sweep pair (SPEC §8: perception
-//! per scan under 50 ms with GP prediction; the feature part targets under 30 ms on 2 cores).
+//! Per-sweep feature pipeline on a realistic HDL-64E sweep pair (SPEC §8: perception per scan
+//! under 50 ms with GP prediction; the feature part targets under 30 ms on 2 cores), and the
+//! one-pass training-sample collection for two priors.
 //!
-//! `cargo bench -p patchflow-learn --bench features`
+//! `cargo bench -p patchflow-learn --bench features` runs on a synthetic street. With
+//! `PATCHFLOW_BENCH_DATASET=<dir>` (e.g. the output of
+//! `patchflow generate scenarios/train01.toml --out /tmp/t1 --seed 7`) the pipeline runs on
+//! sweeps 60 and 61 of its first sequence instead, and `collect_priors` draws 1,600 samples for
+//! the priors 0.01 and 0.5 from the whole dataset.
 
 use std::hint::black_box;
+use std::path::PathBuf;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use patchflow_dataset::Sweep;
+use patchflow_dataset::{Dataset, Sweep};
 use patchflow_learn::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
-use patchflow_learn::{FeatureParams, SweepFeatures};
+use patchflow_learn::{FeatureKind, FeatureParams, SampleSet, SweepFeatures};
+
+/// The dataset named by `PATCHFLOW_BENCH_DATASET`, if any.
+fn bench_dataset() -> Option<Dataset> {
+    let dir = PathBuf::from(std::env::var_os("PATCHFLOW_BENCH_DATASET")?);
+    Some(Dataset::open(&dir).expect("PATCHFLOW_BENCH_DATASET is not a dataset"))
+}
+
+/// Sweeps 60 and 61 (or the last two) of the dataset's first sequence.
+fn dataset_sweeps(dataset: &Dataset) -> (Sweep, Sweep) {
+    let info = dataset.sequences().first().expect("a sequence");
+    let reader = dataset.sequence(&info.name).expect("sequence");
+    let t = 61.min(reader.len() - 1);
+    let read = |t| reader.read_sweep(t).expect("sweep");
+    (read(t - 1), read(t))
+}
 
 /// A street: building rows on both sides, parked cars, and moving cars in both directions and
 /// across; the ego drives along +x at 10 m/s.
@@ -40,7 +61,8 @@ fn street_sweeps() -> (Sweep, Sweep) {
 }
 
 fn pipeline(c: &mut Criterion) {
-    let (prev, curr) = street_sweeps();
+    let dataset = bench_dataset();
+    let (prev, curr) = dataset.as_ref().map_or_else(street_sweeps, dataset_sweeps);
     let params = FeatureParams::default();
     let probe = SweepFeatures::compute(&prev, &curr, &params).expect("features");
     let patches = probe.len().min(2000);
@@ -61,13 +83,32 @@ fn pipeline(c: &mut Criterion) {
             black_box(f.heading_patches(&indices))
         })
     });
-    group.bench_function("maps_and_clusters_only", |b| {
+    group.bench_function("maps_and_clusters_without_patches", |b| {
         b.iter(|| SweepFeatures::compute(black_box(&prev), black_box(&curr), &params))
     });
     group.bench_function("2000_heading_patches", |b| {
         b.iter(|| black_box(probe.heading_patches(&indices)))
     });
     group.finish();
+    if let Some(dataset) = dataset {
+        let mut group = c.benchmark_group("samples");
+        group.sample_size(10);
+        group.bench_function("collect_priors_1600_for_0.01_and_0.5", |b| {
+            b.iter(|| {
+                SampleSet::collect_priors(
+                    &dataset,
+                    &params,
+                    &[0.01, 0.5],
+                    FeatureKind::Patch,
+                    1600,
+                    1,
+                    &|_, _| {},
+                )
+                .expect("samples")
+            })
+        });
+        group.finish();
+    }
 }
 
 criterion_group!(benches, pipeline);

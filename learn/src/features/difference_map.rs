@@ -2,8 +2,9 @@
 //! moving object shows a loss of occupancy behind it and a gain ahead.
 
 use crate::FeatureParams;
+use crate::features::beam_counts::BeamCounts;
 use crate::features::grid::{GridMap, GridWindow};
-use crate::features::reflection_map::reflection_map;
+use crate::features::reflection_map::{MapValues, reflection_and_difference};
 use crate::features::slice::HeightSlice;
 
 /// The current reflection map and the difference map, both on the current sweep's window.
@@ -16,30 +17,51 @@ pub struct MapPair {
 }
 
 impl MapPair {
-    /// Builds both sweeps' reflection maps on the window centred on the current sensor (in
-    /// parallel), then subtracts in place: the previous map's storage becomes the difference.
+    /// Builds both sweeps' reflection maps on the window centred on the current sensor and
+    /// their difference (thesis Eq. 2.8-2.9).
     pub fn build(prev: &HeightSlice, curr: &HeightSlice, params: &FeatureParams) -> Self {
         let window = GridWindow::centred(curr.sensor_xy, params.half_extent_m, params.cell_m);
-        let (mut difference, reflection) = rayon::join(
-            || reflection_map(&prev.beams, &window, params.prior, params.spread),
-            || reflection_map(&curr.beams, &window, params.prior, params.spread),
+        Self::build_for_priors(prev, curr, params, &[params.prior])
+            .into_iter()
+            .next()
+            .unwrap_or_else(|| Self {
+                reflection: GridMap::filled(window, params.prior),
+                difference: GridMap::filled(window, 0.0),
+            })
+    }
+
+    /// Like [`Self::build`] once per prior (`params.prior` is not used): the beams are traced
+    /// once (in parallel for the two sweeps), since the prior only fills unobserved cells.
+    pub fn build_for_priors(
+        prev: &HeightSlice,
+        curr: &HeightSlice,
+        params: &FeatureParams,
+        priors: &[f64],
+    ) -> Vec<Self> {
+        let window = GridWindow::centred(curr.sensor_xy, params.half_extent_m, params.cell_m);
+        // 2.1.1: hits and misses of both sweeps' sliced beams on the current window.
+        let (prev_counts, curr_counts) = rayon::join(
+            || BeamCounts::trace(&prev.beams, &window),
+            || BeamCounts::trace(&curr.beams, &window),
         );
-        subtract_from(&mut difference, &reflection);
+        // Eq. 2.8-2.9: spread, divide, subtract.
+        let maps = reflection_and_difference(&prev_counts, &curr_counts, priors, params.spread);
+        maps.into_iter()
+            .zip(priors)
+            .map(|(values, &prior)| Self::from_values(window, values, prior))
+            .collect()
+    }
+
+    /// Wraps one prior's values.
+    fn from_values(window: GridWindow, values: MapValues, prior: f64) -> Self {
         Self {
-            reflection,
-            difference,
+            reflection: GridMap::from_values(window, values.reflection, prior)
+                .unwrap_or_else(|| GridMap::filled(window, prior)),
+            difference: GridMap::from_values(window, values.difference, 0.0)
+                .unwrap_or_else(|| GridMap::filled(window, 0.0)),
         }
     }
 }
-
-/// Turns `prev` into `curr − prev` (thesis Eq. 2.9); both lie on the same window.
-fn subtract_from(prev: &mut GridMap, curr: &GridMap) {
-    for (p, c) in prev.values_mut().iter_mut().zip(curr.values()) {
-        *p = c - *p;
-    }
-    prev.set_outside(0.0);
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -113,5 +135,32 @@ mod tests {
         let maps = maps_of(&scene, 0.5);
         assert!(maps.difference.values().iter().all(|v| v.abs() < 1e-12));
         assert_eq!(maps.difference.outside(), 0.0);
+    }
+
+    #[test]
+    fn maps_for_several_priors_match_maps_built_one_prior_at_a_time() {
+        let scene = SyntheticScene {
+            boxes: vec![SceneBox::car(1, [0.0, 12.0], 0.0, 5.0)],
+        };
+        let lidar = SyntheticLidar::with_resolution(32, 900);
+        let params = FeatureParams {
+            half_extent_m: 15.0,
+            ..FeatureParams::default()
+        };
+        let prev = HeightSlice::cut(&scene.scan(&lidar, [0.0, 0.0], 0.0, 0), &params).unwrap();
+        let next = scene.advanced(0.1);
+        let curr = HeightSlice::cut(&next.scan(&lidar, [0.3, 0.0], 0.0, 1), &params).unwrap();
+        let both = MapPair::build_for_priors(&prev, &curr, &params, &[0.01, 0.5]);
+        for (pair, prior) in both.iter().zip([0.01, 0.5]) {
+            let one = MapPair::build(
+                &prev,
+                &curr,
+                &FeatureParams {
+                    prior,
+                    ..params.clone()
+                },
+            );
+            assert_eq!(pair, &one, "prior {prior}");
+        }
     }
 }

@@ -1,6 +1,8 @@
 //! World-aligned grid windows and the maps stored on them (thesis 2.1: the data association
 //! between maps is given by cell positions, so every map lives on one global lattice).
 
+use std::sync::Mutex;
+
 /// A rectangular window onto the global lattice of square cells of side `cell_m`.
 ///
 /// Global cell `(gx, gy)` covers world `x ∈ [gx·cell_m, (gx+1)·cell_m)` and likewise for y, so
@@ -76,11 +78,44 @@ impl GridWindow {
 
 /// Values on a [`GridWindow`], row-major (`row · cols + col`), with one value for every cell
 /// outside the window (the prior for reflection maps, 0 for difference maps).
+///
+/// A dropped map hands its storage to a small pool that the map builders draw from, so a sweep's
+/// maps (5 MB each at the default size) cost neither fresh pages nor zeroing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GridMap {
     window: GridWindow,
     values: Vec<f64>,
     outside: f64,
+}
+
+/// Storage of dropped maps.
+static RECYCLED: Mutex<Vec<Vec<f64>>> = Mutex::new(Vec::new());
+/// Buffers kept at most: the maps of a few sweep pairs in flight.
+const RECYCLED_CAP: usize = 8;
+/// Buffers below this length are not worth pooling.
+const RECYCLED_MIN_LEN: usize = 1 << 14;
+
+/// A buffer of `len` values for a map whose every cell the caller will overwrite: recycled
+/// storage of a dropped map if one fits (its old values still in it), or a new zeroed one.
+pub(crate) fn recycled_values(len: usize) -> Vec<f64> {
+    let recycled = RECYCLED.lock().ok().and_then(|mut pool| {
+        let k = pool.iter().position(|b| b.len() == len)?;
+        Some(pool.swap_remove(k))
+    });
+    recycled.unwrap_or_else(|| vec![0.0; len])
+}
+
+impl Drop for GridMap {
+    fn drop(&mut self) {
+        if self.values.len() < RECYCLED_MIN_LEN {
+            return;
+        }
+        if let Ok(mut pool) = RECYCLED.lock()
+            && pool.len() < RECYCLED_CAP
+        {
+            pool.push(std::mem::take(&mut self.values));
+        }
+    }
 }
 
 impl GridMap {

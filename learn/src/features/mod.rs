@@ -2,6 +2,7 @@
 //! difference maps, single-link clusters, map patches and Gabor responses, and the importance
 //! sampled training samples of thesis 3.1.1-3.1.2.
 
+mod beam_counts;
 mod cluster;
 mod csv;
 mod difference_map;

@@ -1,150 +1,224 @@
-//! The reflection map (thesis 2.1.1, Eq. 2.8): per cell hits / (hits + misses), misses from
-//! Bresenham tracing of the sliced beams, with some of each count spread to the neighbours.
+//! The reflection map (thesis 2.1.1, Eq. 2.8): per cell hits / (hits + misses), with some of each
+//! count spread to the neighbours; and, in the same pass, the difference map (thesis Eq. 2.9).
 
 use rayon::prelude::*;
 
-use crate::features::grid::{GridMap, GridWindow};
-use crate::features::line::add_misses;
-use crate::features::slice::SlicedBeam;
+use crate::features::beam_counts::{BAND_ROWS, BeamCounts};
+use crate::features::grid::recycled_values;
 
-/// Builds one sweep's reflection map on `window` (not accumulated over time, thesis 2.1.1).
+/// Row-major values of one prior's maps on the counts' window.
+#[derive(Debug)]
+pub(crate) struct MapValues {
+    /// m_t: the reflection map of the current sweep.
+    pub(crate) reflection: Vec<f64>,
+    /// m_t − m_{t−1}.
+    pub(crate) difference: Vec<f64>,
+}
+
+/// Both sweeps' reflection maps from their counts (on one window), for every prior: the current
+/// map and the difference. Not accumulated over time (thesis 2.1.1).
 ///
-/// Steps: count a hit in the end cell of every beam ending in the slice and a miss in every other
-/// cell Bresenham's line visits; spread both counts with the separable kernel
-/// `[spread, 1 − 2·spread, spread]` along x then y (spreading the counts before the ratio equals
-/// spreading every single hit and miss); then `hits / (hits + misses)`, and `prior` where no mass
-/// arrived. Cells outside the window read `prior` too.
-pub fn reflection_map(
-    beams: &[SlicedBeam],
-    window: &GridWindow,
-    prior: f64,
+/// Both counts are spread with the separable kernel `[spread, 1 − 2·spread, spread]` along x then
+/// y (spreading the counts before the ratio equals spreading every single hit and miss); a cell
+/// is `hits / (hits + misses)`, or the prior where no mass arrived. The prior only fills the
+/// unobserved cells, so one pass serves every prior. Bands of rows no count reaches are filled
+/// without arithmetic, and within a band only the touched columns are computed.
+pub(crate) fn reflection_and_difference(
+    prev: &BeamCounts,
+    curr: &BeamCounts,
+    priors: &[f64],
     spread: f64,
-) -> GridMap {
-    let mut hits = vec![0f32; window.len()];
-    let mut misses = vec![0f32; window.len()];
-    for beam in beams {
-        trace_beam(beam, window, &mut hits, &mut misses);
+) -> Vec<MapValues> {
+    let window = *curr.window();
+    debug_assert_eq!(prev.window(), curr.window());
+    let band_len = BAND_ROWS * window.cols;
+    let mut outputs: Vec<MapValues> = priors
+        .iter()
+        .map(|_| MapValues {
+            reflection: recycled_values(window.len()),
+            difference: recycled_values(window.len()),
+        })
+        .collect();
+    // Per band, the slices of every prior's two maps.
+    let mut bands: Vec<Vec<(&mut [f64], &mut [f64])>> = (0..window.rows.div_ceil(BAND_ROWS))
+        .map(|_| Vec::with_capacity(priors.len()))
+        .collect();
+    for out in &mut outputs {
+        let slices = out.reflection.chunks_mut(band_len);
+        for (band, pair) in bands
+            .iter_mut()
+            .zip(slices.zip(out.difference.chunks_mut(band_len)))
+        {
+            band.push(pair);
+        }
     }
-    let s = spread as f32;
-    rayon::join(
-        || smooth_rows(&mut hits, window.cols, s),
-        || smooth_rows(&mut misses, window.cols, s),
-    );
-    let values = smooth_columns_and_divide(&hits, &misses, window, s, prior);
-    GridMap::from_values(*window, values, prior).unwrap_or_else(|| GridMap::filled(*window, prior))
+    let kernel = Kernel::new(spread);
+    bands.into_par_iter().enumerate().for_each(|(b, mut maps)| {
+        band_pass(b, [prev, curr], priors, kernel, &mut maps);
+    });
+    outputs
 }
 
-/// Adds one beam's hit and misses; the part outside the window is skipped.
-fn trace_beam(beam: &SlicedBeam, window: &GridWindow, hits: &mut [f32], misses: &mut [f32]) {
-    let a = window.to_local(beam.start_xy[0], beam.start_xy[1]);
-    let b = window.to_local(beam.end_xy[0], beam.end_xy[1]);
-    let (cols, rows) = (window.cols as f64, window.rows as f64);
-    let end_cell = (b[0].floor(), b[1].floor());
-    let end_inside =
-        end_cell.0 >= 0.0 && end_cell.1 >= 0.0 && end_cell.0 < cols && end_cell.1 < rows;
-    if beam.hit && end_inside {
-        hits[window.index(end_cell.0 as usize, end_cell.1 as usize)] += 1.0;
+/// The spreading kernel `[side, centre, side]` in f32, like the counts.
+#[derive(Debug, Clone, Copy)]
+struct Kernel {
+    side: f32,
+    centre: f32,
+}
+
+impl Kernel {
+    fn new(spread: f64) -> Self {
+        let side = spread as f32;
+        Self {
+            side,
+            centre: 1.0 - 2.0 * side,
+        }
     }
-    let Some((ca, cb)) = clip_to_box(a, b, cols, rows) else {
-        return;
+
+    /// `centre · here + side · (a + b)`.
+    fn apply(self, here: f32, a: f32, b: f32) -> f32 {
+        self.centre * here + self.side * (a + b)
+    }
+}
+
+/// Fills band `b` of every prior's maps (`maps[k]` belongs to `priors[k]`).
+fn band_pass(
+    b: usize,
+    [prev, curr]: [&BeamCounts; 2],
+    priors: &[f64],
+    kernel: Kernel,
+    maps: &mut [(&mut [f64], &mut [f64])],
+) {
+    let window = curr.window();
+    let cols = window.cols;
+    let first = b * BAND_ROWS;
+    let rows = first..(first + BAND_ROWS).min(window.rows);
+    // Columns the 3 × 3 kernel can carry counts of bands b − 1 ..= b + 1 to.
+    let touched = (b.saturating_sub(1)..=b + 1)
+        .flat_map(|k| [prev.band(k), curr.band(k)])
+        .flatten()
+        .reduce(|a, c| (a.0.min(c.0), a.1.max(c.1)));
+    let span = touched.map(|(lo, hi)| (lo.saturating_sub(1), (hi + 1).min(cols - 1)));
+    // Everything outside the span is unobserved in both sweeps: the prior, and no difference.
+    for ((reflection, difference), &prior) in maps.iter_mut().zip(priors) {
+        match span {
+            None => {
+                reflection.fill(prior);
+                difference.fill(0.0);
+            }
+            Some((lo, hi)) => {
+                for row in reflection.chunks_mut(cols) {
+                    row[..lo].fill(prior);
+                    row[hi + 1..].fill(prior);
+                }
+                for row in difference.chunks_mut(cols) {
+                    row[..lo].fill(0.0);
+                    row[hi + 1..].fill(0.0);
+                }
+            }
+        }
+    }
+    let Some((lo, hi)) = span else { return };
+    let width = hi + 1 - lo;
+    // Both counts of both sweeps spread along x, rows first − 1 ..= last + 1 (zero outside the
+    // window): `spread[channel][k · width + i]` for row `first − 1 + k`, column `lo + i`.
+    let spread_x = |counts: &BeamCounts| -> [Vec<f32>; 2] {
+        [0, 1].map(|channel| {
+            let mut out = vec![0f32; (rows.len() + 2) * width];
+            for (k, y) in (rows.start as i64 - 1..=rows.end as i64).enumerate() {
+                if y >= 0 && (y as usize) < window.rows {
+                    let row = counts.row(channel, y as usize);
+                    spread_row(kernel, row, lo, &mut out[k * width..(k + 1) * width]);
+                }
+            }
+            out
+        })
     };
-    let last = |v: f64, n: f64| (v.floor() as i64).clamp(0, n as i64 - 1);
-    let (x0, y0) = (last(ca[0], cols), last(ca[1], rows));
-    let (x1, y1) = (last(cb[0], cols), last(cb[1], rows));
-    // The end cell is the hit itself when the beam ends in the slice inside the window.
-    let skip_last = beam.hit && end_inside && (x1, y1) == (end_cell.0 as i64, end_cell.1 as i64);
-    add_misses(misses, window.cols, (x0, y0), (x1, y1), skip_last);
-}
-
-/// Clips the segment `a → b` to the box `[0, cols] × [0, rows]` (Liang–Barsky).
-fn clip_to_box(a: [f64; 2], b: [f64; 2], cols: f64, rows: f64) -> Option<([f64; 2], [f64; 2])> {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [
-        (-d[0], a[0]),
-        (d[0], cols - a[0]),
-        (-d[1], a[1]),
-        (d[1], rows - a[1]),
-    ] {
-        if p.abs() < 1e-15 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let r = q / p;
-            if p < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
+    let (sp, sc) = (spread_x(prev), spread_x(curr));
+    // Per row, both sweeps' ratios (NaN where unobserved), then every prior's values from them.
+    let (mut rp, mut rc) = (vec![0.0; width], vec![0.0; width]);
+    for k in 0..rows.len() {
+        let [(ph, pm), (ch, cm)] = [&sp, &sc].map(|v| {
+            (
+                neighbour_rows(&v[0], k, width),
+                neighbour_rows(&v[1], k, width),
+            )
+        });
+        ratios(kernel, ph, pm, &mut rp);
+        ratios(kernel, ch, cm, &mut rc);
+        let cells = k * cols + lo..k * cols + hi + 1;
+        for ((reflection, difference), &prior) in maps.iter_mut().zip(priors) {
+            let reflection = &mut reflection[cells.clone()];
+            let difference = &mut difference[cells.clone()];
+            for (((m, d), &c), &p) in reflection.iter_mut().zip(difference).zip(&rc).zip(&rp) {
+                let vc = if c.is_nan() { prior } else { c };
+                let vp = if p.is_nan() { prior } else { p };
+                *m = vc;
+                *d = vc - vp;
             }
         }
     }
-    (t0 <= t1).then(|| {
-        let at = |t: f64| [a[0] + t * d[0], a[1] + t * d[1]];
-        (at(t0), at(t1))
-    })
 }
 
-/// Spreads counts along x in place with `[s, 1 − 2s, s]`; mass leaving the window is dropped.
-fn smooth_rows(values: &mut [f32], cols: usize, s: f32) {
-    if s == 0.0 {
+/// Rows `k`, `k + 1`, `k + 2` of a buffer of rows of `width` values.
+fn neighbour_rows(v: &[f32], k: usize, width: usize) -> [&[f32]; 3] {
+    [0, 1, 2].map(|dk| &v[(k + dk) * width..(k + dk + 1) * width])
+}
+
+/// Spreads columns `lo ..` of one count row along x into `out` (counts beyond the row are 0).
+fn spread_row(kernel: Kernel, row: &[f32], lo: usize, out: &mut [f32]) {
+    let at = |x: usize| row.get(x).copied().unwrap_or(0.0);
+    let edge = |x: usize| kernel.apply(at(x), x.checked_sub(1).map_or(0.0, at), at(x + 1));
+    let width = out.len();
+    if width <= 2 {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = edge(lo + i);
+        }
         return;
     }
-    let c = 1.0 - 2.0 * s;
-    values.par_chunks_mut(cols).for_each(|row| {
-        let mut left = 0.0;
-        for x in 0..cols {
-            let here = row[x];
-            let right = if x + 1 < cols { row[x + 1] } else { 0.0 };
-            row[x] = c * here + s * (left + right);
-            left = here;
-        }
-    });
+    out[0] = edge(lo);
+    out[width - 1] = edge(lo + width - 1);
+    // The interior as three shifted slices, which the compiler vectorises.
+    let (left, here, right) = (
+        &row[lo..lo + width - 2],
+        &row[lo + 1..lo + width - 1],
+        &row[lo + 2..lo + width],
+    );
+    for (((o, &l), &h), &r) in out[1..width - 1].iter_mut().zip(left).zip(here).zip(right) {
+        *o = kernel.apply(h, l, r);
+    }
 }
 
-/// Row `r` of a row-major grid with `cols` columns, if `r` is given.
-fn row_of(values: &[f32], r: Option<usize>, cols: usize) -> Option<&[f32]> {
-    r.map(|r| &values[r * cols..(r + 1) * cols])
-}
-
-/// Spreads both counts along y with `[s, 1 − 2s, s]` and returns hits / (hits + misses) per
-/// cell, `prior` where no mass arrived (thesis Eq. 2.8).
-fn smooth_columns_and_divide(
-    hits: &[f32],
-    misses: &[f32],
-    window: &GridWindow,
-    s: f32,
-    prior: f64,
-) -> Vec<f64> {
-    let (cols, rows, c) = (window.cols, window.rows, 1.0 - 2.0 * s);
-    let mut out = vec![prior; window.len()];
-    out.par_chunks_mut(cols).enumerate().for_each(|(y, out)| {
-        let row = |v, r| row_of(v, r, cols);
-        let (below, above) = (y.checked_sub(1), (y + 1 < rows).then_some(y + 1));
-        let (h, m) = (row(hits, Some(y)), row(misses, Some(y)));
-        let (hb, mb, ha, ma) = (
-            row(hits, below),
-            row(misses, below),
-            row(hits, above),
-            row(misses, above),
-        );
-        let (Some(h), Some(m)) = (h, m) else { return };
-        for x in 0..cols {
-            let side = |v: Option<&[f32]>| v.map_or(0.0, |r| r[x]);
-            let hx = c * h[x] + s * (side(hb) + side(ha));
-            let mx = c * m[x] + s * (side(mb) + side(ma));
-            let total = f64::from(hx) + f64::from(mx);
-            if total > 1e-9 {
-                out[x] = f64::from(hx) / total;
-            }
-        }
-    });
-    out
+/// Spreads the x-spread hits and misses of a row along y (`[below, here, above]` each) and
+/// writes hits / (hits + misses) per cell, NaN where no mass arrived (thesis Eq. 2.8).
+fn ratios(kernel: Kernel, hits: [&[f32]; 3], misses: [&[f32]; 3], out: &mut [f64]) {
+    let [hb, hh, ha] = hits;
+    let [mb, mh, ma] = misses;
+    let h = hh
+        .iter()
+        .zip(hb)
+        .zip(ha)
+        .map(|((&h, &b), &a)| kernel.apply(h, b, a));
+    let m = mh
+        .iter()
+        .zip(mb)
+        .zip(ma)
+        .map(|((&h, &b), &a)| kernel.apply(h, b, a));
+    for ((o, h), m) in out.iter_mut().zip(h).zip(m) {
+        let total = f64::from(h) + f64::from(m);
+        *o = if total > 1e-9 {
+            f64::from(h) / total
+        } else {
+            f64::NAN
+        };
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::features::grid::{GridMap, GridWindow};
+    use crate::features::slice::SlicedBeam;
 
     fn window() -> GridWindow {
         GridWindow::centred([0.0, 0.0], 2.0, 0.1)
@@ -156,6 +230,13 @@ mod tests {
             end_xy: end,
             hit,
         }
+    }
+
+    /// One sweep's reflection map (no previous beams).
+    fn reflection_map(beams: &[SlicedBeam], w: &GridWindow, prior: f64, spread: f64) -> GridMap {
+        let (prev, curr) = (BeamCounts::trace(&[], w), BeamCounts::trace(beams, w));
+        let mut maps = reflection_and_difference(&prev, &curr, &[prior], spread);
+        GridMap::from_values(*w, maps.remove(0).reflection, prior).unwrap()
     }
 
     #[test]
@@ -214,5 +295,63 @@ mod tests {
         let w = window();
         let map = reflection_map(&[beam([-10.0, 0.05], [10.0, 0.05], false)], &w, 0.5, 0.0);
         assert!(map.values().iter().filter(|&&v| v == 0.0).count() == w.cols);
+    }
+
+    /// The textbook computation on full grids: spread every count along x, then along y, then
+    /// divide; no bands, no spans.
+    fn dense_reflection(counts: &BeamCounts, prior: f64, spread: f32) -> Vec<f64> {
+        let w = counts.window();
+        let (cols, rows) = (w.cols as i64, w.rows as i64);
+        let at = |c: i64, r: i64, k: usize| {
+            if c < 0 || r < 0 || c >= cols || r >= rows {
+                0.0
+            } else {
+                counts.row(k, r as usize)[c as usize]
+            }
+        };
+        let centre = 1.0 - 2.0 * spread;
+        let x_spread = |c: i64, r: i64, k: usize| {
+            centre * at(c, r, k) + spread * (at(c - 1, r, k) + at(c + 1, r, k))
+        };
+        let mut out = Vec::new();
+        for r in 0..rows {
+            for c in 0..cols {
+                let v = |k| {
+                    centre * x_spread(c, r, k)
+                        + spread * (x_spread(c, r - 1, k) + x_spread(c, r + 1, k))
+                };
+                let (h, m) = (f64::from(v(0)), f64::from(v(1)));
+                out.push(if h + m > 1e-9 { h / (h + m) } else { prior });
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn banded_maps_equal_the_dense_computation_for_both_priors() {
+        // 50 × 50 cells: four bands, beams in some of them and across band edges.
+        let w = GridWindow::centred([0.0, 0.0], 2.5, 0.1);
+        let prev_beams = [
+            beam([0.0, 0.0], [2.2, 1.55], true),
+            beam([0.0, 0.0], [-2.0, -0.9], false),
+        ];
+        let curr_beams = [
+            beam([0.1, 0.0], [2.2, 1.65], true),
+            beam([0.1, 0.0], [-0.3, -2.45], true),
+            beam([-3.0, 1.0], [3.0, 1.05], false),
+        ];
+        let (prev, curr) = (
+            BeamCounts::trace(&prev_beams, &w),
+            BeamCounts::trace(&curr_beams, &w),
+        );
+        let maps = reflection_and_difference(&prev, &curr, &[0.5, 0.01], 1.0 / 6.0);
+        for (out, prior) in maps.iter().zip([0.5, 0.01]) {
+            let dense_prev = dense_reflection(&prev, prior, 1.0 / 6.0);
+            let dense_curr = dense_reflection(&curr, prior, 1.0 / 6.0);
+            for i in 0..w.len() {
+                assert_eq!(out.reflection[i], dense_curr[i], "cell {i}");
+                assert_eq!(out.difference[i], dense_curr[i] - dense_prev[i], "cell {i}");
+            }
+        }
     }
 }

@@ -1,12 +1,16 @@
 //! Training samples (thesis 3.1.1-3.1.2): sliced points on moving actors with heading and speed
 //! targets, importance sampled by the motion their heading patch shows.
 
+use std::cmp::Reverse;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use patchflow_dataset::{Dataset, SequenceReader, Sweep};
 use rayon::prelude::*;
 
-use crate::features::sampling::importance_sample;
+use crate::features::difference_map::MapPair;
+use crate::features::gabor::GaborBank;
+use crate::features::sampling::{DrawKey, TopN, hashed_uniform, name_hash};
+use crate::features::slice::HeightSlice;
 use crate::features::sweep_features::{FeatureKind, SweepFeatures};
 use crate::{FeatureParams, LearnError, Result};
 
@@ -52,8 +56,18 @@ pub struct SampleSet {
     pub samples: Vec<Sample>,
 }
 
-/// One pair of consecutive sweeps: sequence number and current sweep index.
-type Unit = (usize, usize);
+/// Consecutive sweep pairs of one sequence handled by one task: sequence number and the range of
+/// current sweep indices. Neighbouring pairs share a sweep, which is read and sliced once.
+type Run = (usize, std::ops::Range<usize>);
+/// Sweep pairs per run.
+const RUN_LEN: usize = 6;
+/// Where a candidate lies in the dataset: sequence number, sweep, point. Ties of draw keys go to
+/// the earlier candidate.
+type Position = (usize, u32, usize);
+/// The rank of a candidate in a draw.
+type Rank = (DrawKey, Reverse<Position>);
+/// Per prior, the best candidates so far and how many candidates were seen.
+type Draws = (usize, Vec<TopN<Rank, Sample>>);
 
 impl SampleSet {
     /// Draws `n` samples (thesis: 1,600) from every sliced point on a moving actor in every
@@ -68,12 +82,8 @@ impl SampleSet {
         Self::collect_with_progress(dataset, params, kind, n, seed, &|_, _| {})
     }
 
-    /// Like [`Self::collect`], calling `progress(done, total)` as sweep pairs finish.
-    ///
-    /// Two passes keep memory small on large datasets: the first computes only each candidate's
-    /// weight; after [`importance_sample`] the second recomputes the features of the sweep pairs
-    /// holding a selected sample. Both passes run in parallel over sweep pairs and keep the
-    /// dataset order, so the result depends only on the data, the parameters and the seed.
+    /// Like [`Self::collect`], calling `progress(done, total)` as sweep pairs finish; the
+    /// prior is `params.prior`. See [`Self::collect_priors`].
     pub fn collect_with_progress(
         dataset: &Dataset,
         params: &FeatureParams,
@@ -82,73 +92,93 @@ impl SampleSet {
         seed: u64,
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Self> {
-        params.validate()?;
+        let sets = Self::collect_priors(dataset, params, &[params.prior], kind, n, seed, progress)?;
+        sets.into_iter().next().ok_or_else(|| {
+            LearnError::DegenerateData(format!("{}: no sample set", dataset.root().display()))
+        })
+    }
+
+    /// One sample set per map prior (`params.prior` is not used), each drawing `n` samples from
+    /// the same candidates, in one pass over the dataset: every sweep is read and sliced once,
+    /// every sweep pair's beams traced once for all priors (the prior only fills unobserved
+    /// cells), and `progress(done, total)` is called as sweep pairs finish.
+    ///
+    /// Importance sampling without replacement (thesis 3.1.2) streams: a candidate's key is
+    /// `ln(u) / w` (Efraimidis and Spirakis), `w` the mean absolute difference of its heading
+    /// patch and `u` hashed from the seed, the sequence name, the sweep and the point; each task
+    /// keeps the `n` largest keys with their features, and the tasks' lists are merged. The kept
+    /// set is the `n` largest keys of the whole dataset, so the result depends only on the data,
+    /// the parameters and the seed, not on the threads. The same `u` serves every prior.
+    pub fn collect_priors(
+        dataset: &Dataset,
+        params: &FeatureParams,
+        priors: &[f64],
+        kind: FeatureKind,
+        n: usize,
+        seed: u64,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Vec<Self>> {
+        if priors.is_empty() {
+            return Ok(Vec::new());
+        }
+        for &prior in priors {
+            FeatureParams {
+                prior,
+                ..params.clone()
+            }
+            .validate()?;
+        }
         let readers = dataset
             .sequences()
             .iter()
             .map(|s| dataset.sequence(&s.name))
             .collect::<patchflow_dataset::Result<Vec<_>>>()?;
-        let units: Vec<Unit> = readers
+        let runs: Vec<Run> = readers
             .iter()
             .enumerate()
-            .flat_map(|(s, r)| (1..r.len()).map(move |t| (s, t)))
-            .collect();
-        let done = AtomicUsize::new(0);
-        let total = AtomicUsize::new(2 * units.len());
-        let tick = || {
-            let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-            progress(d, total.load(Ordering::Relaxed));
-        };
-        // Pass 1 (thesis 3.1.2): weight of every candidate.
-        let per_unit = units
-            .par_iter()
-            .map(|&unit| {
-                let (features, curr) = features_of(&readers, unit, params)?;
-                let candidates = moving_points(&features, &curr)
-                    .map(|(i, _)| (unit, i, features.heading_patch(i).mean_abs_difference()))
-                    .collect::<Vec<_>>();
-                tick();
-                Ok(candidates)
+            .flat_map(|(s, r)| {
+                (1..r.len())
+                    .step_by(RUN_LEN)
+                    .map(move |t| (s, t..(t + RUN_LEN).min(r.len())))
             })
-            .collect::<Result<Vec<_>>>()?;
-        let pool: Vec<(Unit, usize, f64)> = per_unit.into_iter().flatten().collect();
-        if pool.is_empty() {
+            .collect();
+        let total: usize = runs.iter().map(|r| r.1.len()).sum();
+        let done = AtomicUsize::new(0);
+        let tick = || progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+        let sampler = Sampler {
+            readers: &readers,
+            params,
+            priors,
+            kind,
+            seed,
+            gabor: GaborBank::new(&params.gabor, params.cell_m),
+        };
+        let empty = || (0, priors.iter().map(|_| TopN::new(n)).collect::<Vec<_>>());
+        let (pool_size, draws) = runs
+            .par_iter()
+            .try_fold(empty, |draws, run| sampler.run(run, draws, &tick))
+            .try_reduce(empty, |a, b| Ok(merge(a, b)))?;
+        if pool_size == 0 {
             return Err(LearnError::DegenerateData(format!(
                 "{}: no sliced point on a moving actor",
                 dataset.root().display()
             )));
         }
-        let weights: Vec<f64> = pool.iter().map(|c| c.2).collect();
-        let picked = importance_sample(&weights, n, seed);
-        // Pass 2: features of the selected candidates, grouped by sweep pair.
-        let mut groups: Vec<(Unit, Vec<(usize, f64)>)> = Vec::new();
-        for &k in &picked {
-            let (unit, i, w) = pool[k];
-            match groups.last_mut() {
-                Some((u, members)) if *u == unit => members.push((i, w)),
-                _ => groups.push((unit, vec![(i, w)])),
-            }
-        }
-        total.store(units.len() + groups.len(), Ordering::Relaxed);
-        let samples = groups
-            .par_iter()
-            .map(|(unit, members)| {
-                let (features, curr) = features_of(&readers, *unit, params)?;
-                let name = &readers[unit.0].info().name;
-                let out = members
-                    .iter()
-                    .filter_map(|&(i, weight)| sample_at(&features, &curr, i, weight, kind, name))
-                    .collect::<Vec<_>>();
-                tick();
-                Ok(out)
+        Ok(draws
+            .into_iter()
+            .zip(priors)
+            .map(|(draw, &prior)| {
+                let mut kept: Vec<(Rank, Sample)> = draw.into_items().collect();
+                // Dataset order (sequence, sweep, point).
+                kept.sort_unstable_by_key(|(rank, _)| (rank.1).0);
+                Self {
+                    kind,
+                    prior,
+                    pool_size,
+                    samples: kept.into_iter().map(|(_, s)| s).collect(),
+                }
             })
-            .collect::<Result<Vec<_>>>()?;
-        Ok(Self {
-            kind,
-            prior: params.prior,
-            pool_size: pool.len(),
-            samples: samples.into_iter().flatten().collect(),
-        })
+            .collect())
     }
 
     /// Names of the feature columns.
@@ -157,20 +187,78 @@ impl SampleSet {
     }
 }
 
-/// Reads sweeps `t − 1` and `t` of a sequence and computes the features of `t`.
-fn features_of(
-    readers: &[SequenceReader],
-    (seq, t): Unit,
-    params: &FeatureParams,
-) -> Result<(SweepFeatures, Sweep)> {
-    let reader = &readers[seq];
-    let prev = reader.read_sweep(t - 1)?;
-    let curr = reader.read_sweep(t)?;
-    let features = SweepFeatures::compute(&prev, &curr, params).map_err(|e| {
-        let file = reader.dir().join("velodyne").join(format!("{t:06}.bin"));
-        LearnError::DegenerateData(format!("{}: {e}", file.display()))
-    })?;
-    Ok((features, curr))
+/// Both tasks' candidate counts and, per prior, the `n` best of both.
+fn merge((na, a): Draws, (nb, b): Draws) -> Draws {
+    (
+        na + nb,
+        a.into_iter().zip(b).map(|(a, b)| a.merge(b)).collect(),
+    )
+}
+
+/// What every task of one collection shares.
+struct Sampler<'a> {
+    readers: &'a [SequenceReader],
+    params: &'a FeatureParams,
+    priors: &'a [f64],
+    kind: FeatureKind,
+    seed: u64,
+    gabor: GaborBank,
+}
+
+impl Sampler<'_> {
+    /// Offers every candidate of a run of sweep pairs to the draws.
+    fn run(&self, (seq, range): &Run, mut draws: Draws, tick: &impl Fn()) -> Result<Draws> {
+        let reader = &self.readers[*seq];
+        let name = &reader.info().name;
+        let name_key = name_hash(name);
+        let (_, mut prev) = self.slice(reader, range.start - 1)?;
+        for t in range.clone() {
+            let (curr_sweep, curr) = self.slice(reader, t)?;
+            // 2.1.1-2.1.2 for every prior, the beams traced once.
+            let maps = MapPair::build_for_priors(&prev, &curr, self.params, self.priors);
+            let features: Vec<SweepFeatures> = maps
+                .into_iter()
+                .map(|m| SweepFeatures::without_clusters(&curr, m, self.params, self.gabor.clone()))
+                .collect();
+            let Some(first) = features.first() else {
+                break;
+            };
+            for (i, _) in moving_points(first, &curr_sweep) {
+                draws.0 += 1;
+                let point = first.points()[i].index;
+                let u = hashed_uniform(
+                    self.seed,
+                    &[name_key, u64::from(curr_sweep.index), point as u64],
+                );
+                let position = (*seq, curr_sweep.index, point);
+                for (f, draw) in features.iter().zip(&mut draws.1) {
+                    // 3.1.2: the weight is the motion the heading patch shows (Eq. 3.1).
+                    let heading = f.heading_patch(i);
+                    let weight = heading.mean_abs_difference();
+                    let rank = (DrawKey::new(weight, u), Reverse(position));
+                    if draw.accepts(&rank)
+                        && let Some(sample) =
+                            sample_at(f, &curr_sweep, i, &heading, weight, self.kind, name)
+                    {
+                        draw.push(rank, sample);
+                    }
+                }
+            }
+            prev = curr;
+            tick();
+        }
+        Ok(draws)
+    }
+
+    /// Reads sweep `t` of a sequence and cuts it to the height slice (thesis 2.1.1).
+    fn slice(&self, reader: &SequenceReader, t: usize) -> Result<(Sweep, HeightSlice)> {
+        let sweep = reader.read_sweep(t)?;
+        let slice = HeightSlice::cut(&sweep, self.params).map_err(|e| {
+            let file = reader.dir().join("velodyne").join(format!("{t:06}.bin"));
+            LearnError::DegenerateData(format!("{}: {e}", file.display()))
+        })?;
+        Ok((sweep, slice))
+    }
 }
 
 /// Sliced points on a moving actor whose truth is in the sweep: `(point, actor id)`.
@@ -185,11 +273,12 @@ fn moving_points<'a>(
     })
 }
 
-/// The sample of sliced point `i` (thesis 3.1.1 targets, 2.2.2 patches).
+/// The sample of sliced point `i` with its heading patch (thesis 3.1.1 targets, 2.2.2 patches).
 fn sample_at(
     features: &SweepFeatures,
     curr: &Sweep,
     i: usize,
+    heading: &crate::Patch,
     weight: f64,
     kind: FeatureKind,
     sequence: &str,
@@ -210,7 +299,7 @@ fn sample_at(
         cos_rel: relative.cos(),
         heading_rad: truth.heading_rad,
         speed_mps: truth.speed_mps,
-        heading_features: features.feature_of(&features.heading_patch(i), kind),
+        heading_features: features.feature_of(heading, kind),
         speed_features: features.feature_of(&features.speed_patch(i, truth.heading_rad), kind),
     })
 }
@@ -269,6 +358,45 @@ pub(crate) mod tests {
         }
         let again = SampleSet::collect(&dataset, &params, FeatureKind::Gabor, 60, 3).unwrap();
         assert_eq!(set, again, "the same seed gives the same samples");
+    }
+
+    #[test]
+    fn sets_for_several_priors_equal_sets_collected_one_prior_at_a_time() {
+        let dir = tempfile::tempdir().unwrap();
+        write_dataset(dir.path(), 4);
+        let dataset = Dataset::open(dir.path()).unwrap();
+        let params = FeatureParams::default();
+        let kind = FeatureKind::Gabor;
+        let both =
+            SampleSet::collect_priors(&dataset, &params, &[0.01, 0.5], kind, 50, 5, &|_, _| {})
+                .unwrap();
+        assert_eq!(both.len(), 2);
+        for (set, prior) in both.iter().zip([0.01, 0.5]) {
+            let one_params = FeatureParams::with_prior(prior);
+            let one = SampleSet::collect(&dataset, &one_params, kind, 50, 5).unwrap();
+            assert_eq!(set, &one, "prior {prior}");
+        }
+        assert_ne!(
+            both[0].samples, both[1].samples,
+            "the priors change the features"
+        );
+    }
+
+    #[test]
+    fn the_draw_does_not_depend_on_the_number_of_threads() {
+        let dir = tempfile::tempdir().unwrap();
+        write_dataset(dir.path(), 8);
+        let dataset = Dataset::open(dir.path()).unwrap();
+        let params = FeatureParams::default();
+        let on = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| SampleSet::collect(&dataset, &params, FeatureKind::Gabor, 30, 9))
+                .unwrap()
+        };
+        assert_eq!(on(1), on(3));
     }
 
     #[test]

@@ -68,16 +68,10 @@ impl SweepFeatures {
         let (prev_slice, curr_slice) = (prev_slice?, curr_slice?);
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
         // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
-        let window = GridWindow::centred(curr_slice.sensor_xy, params.half_extent_m, params.cell_m);
         let (maps, (points, clusters)) = rayon::join(
             || MapPair::build(&prev_slice, &curr_slice, params),
             || {
-                let points: Vec<SlicedPoint> = curr_slice
-                    .points
-                    .iter()
-                    .filter(|p| window.cell_of(p.x_m, p.y_m).is_some())
-                    .copied()
-                    .collect();
+                let points = points_in_window(&curr_slice, params);
                 let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
                 (points, Clusters::single_link(&xy, params.cluster_gap_m))
             },
@@ -89,6 +83,23 @@ impl SweepFeatures {
             maps,
             gabor: GaborBank::new(&params.gabor, params.cell_m),
         })
+    }
+
+    /// The features of a current slice from maps built elsewhere (the training sampler builds
+    /// the maps of several priors at once), without clusters: [`Self::clusters`] is empty.
+    pub(crate) fn without_clusters(
+        curr_slice: &HeightSlice,
+        maps: MapPair,
+        params: &FeatureParams,
+        gabor: GaborBank,
+    ) -> Self {
+        Self {
+            sensor_xy: curr_slice.sensor_xy,
+            points: points_in_window(curr_slice, params),
+            clusters: Clusters::default(),
+            maps,
+            gabor,
+        }
     }
 
     /// The sliced end points inside the map window, in sweep order.
@@ -170,6 +181,17 @@ impl SweepFeatures {
             FeatureKind::Gabor => self.gabor(patch).to_vec(),
         }
     }
+}
+
+/// The sliced end points inside the map window centred on the current sensor.
+fn points_in_window(curr_slice: &HeightSlice, params: &FeatureParams) -> Vec<SlicedPoint> {
+    let window = GridWindow::centred(curr_slice.sensor_xy, params.half_extent_m, params.cell_m);
+    curr_slice
+        .points
+        .iter()
+        .filter(|p| window.cell_of(p.x_m, p.y_m).is_some())
+        .copied()
+        .collect()
 }
 
 #[cfg(test)]

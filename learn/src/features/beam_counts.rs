@@ -1,0 +1,257 @@
+//! Hit and miss counts of one sweep's sliced beams on a map window (thesis 2.1.1): a hit in the
+//! end cell of every beam ending in the slice, a miss in every other cell Bresenham's line visits.
+//!
+//! The counts are the hot part of the feature pipeline (about two million cell visits per real
+//! sweep), so they live in f32 buffers taken from a small pool of clean buffers and handed back
+//! zeroed, and every band of [`BAND_ROWS`] rows remembers which columns it touched: the map pass
+//! skips the rest and the clean-up zeroes only those cells.
+
+use std::sync::Mutex;
+
+use crate::features::grid::GridWindow;
+use crate::features::line::add_misses;
+use crate::features::slice::SlicedBeam;
+
+/// Rows per band of touched-column bookkeeping.
+pub(crate) const BAND_ROWS: usize = 16;
+
+/// Clean (all zero) count buffers, reused between sweeps so a map costs no page faults and no
+/// full-grid zeroing.
+static POOL: Mutex<Vec<Vec<f32>>> = Mutex::new(Vec::new());
+/// Buffers kept in the pool at most (two per sweep in flight is plenty).
+const POOL_CAP: usize = 8;
+
+/// One sweep's counts on a window, row-major (`row · cols + col`).
+#[derive(Debug)]
+pub(crate) struct BeamCounts {
+    window: GridWindow,
+    hits: Vec<f32>,
+    misses: Vec<f32>,
+    /// Per band: the smallest and largest column any count of the band lies in (empty when the
+    /// smallest exceeds the largest).
+    bands: Vec<(usize, usize)>,
+}
+
+impl BeamCounts {
+    /// Traces every beam onto `window`; the parts outside the window are skipped.
+    pub(crate) fn trace(beams: &[SlicedBeam], window: &GridWindow) -> Self {
+        let mut counts = Self {
+            window: *window,
+            hits: clean_buffer(window.len()),
+            misses: clean_buffer(window.len()),
+            bands: vec![(usize::MAX, 0); window.rows.div_ceil(BAND_ROWS)],
+        };
+        for beam in beams {
+            counts.add_beam(beam);
+        }
+        counts
+    }
+
+    /// The window the counts lie on.
+    pub(crate) fn window(&self) -> &GridWindow {
+        &self.window
+    }
+
+    /// Row `r` of the hits (`channel` 0) or the misses (1).
+    pub(crate) fn row(&self, channel: usize, r: usize) -> &[f32] {
+        let cols = self.window.cols;
+        let counts = if channel == 0 {
+            &self.hits
+        } else {
+            &self.misses
+        };
+        &counts[r * cols..(r + 1) * cols]
+    }
+
+    /// The touched columns `[lo, hi]` of band `b`, if any.
+    pub(crate) fn band(&self, b: usize) -> Option<(usize, usize)> {
+        self.bands.get(b).copied().filter(|(lo, hi)| lo <= hi)
+    }
+
+    /// Adds one beam's hit and misses.
+    fn add_beam(&mut self, beam: &SlicedBeam) {
+        let finite = beam
+            .start_xy
+            .iter()
+            .chain(&beam.end_xy)
+            .all(|v| v.is_finite());
+        if !finite {
+            return;
+        }
+        let window = self.window;
+        let a = window.to_local(beam.start_xy[0], beam.start_xy[1]);
+        let b = window.to_local(beam.end_xy[0], beam.end_xy[1]);
+        let (cols, rows) = (window.cols as f64, window.rows as f64);
+        let end_cell = (floor(b[0]), floor(b[1]));
+        let end_inside = end_cell.0 >= 0
+            && end_cell.1 >= 0
+            && end_cell.0 < window.cols as i64
+            && end_cell.1 < window.rows as i64;
+        if beam.hit && end_inside {
+            let (c, r) = (end_cell.0 as usize, end_cell.1 as usize);
+            self.hits[window.index(c, r)] += 1.0;
+            self.mark(c, c, r, r);
+        }
+        let Some((ca, cb)) = clip_to_box(a, b, cols, rows) else {
+            return;
+        };
+        let last = |v: f64, n: f64| floor(v).clamp(0, n as i64 - 1);
+        let (x0, y0) = (last(ca[0], cols), last(ca[1], rows));
+        let (x1, y1) = (last(cb[0], cols), last(cb[1], rows));
+        // The end cell is the hit itself when the beam ends in the slice inside the window.
+        let skip_last = beam.hit && end_inside && (x1, y1) == end_cell;
+        add_misses(&mut self.misses, window.cols, (x0, y0), (x1, y1), skip_last);
+        // Clamped to the window, so the casts are in range.
+        self.mark(
+            x0.min(x1) as usize,
+            x0.max(x1) as usize,
+            y0.min(y1) as usize,
+            y0.max(y1) as usize,
+        );
+    }
+
+    /// Records that columns `[c0, c1]` of rows `[r0, r1]` may hold counts.
+    fn mark(&mut self, c0: usize, c1: usize, r0: usize, r1: usize) {
+        for band in &mut self.bands[r0 / BAND_ROWS..=r1 / BAND_ROWS] {
+            band.0 = band.0.min(c0);
+            band.1 = band.1.max(c1);
+        }
+    }
+}
+
+impl Drop for BeamCounts {
+    /// Zeroes the touched cells and hands the buffer back to the pool.
+    fn drop(&mut self) {
+        let cols = self.window.cols;
+        for (b, &(lo, hi)) in self.bands.iter().enumerate() {
+            if lo > hi {
+                continue;
+            }
+            let rows = b * BAND_ROWS..((b + 1) * BAND_ROWS).min(self.window.rows);
+            for r in rows {
+                self.hits[r * cols + lo..=r * cols + hi].fill(0.0);
+                self.misses[r * cols + lo..=r * cols + hi].fill(0.0);
+            }
+        }
+        if let Ok(mut pool) = POOL.lock() {
+            for buffer in [&mut self.hits, &mut self.misses] {
+                if pool.len() < POOL_CAP {
+                    pool.push(std::mem::take(buffer));
+                }
+            }
+        }
+    }
+}
+
+/// A zeroed buffer of `len` cells: a pooled one of that length, or a new one.
+fn clean_buffer(len: usize) -> Vec<f32> {
+    let pooled = POOL.lock().ok().and_then(|mut pool| {
+        let k = pool.iter().position(|b| b.len() == len)?;
+        Some(pool.swap_remove(k))
+    });
+    pooled.unwrap_or_else(|| vec![0.0; len])
+}
+
+/// `v.floor()` as an integer for finite `v` (saturating far outside the window), without the
+/// library call `f64::floor` costs on baseline x86-64.
+fn floor(v: f64) -> i64 {
+    let i = v as i64;
+    if (i as f64) > v { i - 1 } else { i }
+}
+
+/// Clips the segment `a → b` to the box `[0, cols] × [0, rows]` (Liang–Barsky).
+fn clip_to_box(a: [f64; 2], b: [f64; 2], cols: f64, rows: f64) -> Option<([f64; 2], [f64; 2])> {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let inside = |p: [f64; 2]| p[0] >= 0.0 && p[1] >= 0.0 && p[0] <= cols && p[1] <= rows;
+    if inside(a) && inside(b) {
+        // Most beams: no division needed (t0 = 0, t1 = 1 below).
+        return Some((a, [a[0] + d[0], a[1] + d[1]]));
+    }
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d[0], a[0]),
+        (d[0], cols - a[0]),
+        (-d[1], a[1]),
+        (d[1], rows - a[1]),
+    ] {
+        if p.abs() < 1e-15 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    (t0 <= t1).then(|| {
+        let at = |t: f64| [a[0] + t * d[0], a[1] + t * d[1]];
+        (at(t0), at(t1))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn beam(start: [f64; 2], end: [f64; 2], hit: bool) -> SlicedBeam {
+        SlicedBeam {
+            start_xy: start,
+            end_xy: end,
+            hit,
+        }
+    }
+
+    fn total(counts: &BeamCounts) -> [f32; 2] {
+        let sum = |channel| {
+            (0..counts.window().rows)
+                .flat_map(|r| counts.row(channel, r).iter())
+                .sum()
+        };
+        [sum(0), sum(1)]
+    }
+
+    #[test]
+    fn a_hit_beam_counts_one_hit_and_a_miss_in_every_cell_before_it() {
+        let w = GridWindow::centred([0.0, 0.0], 2.0, 0.1);
+        let counts = BeamCounts::trace(&[beam([0.05, 0.05], [1.05, 0.05], true)], &w);
+        assert_eq!(total(&counts), [1.0, 10.0]);
+        let (c, r) = w.cell_of(1.05, 0.05).unwrap();
+        assert_eq!((counts.row(0, r)[c], counts.row(1, r)[c]), (1.0, 0.0));
+    }
+
+    #[test]
+    fn every_count_lies_inside_the_touched_columns_of_its_band() {
+        let w = GridWindow::centred([0.0, 0.0], 4.0, 0.1);
+        let beams = [
+            beam([0.0, 0.0], [3.0, 2.5], true),
+            beam([-1.0, -3.5], [-3.9, 1.0], false),
+            beam([-10.0, 0.35], [10.0, 0.35], false),
+        ];
+        let counts = BeamCounts::trace(&beams, &w);
+        for r in 0..w.rows {
+            let band = counts.band(r / BAND_ROWS);
+            let (hits, misses) = (counts.row(0, r), counts.row(1, r));
+            for (c, (h, m)) in hits.iter().zip(misses).enumerate() {
+                if h + m > 0.0 {
+                    let (lo, hi) = band.unwrap();
+                    assert!(lo <= c && c <= hi, "row {r} col {c} outside {lo}..={hi}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_buffer_comes_back_from_the_pool_clean() {
+        // An odd size no other test uses, so the pooled buffer is this test's own.
+        let w = GridWindow::centred([0.0, 0.0], 1.3, 0.1);
+        let beams = [beam([-1.2, -1.0], [1.1, 1.2], true)];
+        drop(BeamCounts::trace(&beams, &w));
+        let empty = BeamCounts::trace(&[], &w);
+        assert_eq!(total(&empty), [0.0, 0.0]);
+        assert!((0..w.rows.div_ceil(BAND_ROWS)).all(|b| empty.band(b).is_none()));
+    }
+}
