@@ -103,11 +103,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
     // 2. Importance-sample map patches once per prior (thesis 3.1.2); prior 0.5 also trains the estimators.
     let sets = stage(&mut timer, "sample patches", || {
-        plan.cv
-            .priors
-            .iter()
-            .map(|&prior| collect_samples(&train, prior, plan.samples, SEED))
-            .collect::<anyhow::Result<Vec<_>>>()
+        collect_samples(&train, &plan.cv.priors, plan.samples, SEED)
     })?;
     let training_set = sets
         .iter()

@@ -27,29 +27,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         folds: args.folds,
         ..CvParams::default()
     };
-    let sets = params
-        .priors
-        .iter()
-        .map(|&prior| collect_samples(&dataset, prior, params.samples, params.seed))
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let sets = collect_samples(&dataset, &params.priors, params.samples, params.seed)?;
     let report = cv_with_samples(&sets, &params)?;
     write_cv_report(&report, &args.out)?;
     println!("wrote {}", args.out.join("cv.md").display());
     Ok(())
 }
 
-/// Importance-samples map patches for one prior with a progress bar (thesis 3.1.2).
+/// Importance-samples map patches for several priors in one pass over the dataset, with a
+/// progress bar (thesis 3.1.2; the maps of all priors share their beam tracing).
 pub fn collect_samples(
     dataset: &Dataset,
-    prior: f64,
+    priors: &[f64],
     n: usize,
     seed: u64,
-) -> anyhow::Result<SampleSet> {
-    let bar = progress_bar(0, &format!("samples, prior {prior}"));
-    let params = FeatureParams::with_prior(prior);
-    let set = SampleSet::collect_with_progress(
+) -> anyhow::Result<Vec<SampleSet>> {
+    let bar = progress_bar(0, "sampling patches");
+    let sets = SampleSet::collect_priors(
         dataset,
-        &params,
+        &FeatureParams::default(),
+        priors,
         FeatureKind::Patch,
         n,
         seed,
@@ -59,7 +56,7 @@ pub fn collect_samples(
         },
     );
     bar.finish_and_clear();
-    Ok(set?)
+    Ok(sets?)
 }
 
 /// Cross-validates sample sets already drawn (one per prior), with a progress bar.
