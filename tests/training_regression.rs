@@ -9,10 +9,10 @@
 use patchflow_eval::{CvGp, CvParams, cross_validate};
 
 /// Recorded on the commit that added this test (see the module docs).
-/// Measured 11.82° (2026-11-22).
-const HEADING_RMSE_BOUND_DEG: f64 = 14.0;
-/// Measured 0.986 m/s (2026-11-22).
-const SPEED_RMSE_BOUND_MPS: f64 = 1.2;
+/// Measured 9.75° with seed 5 (seeds 6 and 7: 9.85°, 11.35°), 2026-11-22.
+const HEADING_RMSE_BOUND_DEG: f64 = 12.0;
+/// Measured 0.504 m/s with seed 5 (seeds 6 and 7: 0.502, 0.527 m/s), 2026-11-22.
+const SPEED_RMSE_BOUND_MPS: f64 = 0.60;
 
 #[test]
 fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
@@ -24,10 +24,10 @@ fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
         11,
     );
     let params = CvParams {
-        folds: 2,
-        samples: 300,
-        pseudo_inputs: 15,
-        max_iters: 40,
+        folds: 3,
+        samples: 600,
+        pseudo_inputs: 20,
+        max_iters: 60,
         priors: vec![0.5],
         seed: 5,
     };
