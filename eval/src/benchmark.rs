@@ -118,9 +118,13 @@ fn evaluate_scan(
         situation: sequence.info().name.clone(),
         reason: format!("sweep {index} has no object marked target"),
     })?;
-    let truth = TruthAtScan::from_velocity(index, [target.velocity_mps[0], target.velocity_mps[1]]);
     let start = std::time::Instant::now();
     let features = SweepFeatures::compute(&previous, &current, params)?;
+    let [sx, sy] = features.sensor_xy();
+    let truth = TruthAtScan {
+        range_m: Some((target.centre_m[0] - sx).hypot(target.centre_m[1] - sy)),
+        ..TruthAtScan::from_velocity(index, [target.velocity_mps[0], target.velocity_mps[1]])
+    };
     let target_cluster = cluster_with_most_points_of(&features, &current, target.id);
     let mut gp = Vec::with_capacity(methods.len());
     for method in methods {

@@ -128,6 +128,7 @@ mod tests {
             heading_rad: h,
             speed_mps,
             velocity_xy_mps: [speed_mps * h.cos(), speed_mps * h.sin()],
+            range_m: None,
         }
     }
 

@@ -21,6 +21,10 @@ pub struct TruthAtScan {
     pub speed_mps: f64,
     /// True velocity, world frame, m/s.
     pub velocity_xy_mps: [f64; 2],
+    /// Distance sensor → target centre in the ground plane, metres, when known; the report
+    /// breaks the heading error down by it (the height slice thins out with range).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range_m: Option<f64>,
 }
 
 impl TruthAtScan {
@@ -32,6 +36,7 @@ impl TruthAtScan {
             heading_rad: vy.atan2(vx),
             speed_mps: vx.hypot(vy),
             velocity_xy_mps,
+            range_m: None,
         }
     }
 }
