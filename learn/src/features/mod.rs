@@ -13,11 +13,14 @@ mod params;
 mod patch;
 mod reflection_map;
 mod render;
+mod sampler;
 mod samples;
 mod sampling;
 mod slice;
+mod spread_kernel;
 mod sweep_features;
 pub mod synthetic;
+mod top_n;
 
 pub use cluster::Clusters;
 pub use csv::{Alignment, META_COLUMNS};

@@ -5,6 +5,7 @@ use rayon::prelude::*;
 
 use crate::features::beam_counts::{BAND_ROWS, BeamCounts};
 use crate::features::grid::recycled_values;
+use crate::features::spread_kernel::{Kernel, neighbour_rows, ratios, spread_row};
 
 /// Row-major values of one prior's maps on the counts' window.
 #[derive(Debug)]
@@ -57,28 +58,6 @@ pub(crate) fn reflection_and_difference(
         band_pass(b, [prev, curr], priors, kernel, &mut maps);
     });
     outputs
-}
-
-/// The spreading kernel `[side, centre, side]` in f32, like the counts.
-#[derive(Debug, Clone, Copy)]
-struct Kernel {
-    side: f32,
-    centre: f32,
-}
-
-impl Kernel {
-    fn new(spread: f64) -> Self {
-        let side = spread as f32;
-        Self {
-            side,
-            centre: 1.0 - 2.0 * side,
-        }
-    }
-
-    /// `centre · here + side · (a + b)`.
-    fn apply(self, here: f32, a: f32, b: f32) -> f32 {
-        self.centre * here + self.side * (a + b)
-    }
 }
 
 /// Fills band `b` of every prior's maps (`maps[k]` belongs to `priors[k]`).
@@ -157,60 +136,6 @@ fn band_pass(
                 *d = vc - vp;
             }
         }
-    }
-}
-
-/// Rows `k`, `k + 1`, `k + 2` of a buffer of rows of `width` values.
-fn neighbour_rows(v: &[f32], k: usize, width: usize) -> [&[f32]; 3] {
-    [0, 1, 2].map(|dk| &v[(k + dk) * width..(k + dk + 1) * width])
-}
-
-/// Spreads columns `lo ..` of one count row along x into `out` (counts beyond the row are 0).
-fn spread_row(kernel: Kernel, row: &[f32], lo: usize, out: &mut [f32]) {
-    let at = |x: usize| row.get(x).copied().unwrap_or(0.0);
-    let edge = |x: usize| kernel.apply(at(x), x.checked_sub(1).map_or(0.0, at), at(x + 1));
-    let width = out.len();
-    if width <= 2 {
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = edge(lo + i);
-        }
-        return;
-    }
-    out[0] = edge(lo);
-    out[width - 1] = edge(lo + width - 1);
-    // The interior as three shifted slices, which the compiler vectorises.
-    let (left, here, right) = (
-        &row[lo..lo + width - 2],
-        &row[lo + 1..lo + width - 1],
-        &row[lo + 2..lo + width],
-    );
-    for (((o, &l), &h), &r) in out[1..width - 1].iter_mut().zip(left).zip(here).zip(right) {
-        *o = kernel.apply(h, l, r);
-    }
-}
-
-/// Spreads the x-spread hits and misses of a row along y (`[below, here, above]` each) and
-/// writes hits / (hits + misses) per cell, NaN where no mass arrived (thesis Eq. 2.8).
-fn ratios(kernel: Kernel, hits: [&[f32]; 3], misses: [&[f32]; 3], out: &mut [f64]) {
-    let [hb, hh, ha] = hits;
-    let [mb, mh, ma] = misses;
-    let h = hh
-        .iter()
-        .zip(hb)
-        .zip(ha)
-        .map(|((&h, &b), &a)| kernel.apply(h, b, a));
-    let m = mh
-        .iter()
-        .zip(mb)
-        .zip(ma)
-        .map(|((&h, &b), &a)| kernel.apply(h, b, a));
-    for ((o, h), m) in out.iter_mut().zip(h).zip(m) {
-        let total = f64::from(h) + f64::from(m);
-        *o = if total > 1e-9 {
-            f64::from(h) / total
-        } else {
-            f64::NAN
-        };
     }
 }
 

@@ -1,0 +1,150 @@
+//! One task of the training-sample draw (thesis 3.1.1-3.1.2): a run of consecutive sweep pairs,
+//! each sweep read and sliced once, each pair's beams traced once for every prior, every
+//! candidate offered to each prior's draw.
+
+use std::cmp::Reverse;
+
+use patchflow_dataset::{SequenceReader, Sweep};
+
+use crate::features::difference_map::MapPair;
+use crate::features::gabor::GaborBank;
+use crate::features::patch::Patch;
+use crate::features::samples::Sample;
+use crate::features::sampling::{DrawKey, hashed_uniform, name_hash};
+use crate::features::slice::HeightSlice;
+use crate::features::sweep_features::{FeatureKind, SweepFeatures};
+use crate::features::top_n::TopN;
+use crate::{FeatureParams, LearnError, Result};
+
+/// Consecutive sweep pairs of one sequence handled by one task: sequence number and the range of
+/// current sweep indices. Neighbouring pairs share a sweep, which is read and sliced once.
+pub(crate) type Run = (usize, std::ops::Range<usize>);
+/// Where a candidate lies in the dataset: sequence number, sweep, point. Ties of draw keys go to
+/// the earlier candidate.
+type Position = (usize, u32, usize);
+/// The rank of a candidate in a draw.
+pub(crate) type Rank = (DrawKey, Reverse<Position>);
+/// How many candidates were seen and, per prior, the best of them so far.
+pub(crate) type Draws = (usize, Vec<TopN<Rank, Sample>>);
+
+/// Both tasks' candidate counts and, per prior, the `n` best of both.
+pub(crate) fn merge((na, a): Draws, (nb, b): Draws) -> Draws {
+    (
+        na + nb,
+        a.into_iter().zip(b).map(|(a, b)| a.merge(b)).collect(),
+    )
+}
+
+/// What every task of one collection shares.
+pub(crate) struct Sampler<'a> {
+    pub(crate) readers: &'a [SequenceReader],
+    pub(crate) params: &'a FeatureParams,
+    pub(crate) priors: &'a [f64],
+    pub(crate) kind: FeatureKind,
+    pub(crate) seed: u64,
+    pub(crate) gabor: GaborBank,
+}
+
+impl Sampler<'_> {
+    /// Offers every candidate of a run of sweep pairs to the draws.
+    pub(crate) fn run(
+        &self,
+        (seq, range): &Run,
+        mut draws: Draws,
+        tick: &impl Fn(),
+    ) -> Result<Draws> {
+        let reader = &self.readers[*seq];
+        let name = &reader.info().name;
+        let name_key = name_hash(name);
+        let (_, mut prev) = self.slice(reader, range.start - 1)?;
+        for t in range.clone() {
+            let (curr_sweep, curr) = self.slice(reader, t)?;
+            // 2.1.1-2.1.2 for every prior, the beams traced once.
+            let maps = MapPair::build_for_priors(&prev, &curr, self.params, self.priors);
+            let features: Vec<SweepFeatures> = maps
+                .into_iter()
+                .map(|m| SweepFeatures::without_clusters(&curr, m, self.params, self.gabor.clone()))
+                .collect();
+            let Some(first) = features.first() else {
+                break;
+            };
+            for (i, _) in moving_points(first, &curr_sweep) {
+                draws.0 += 1;
+                let point = first.points()[i].index;
+                let u = hashed_uniform(
+                    self.seed,
+                    &[name_key, u64::from(curr_sweep.index), point as u64],
+                );
+                let position = (*seq, curr_sweep.index, point);
+                for (f, draw) in features.iter().zip(&mut draws.1) {
+                    // 3.1.2: the weight is the motion the heading patch shows (Eq. 3.1).
+                    let heading = f.heading_patch(i);
+                    let weight = heading.mean_abs_difference();
+                    let rank = (DrawKey::new(weight, u), Reverse(position));
+                    if draw.accepts(&rank)
+                        && let Some(sample) =
+                            sample_at(f, &curr_sweep, i, &heading, weight, self.kind, name)
+                    {
+                        draw.push(rank, sample);
+                    }
+                }
+            }
+            prev = curr;
+            tick();
+        }
+        Ok(draws)
+    }
+
+    /// Reads sweep `t` of a sequence and cuts it to the height slice (thesis 2.1.1).
+    fn slice(&self, reader: &SequenceReader, t: usize) -> Result<(Sweep, HeightSlice)> {
+        let sweep = reader.read_sweep(t)?;
+        let slice = HeightSlice::cut(&sweep, self.params).map_err(|e| {
+            let file = reader.dir().join("velodyne").join(format!("{t:06}.bin"));
+            LearnError::DegenerateData(format!("{}: {e}", file.display()))
+        })?;
+        Ok((sweep, slice))
+    }
+}
+
+/// Sliced points on a moving actor whose truth is in the sweep: `(point, actor id)`.
+fn moving_points<'a>(
+    features: &'a SweepFeatures,
+    curr: &'a Sweep,
+) -> impl Iterator<Item = (usize, u16)> + 'a {
+    features.points().iter().enumerate().filter_map(|(i, p)| {
+        let label = curr.labels.get(p.index)?;
+        let actor = label.instance();
+        (label.is_moving() && curr.objects.iter().any(|o| o.id == actor)).then_some((i, actor))
+    })
+}
+
+/// The sample of sliced point `i` with its heading patch (thesis 3.1.1 targets, 2.2.2 patches).
+fn sample_at(
+    features: &SweepFeatures,
+    curr: &Sweep,
+    i: usize,
+    heading: &Patch,
+    weight: f64,
+    kind: FeatureKind,
+    sequence: &str,
+) -> Option<Sample> {
+    let point = features.points()[i].index;
+    let actor = curr.labels.get(point)?.instance();
+    let truth = curr.objects.iter().find(|o| o.id == actor)?;
+    let bearing_rad = features.bearing_rad(i);
+    let relative = truth.heading_rad - bearing_rad;
+    Some(Sample {
+        sequence: sequence.to_owned(),
+        scan: curr.index,
+        point,
+        actor,
+        weight,
+        bearing_rad,
+        sin_rel: relative.sin(),
+        cos_rel: relative.cos(),
+        heading_rad: truth.heading_rad,
+        speed_mps: truth.speed_mps,
+        heading_features: features.feature_of(heading, kind),
+        speed_features: features.feature_of(&features.speed_patch(i, truth.heading_rad), kind),
+    })
+}
