@@ -58,16 +58,8 @@ fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
     assert_eq!(situation["scans"], 13, "{metrics}");
     let methods = situation["methods"].as_object().unwrap();
     let names: Vec<&str> = methods.keys().map(String::as_str).collect();
-    for name in [
-        "SPGP-ALL",
-        "SPGP-BEST",
-        "SPGP-HET-ALL",
-        "SPGP-HET-BEST",
-        "KF",
-        "ICP",
-        "KF-AUTO",
-        "ICP-AUTO",
-    ] {
+    // The eight methods of SPEC §6.
+    for name in patchflow_eval::CANONICAL_METHODS {
         assert!(names.contains(&name), "{name} missing from {names:?}");
         let m = &methods[name];
         for key in [
