@@ -7,14 +7,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::{
-    CvParams, GpMethod, StageTimer, method_prefix, write_cv_report, write_report,
-};
+use patchflow_eval::{CvParams, StageTimer, method_prefix, write_cv_report, write_report};
 use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 use crate::cv::{collect_samples, cv_with_samples};
-use crate::evaluate::evaluate_with_bar;
+use crate::evaluate::{evaluate_with_bar, gp_methods};
 
 /// Arguments of `patchflow bench`.
 #[derive(Debug, clap::Args)]
@@ -125,13 +123,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     })?;
 
     // 5. Every method on every situation (thesis 4.4).
-    let methods: Vec<GpMethod<'_>> = estimators
-        .iter()
-        .map(|e| GpMethod {
-            prefix: method_prefix(e.gp_kind()),
-            estimator: e,
-        })
-        .collect();
+    let methods = gp_methods(&estimators)?;
     let (mut report, perception_secs) = stage(&mut timer, "evaluate situations", || {
         evaluate_with_bar(&situations, &methods)
     })?;
