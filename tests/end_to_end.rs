@@ -46,9 +46,10 @@ fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
             estimator: e,
         })
         .collect();
-    let (report, perception_secs) =
+    let (report, perception) =
         evaluate_dataset(&dataset, &methods, &BaselineParams::default(), &|| {}).unwrap();
-    assert!(perception_secs > 0.0);
+    assert!(perception.maps_secs > 0.0 && perception.estimate_secs > 0.0);
+    assert!(perception.target_points > 0.0);
     let out = dir.path().join("report");
     let files = write_report(&report, &out).unwrap();
 

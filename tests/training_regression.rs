@@ -8,11 +8,15 @@
 
 use patchflow_eval::{CvGp, CvParams, cross_validate};
 
-/// Recorded on the commit that added this test (see the module docs).
-/// Measured 9.75° with seed 5 (seeds 6 and 7: 9.85°, 11.35°), 2026-11-22.
-const HEADING_RMSE_BOUND_DEG: f64 = 12.0;
-/// Measured 0.504 m/s with seed 5 (seeds 6 and 7: 0.502, 0.527 m/s), 2026-11-22.
-const SPEED_RMSE_BOUND_MPS: f64 = 0.60;
+/// Re-recorded when training began to use mirror images and jittered speed alignments
+/// (2026-11-22, second session): measured 27.68° with seed 5 (seeds 6 and 7: 25.26°, 27.85°).
+/// Before that change: 9.75°; this scene's cars all pass on one side, which a lopsided training
+/// set learned as a prior and the mirror images take away (on the benchmark's nine tracks the
+/// cross-validated error moved only from 28.3° to 30.5°, while situations 3 and 5 improved).
+const HEADING_RMSE_BOUND_DEG: f64 = 31.0;
+/// Measured 1.040 m/s with seed 5 (seeds 6 and 7: 0.858, 0.961 m/s); before the jittered speed
+/// alignments (test patches are jittered too) 0.504 m/s.
+const SPEED_RMSE_BOUND_MPS: f64 = 1.20;
 
 #[test]
 fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
@@ -30,6 +34,7 @@ fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
         max_iters: 60,
         priors: vec![0.5],
         seed: 5,
+        mirror_images: true,
     };
     let report = cross_validate(&dataset, &params, &|_, _| {}).unwrap();
     let row = report

@@ -12,6 +12,7 @@ use crate::baselines::{BaselineParams, run_all_baselines};
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::observation::{ClusterObservation, ScanObservation};
+use crate::perception_timing::PerceptionTiming;
 use crate::result::{SituationResult, TruthAtScan};
 
 /// A trained estimator under the method prefix it reports as (`SPGP`, `SPGP-HET`, `FULL-GP`).
@@ -37,8 +38,8 @@ pub fn method_prefix(kind: GpKind) -> &'static str {
 pub struct SituationRun {
     /// Truth and every method's estimates.
     pub result: SituationResult,
-    /// Mean seconds per scan of maps, clusters, patches and GP prediction for the target.
-    pub perception_secs_per_scan: f64,
+    /// Per-scan perception cost of every scan (maps and clusters; prediction per estimator).
+    pub perception: Vec<PerceptionTiming>,
 }
 
 /// What one scan yields before the baselines run over the whole sequence.
@@ -46,7 +47,7 @@ struct ScanOutcome {
     observation: ScanObservation,
     truth: TruthAtScan,
     gp: Vec<ClusterEstimate>,
-    perception_secs: f64,
+    perception: PerceptionTiming,
 }
 
 /// Evaluates every method on one situation sequence. Scan `k` of the result is sweep `k + 1`:
@@ -90,8 +91,7 @@ pub fn evaluate_situation(
         estimates.insert(format!("{}-BEST", method.prefix), best);
     }
     let scans = outcomes.len();
-    let perception_secs_per_scan =
-        outcomes.iter().map(|o| o.perception_secs).sum::<f64>() / scans.max(1) as f64;
+    let perception = outcomes.iter().map(|o| o.perception).collect();
     let result = SituationResult {
         name,
         scans,
@@ -99,10 +99,7 @@ pub fn evaluate_situation(
         methods: estimates.into_iter().collect::<BTreeMap<_, _>>(),
     };
     result.validate()?;
-    Ok(SituationRun {
-        result,
-        perception_secs_per_scan,
-    })
+    Ok(SituationRun { result, perception })
 }
 
 /// One scan: maps and clusters (thesis 2.1-2.2), the oracle target cluster, GP estimates for it.
@@ -120,12 +117,14 @@ fn evaluate_scan(
     })?;
     let start = std::time::Instant::now();
     let features = SweepFeatures::compute(&previous, &current, params)?;
+    let maps_secs = start.elapsed().as_secs_f64();
     let [sx, sy] = features.sensor_xy();
     let truth = TruthAtScan {
         range_m: Some((target.centre_m[0] - sx).hypot(target.centre_m[1] - sy)),
         ..TruthAtScan::from_velocity(index, [target.velocity_mps[0], target.velocity_mps[1]])
     };
     let target_cluster = cluster_with_most_points_of(&features, &current, target.id);
+    let start = std::time::Instant::now();
     let mut gp = Vec::with_capacity(methods.len());
     for method in methods {
         let estimate = match target_cluster {
@@ -147,7 +146,11 @@ fn evaluate_scan(
         };
         gp.push(estimate);
     }
-    let perception_secs = start.elapsed().as_secs_f64();
+    let perception = PerceptionTiming {
+        maps_secs,
+        estimate_secs: start.elapsed().as_secs_f64() / methods.len().max(1) as f64,
+        target_points: target_cluster.map_or(0, |c| features.clusters().members(c).len()) as f64,
+    };
     let observation = ScanObservation {
         scan: index,
         stamp_secs: current.stamp_secs,
@@ -159,7 +162,7 @@ fn evaluate_scan(
         observation,
         truth,
         gp,
-        perception_secs,
+        perception,
     })
 }
 
@@ -233,16 +236,15 @@ pub fn evaluate_dataset(
     methods: &[GpMethod<'_>],
     baselines: &BaselineParams,
     on_scan: &(dyn Fn() + Sync),
-) -> Result<(crate::BenchmarkReport, f64), EvalError> {
+) -> Result<(crate::BenchmarkReport, PerceptionTiming), EvalError> {
     let mut report = crate::BenchmarkReport::default();
     let mut perception = Vec::new();
     for name in situation_names(dataset)? {
         let run = evaluate_situation(&dataset.sequence(&name)?, methods, baselines, on_scan)?;
-        perception.push(run.perception_secs_per_scan);
+        perception.extend(run.perception);
         report.situations.push(run.result);
     }
-    let mean_perception = perception.iter().sum::<f64>() / perception.len().max(1) as f64;
-    Ok((report, mean_perception))
+    Ok((report, PerceptionTiming::mean(&perception)))
 }
 
 /// Number of scans [`evaluate_dataset`] will evaluate (every sweep but the first of each situation).

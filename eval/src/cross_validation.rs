@@ -6,8 +6,10 @@
 //! the Gabor features of the same samples are the bank's responses to those patches, so both
 //! features are judged on the same points. Folds are a seeded shuffle of the samples. RMSEs are
 //! averaged over the folds as in the thesis. "Low variance" (thesis 4.3.1): a test patch whose
-//! predicted variance is more than one standard deviation below the mean of the fold's predicted
-//! variances, for the heading on both the sine and the cosine GP.
+//! predicted log variance is more than one standard deviation below the mean of the fold's
+//! predicted log variances, for the heading on both the sine and the cosine GP. Training folds include the
+//! mirror images of their samples when the estimator trains with them (`mirror_images`); test
+//! folds hold drawn samples only, and a sample's mirror never serves to test it.
 
 use nalgebra::{DMatrix, DVector};
 use patchflow_dataset::Dataset;
@@ -37,6 +39,8 @@ pub struct CvParams {
     pub priors: Vec<f64>,
     /// Seed of sampling, folds and GP initialisation.
     pub seed: u64,
+    /// Train each fold on its samples and their mirror images, as `EstimatorParams` does.
+    pub mirror_images: bool,
 }
 
 impl Default for CvParams {
@@ -48,6 +52,7 @@ impl Default for CvParams {
             max_iters: 200,
             priors: vec![0.01, 0.5],
             seed: 0,
+            mirror_images: true,
         }
     }
 }
@@ -112,18 +117,47 @@ pub fn cross_validate_samples(
         let feature_params = FeatureParams::with_prior(prior);
         let folds = fold_assignment(set.samples.len(), params.folds, params.seed);
         let gabor = GaborBank::new(&feature_params.gabor, feature_params.cell_m);
+        let mirrored = params.mirror_images.then(|| set.mirror_images());
         for feature in [CvFeature::Patch, CvFeature::Gabor] {
-            let heading_x = features_of(set, feature, &gabor, |s| &s.heading_features);
-            let speed_x = features_of(set, feature, &gabor, |s| &s.speed_features);
+            let fold_data = |set: &SampleSet| FoldData {
+                heading_x: features_of(set, feature, &gabor, |s| &s.heading_features),
+                speed_x: features_of(set, feature, &gabor, |s| &s.speed_features),
+                sin: set
+                    .samples
+                    .iter()
+                    .map(|s| s.sin_rel)
+                    .collect::<Vec<_>>()
+                    .into(),
+                cos: set
+                    .samples
+                    .iter()
+                    .map(|s| s.cos_rel)
+                    .collect::<Vec<_>>()
+                    .into(),
+                speed: set
+                    .samples
+                    .iter()
+                    .map(|s| s.speed_mps)
+                    .collect::<Vec<_>>()
+                    .into(),
+            };
+            let (data, mirror) = (fold_data(set), mirrored.as_ref().map(fold_data));
             // The thesis judges speed on map patches only, with the prior that served heading best (0.5).
             let with_speed = feature == CvFeature::Patch && (prior - 0.5).abs() < 1e-12;
             for gp in [CvGp::Spgp, CvGp::SpgpHet] {
                 let mut acc = FoldAccumulator::default();
                 for fold in 0..params.folds {
                     let split = Split::new(&folds, fold);
-                    acc.add_heading(heading_fold(set, &heading_x, &split, gp, params)?);
+                    let fold = Fold {
+                        data: &data,
+                        mirror: mirror.as_ref(),
+                        split: &split,
+                        gp,
+                        params,
+                    };
+                    acc.add_heading(fold.heading()?);
                     if with_speed {
-                        acc.add_speed(speed_fold(set, &speed_x, &split, gp, params)?);
+                        acc.add_speed(fold.speed()?);
                     }
                     done += 1;
                     progress(done, total);
@@ -133,10 +167,15 @@ pub fn cross_validate_samples(
         }
     }
     let samples = sets.first().map_or(0, |s| s.samples.len());
-    let notes = vec![format!(
+    let mut notes = vec![format!(
         "{} folds over {} importance-sampled patches per prior, {} pseudo-inputs, at most {} optimiser iterations per GP, seed {}.",
         params.folds, samples, params.pseudo_inputs, params.max_iters, params.seed
     )];
+    if params.mirror_images {
+        notes.push(
+            "Each GP trains on its folds' samples and their mirror images across the line of sight; tests use drawn samples only.".to_owned(),
+        );
+    }
     Ok(CvReport {
         folds: params.folds,
         rows,
@@ -197,28 +236,6 @@ fn features_of(
     x
 }
 
-fn fit_predict(
-    x: &DMatrix<f64>,
-    y: &DVector<f64>,
-    split: &Split,
-    gp: CvGp,
-    params: &CvParams,
-    seed: u64,
-) -> Result<GpPrediction, EvalError> {
-    let kind = match gp {
-        CvGp::Spgp => GpKind::Spgp,
-        CvGp::SpgpHet => GpKind::SpgpHet,
-    };
-    let x_train = x.select_rows(&split.train);
-    let y_train = y.select_rows(&split.train);
-    let model = GpParams::new(kind)
-        .pseudo_inputs(params.pseudo_inputs.min(split.train.len()))
-        .max_iters(params.max_iters)
-        .seed(seed)
-        .fit(&x_train, &y_train)?;
-    Ok(model.predict(&x.select_rows(&split.test))?)
-}
-
 /// Per-test-sample errors of one fold and which samples count as low-variance.
 struct FoldErrors {
     errors: Vec<f64>,
@@ -236,63 +253,107 @@ impl FoldErrors {
     }
 }
 
-fn heading_fold(
-    set: &SampleSet,
-    x: &DMatrix<f64>,
-    split: &Split,
+/// Inputs and targets of one sample set (the drawn samples, or their mirror images).
+struct FoldData {
+    heading_x: DMatrix<f64>,
+    speed_x: DMatrix<f64>,
+    sin: DVector<f64>,
+    cos: DVector<f64>,
+    speed: DVector<f64>,
+}
+
+/// One fold of one configuration: train on the training split (and its mirror images), test on
+/// the test split.
+struct Fold<'a> {
+    data: &'a FoldData,
+    mirror: Option<&'a FoldData>,
+    split: &'a Split,
     gp: CvGp,
-    params: &CvParams,
-) -> Result<FoldErrors, EvalError> {
-    let sin = DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.sin_rel));
-    let cos = DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.cos_rel));
-    let sin_pred = fit_predict(x, &sin, split, gp, params, params.seed.wrapping_add(1))?;
-    let cos_pred = fit_predict(x, &cos, split, gp, params, params.seed.wrapping_add(2))?;
-    let errors = split
-        .test
-        .iter()
-        .enumerate()
-        .map(|(k, &i)| {
-            let predicted = sin_pred.mean[k].atan2(cos_pred.mean[k]);
-            let truth = set.samples[i].sin_rel.atan2(set.samples[i].cos_rel);
-            wrap_angle_rad(predicted - truth).to_degrees()
+    params: &'a CvParams,
+}
+
+impl Fold<'_> {
+    fn heading(&self) -> Result<FoldErrors, EvalError> {
+        let seed = self.params.seed;
+        let sin_pred = self.fit_predict(|d| (&d.heading_x, &d.sin), seed.wrapping_add(1))?;
+        let cos_pred = self.fit_predict(|d| (&d.heading_x, &d.cos), seed.wrapping_add(2))?;
+        let errors = self
+            .split
+            .test
+            .iter()
+            .enumerate()
+            .map(|(k, &i)| {
+                let predicted = sin_pred.mean[k].atan2(cos_pred.mean[k]);
+                let truth = self.data.sin[i].atan2(self.data.cos[i]);
+                wrap_angle_rad(predicted - truth).to_degrees()
+            })
+            .collect();
+        let (low_sin, low_cos) = (low_variance(&sin_pred.var_y), low_variance(&cos_pred.var_y));
+        let low_var = low_sin
+            .iter()
+            .zip(&low_cos)
+            .map(|(a, b)| *a && *b)
+            .collect();
+        Ok(FoldErrors { errors, low_var })
+    }
+
+    fn speed(&self) -> Result<FoldErrors, EvalError> {
+        let seed = self.params.seed.wrapping_add(3);
+        let predicted = self.fit_predict(|d| (&d.speed_x, &d.speed), seed)?;
+        let errors = self
+            .split
+            .test
+            .iter()
+            .enumerate()
+            .map(|(k, &i)| predicted.mean[k] - self.data.speed[i])
+            .collect();
+        Ok(FoldErrors {
+            errors,
+            low_var: low_variance(&predicted.var_y),
         })
-        .collect();
-    let (low_sin, low_cos) = (low_variance(&sin_pred.var_y), low_variance(&cos_pred.var_y));
-    let low_var = low_sin
-        .iter()
-        .zip(&low_cos)
-        .map(|(a, b)| *a && *b)
-        .collect();
-    Ok(FoldErrors { errors, low_var })
+    }
+
+    /// Fits a GP to the training rows that `pick` selects (with their mirror images) and
+    /// predicts the test rows.
+    fn fit_predict(
+        &self,
+        pick: impl Fn(&FoldData) -> (&DMatrix<f64>, &DVector<f64>),
+        seed: u64,
+    ) -> Result<GpPrediction, EvalError> {
+        let kind = match self.gp {
+            CvGp::Spgp => GpKind::Spgp,
+            CvGp::SpgpHet => GpKind::SpgpHet,
+        };
+        let train = &self.split.train;
+        let (x, y) = pick(self.data);
+        let (mut x_train, mut y_train) = (x.select_rows(train), y.select_rows(train));
+        if let Some(mirror) = self.mirror {
+            let (xm, ym) = pick(mirror);
+            let n = train.len();
+            x_train = x_train.insert_rows(n, n, 0.0);
+            x_train.rows_mut(n, n).copy_from(&xm.select_rows(train));
+            y_train = y_train.insert_rows(n, n, 0.0);
+            y_train.rows_mut(n, n).copy_from(&ym.select_rows(train));
+        }
+        let model = GpParams::new(kind)
+            .pseudo_inputs(self.params.pseudo_inputs.min(x_train.nrows()))
+            .max_iters(self.params.max_iters)
+            .seed(seed)
+            .fit(&x_train, &y_train)?;
+        Ok(model.predict(&x.select_rows(&self.split.test))?)
+    }
 }
 
-fn speed_fold(
-    set: &SampleSet,
-    x: &DMatrix<f64>,
-    split: &Split,
-    gp: CvGp,
-    params: &CvParams,
-) -> Result<FoldErrors, EvalError> {
-    let speed = DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.speed_mps));
-    let predicted = fit_predict(x, &speed, split, gp, params, params.seed.wrapping_add(3))?;
-    let errors = split
-        .test
-        .iter()
-        .enumerate()
-        .map(|(k, &i)| predicted.mean[k] - set.samples[i].speed_mps)
-        .collect();
-    Ok(FoldErrors {
-        errors,
-        low_var: low_variance(&predicted.var_y),
-    })
-}
-
-/// Variance more than one standard deviation below the mean of the variances (thesis 4.3.1).
+/// Variance more than one standard deviation below the mean of the variances (thesis 4.3.1:
+/// "we fit a Gaussian distribution to the predicted variances"). The Gaussian is fitted to the
+/// logarithms: variances are positive and right-skewed, and for map patches a few large ones
+/// pull the raw mean − 1 std below the smallest variance, which would leave the subset empty.
 fn low_variance(var: &DVector<f64>) -> Vec<bool> {
-    let n = var.len().max(1) as f64;
-    let mean = var.iter().sum::<f64>() / n;
-    let std = (var.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
-    var.iter().map(|v| *v < mean - std).collect()
+    let log_var: Vec<f64> = var.iter().map(|v| v.max(f64::MIN_POSITIVE).ln()).collect();
+    let n = log_var.len().max(1) as f64;
+    let mean = log_var.iter().sum::<f64>() / n;
+    let std = (log_var.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+    log_var.iter().map(|v| *v < mean - std).collect()
 }
 
 /// Per-fold RMSEs, averaged at the end as in the thesis.
@@ -334,5 +395,27 @@ impl FoldAccumulator {
             n_test: self.n_test,
             n_low_var: self.n_low_var,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn right_skewed_variances_still_have_a_low_variance_subset() {
+        // Log-normal variances: raw mean − 1 std of these lies below the smallest one.
+        let z = [-2.0, -1.0, -1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 2.0];
+        let var = DVector::<f64>::from_iterator(z.len(), z.iter().map(|z: &f64| z.exp()));
+        assert!(var.mean() - var.variance().sqrt() < var.min());
+        let low = low_variance(&var);
+        let expected: Vec<bool> = z.iter().map(|z| *z < -1.5).collect();
+        assert_eq!(low, expected);
+    }
+
+    #[test]
+    fn equal_variances_have_no_low_variance_subset() {
+        let low = low_variance(&DVector::from_element(5, 0.3));
+        assert!(low.iter().all(|l| !l));
     }
 }

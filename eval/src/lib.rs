@@ -12,6 +12,7 @@ mod kalman;
 mod method;
 mod metrics;
 mod observation;
+mod perception_timing;
 mod progress;
 mod report;
 mod result;
@@ -38,6 +39,7 @@ pub use metrics::{
     wrap_angle_rad,
 };
 pub use observation::{ClusterObservation, ScanObservation, centroid_of};
+pub use perception_timing::PerceptionTiming;
 pub use progress::{StageTimer, StageTiming, progress_bar, spinner};
 pub use report::{
     CvFeature, CvGp, CvReport, CvRow, ReportFiles, metrics_json, metrics_json_value, plot_heading,

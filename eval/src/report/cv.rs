@@ -245,8 +245,8 @@ pub(crate) fn cv_markdown(folds: usize, rows: &[CvRow], notes: &[String]) -> Str
     }
     let _ = writeln!(
         md,
-        "\n## Notes\n\n- Low variance: a test patch whose predicted variance is more than one standard \
-         deviation below the mean of the predicted variances (thesis 4.3.1); for heading, on both \
+        "\n## Notes\n\n- Low variance: a test patch whose predicted log variance is more than one standard \
+         deviation below the mean of the predicted log variances (thesis 4.3.1 fits a Gaussian to the variances; they are right-skewed, so we fit it to their logarithms); for heading, on both \
          the sine and the cosine GP."
     );
     for note in notes {

@@ -12,7 +12,7 @@ use crate::{FeatureKind, FeatureParams, GaborParams, GpKind, GpModel, LearnError
 /// Format name written into every estimator model file.
 pub const MOTION_MODEL_FORMAT: &str = "patchflow-motion-model";
 /// Version of the estimator model file this build reads and writes.
-pub const MOTION_MODEL_VERSION: u32 = 1;
+pub const MOTION_MODEL_VERSION: u32 = 2;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -40,6 +40,7 @@ struct FeatureRecord {
     prior: f64,
     spread: f64,
     cluster_gap_m: f64,
+    speed_jitter_deg: f64,
     gabor_wavelength_m: f64,
     gabor_sigma_m: f64,
     gabor_gamma: f64,
@@ -55,6 +56,7 @@ impl From<&FeatureParams> for FeatureRecord {
             prior: p.prior,
             spread: p.spread,
             cluster_gap_m: p.cluster_gap_m,
+            speed_jitter_deg: p.speed_jitter_deg,
             gabor_wavelength_m: p.gabor.wavelength_m,
             gabor_sigma_m: p.gabor.sigma_m,
             gabor_gamma: p.gabor.gamma,
@@ -72,6 +74,7 @@ impl From<FeatureRecord> for FeatureParams {
             prior: r.prior,
             spread: r.spread,
             cluster_gap_m: r.cluster_gap_m,
+            speed_jitter_deg: r.speed_jitter_deg,
             gabor: GaborParams {
                 wavelength_m: r.gabor_wavelength_m,
                 sigma_m: r.gabor_sigma_m,

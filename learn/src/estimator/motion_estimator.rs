@@ -57,6 +57,8 @@ pub struct TrainingRecord {
     pub pool_size: usize,
     /// Samples drawn.
     pub samples: usize,
+    /// Whether the GPs also saw each sample's mirror image (twice the rows).
+    pub mirror_images: bool,
     /// Pseudo-inputs per sparse GP.
     pub pseudo_inputs: usize,
     /// Seed of sampling and initialisation.
@@ -103,6 +105,15 @@ impl MotionEstimator {
                 set.samples.len()
             )));
         }
+        let drawn = set;
+        // Each sample and its mirror image across the line of sight (learn::features::mirror).
+        let mirrored;
+        let set = if params.mirror_images {
+            mirrored = set.with_mirror_images();
+            &mirrored
+        } else {
+            set
+        };
         let names = set.kind.names();
         let heading_x = rows_to_matrix(
             set.samples.iter().map(|s| s.heading_features.as_slice()),
@@ -130,8 +141,9 @@ impl MotionEstimator {
         let speed = named(gp(3).fit(&speed_x, &speed_y)?, &names, "speed");
         let training = TrainingRecord {
             sequences: Vec::new(),
-            pool_size: set.pool_size,
-            samples: set.samples.len(),
+            pool_size: drawn.pool_size,
+            samples: drawn.samples.len(),
+            mirror_images: params.mirror_images,
             pseudo_inputs: params.pseudo_inputs,
             seed: params.seed,
             seconds: start.elapsed().as_secs_f64(),

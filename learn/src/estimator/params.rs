@@ -5,7 +5,8 @@ use crate::{FeatureKind, FeatureParams, GpKind, LearnError, Result};
 /// Everything that decides how a [`MotionEstimator`](super::MotionEstimator) is trained.
 ///
 /// `Default` gives the thesis' setup: SPGP-HET on 242-value map patches, prior 0.5, 1,600
-/// importance-sampled training samples and 100 pseudo-inputs (thesis 4.3).
+/// importance-sampled training samples and 100 pseudo-inputs (thesis 4.3), plus the samples'
+/// mirror images (see [`Self::mirror_images`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct EstimatorParams {
     /// GP used for all three regressions (sin, cos of the relative heading; speed).
@@ -16,6 +17,10 @@ pub struct EstimatorParams {
     pub features: FeatureParams,
     /// Importance-sampled training samples (thesis 3.1.2: 1,600).
     pub samples: usize,
+    /// Also train on each sample's mirror image across its line of sight (2 × `samples` rows;
+    /// see `Sample::mirror_image`): balances the sides that right-hand traffic favours. `false`
+    /// is the thesis' training set.
+    pub mirror_images: bool,
     /// Pseudo-inputs per sparse GP (thesis 4.3: 100).
     pub pseudo_inputs: usize,
     /// Optimiser iteration limit per GP.
@@ -31,6 +36,7 @@ impl Default for EstimatorParams {
             feature: FeatureKind::Patch,
             features: FeatureParams::default(),
             samples: 1600,
+            mirror_images: true,
             pseudo_inputs: 100,
             max_iters: 300,
             seed: 0,

@@ -9,6 +9,7 @@ mod difference_map;
 mod gabor;
 mod grid;
 mod line;
+mod mirror;
 mod params;
 mod patch;
 mod reflection_map;

@@ -10,7 +10,7 @@ use crate::features::difference_map::MapPair;
 use crate::features::gabor::GaborBank;
 use crate::features::patch::Patch;
 use crate::features::samples::Sample;
-use crate::features::sampling::{DrawKey, hashed_uniform, name_hash};
+use crate::features::sampling::{DrawKey, hashed_normal, hashed_uniform, name_hash};
 use crate::features::slice::HeightSlice;
 use crate::features::sweep_features::{FeatureKind, SweepFeatures};
 use crate::features::top_n::TopN;
@@ -83,7 +83,7 @@ impl Sampler<'_> {
                     let rank = (DrawKey::new(weight, u), Reverse(position));
                     if draw.accepts(&rank)
                         && let Some(sample) =
-                            sample_at(f, &curr_sweep, i, &heading, weight, self.kind, name)
+                            sample_at(f, &curr_sweep, i, &heading, weight, self, name)
                     {
                         draw.push(rank, sample);
                     }
@@ -106,6 +106,9 @@ impl Sampler<'_> {
     }
 }
 
+/// Keys the speed-alignment errors apart from the draw's own uniforms.
+const SPEED_JITTER_STREAM: u64 = 0x5eed_a119_e5e5;
+
 /// Sliced points on a moving actor whose truth is in the sweep: `(point, actor id)`.
 fn moving_points<'a>(
     features: &'a SweepFeatures,
@@ -125,14 +128,22 @@ fn sample_at(
     i: usize,
     heading: &Patch,
     weight: f64,
-    kind: FeatureKind,
+    sampler: &Sampler<'_>,
     sequence: &str,
 ) -> Option<Sample> {
+    let kind = sampler.kind;
     let point = features.points()[i].index;
     let actor = curr.labels.get(point)?.instance();
     let truth = curr.objects.iter().find(|o| o.id == actor)?;
     let bearing_rad = features.bearing_rad(i);
     let relative = truth.heading_rad - bearing_rad;
+    // The speed patch follows the true heading give or take the error of an estimated one
+    // (FeatureParams::speed_jitter_deg), so the speed GP learns patches as it will meet them.
+    let alignment_error_rad = sampler.params.speed_jitter_deg.to_radians()
+        * hashed_normal(
+            sampler.seed ^ SPEED_JITTER_STREAM,
+            &[name_hash(sequence), u64::from(curr.index), point as u64],
+        );
     Some(Sample {
         sequence: sequence.to_owned(),
         scan: curr.index,
@@ -145,6 +156,9 @@ fn sample_at(
         heading_rad: truth.heading_rad,
         speed_mps: truth.speed_mps,
         heading_features: features.feature_of(heading, kind),
-        speed_features: features.feature_of(&features.speed_patch(i, truth.heading_rad), kind),
+        speed_features: features.feature_of(
+            &features.speed_patch(i, truth.heading_rad + alignment_error_rad),
+            kind,
+        ),
     })
 }

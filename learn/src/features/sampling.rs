@@ -96,6 +96,19 @@ pub(crate) fn hashed_uniform(seed: u64, parts: &[u64]) -> f64 {
     ((h >> 11) + 1) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
+/// A standard normal number fixed by a seed and an item's identity (Box–Muller over two
+/// [`hashed_uniform`]s keyed by the parts plus 1 and 2).
+pub(crate) fn hashed_normal(seed: u64, parts: &[u64]) -> f64 {
+    let mut keyed = parts.to_vec();
+    keyed.push(1);
+    let u1 = hashed_uniform(seed, &keyed);
+    if let Some(last) = keyed.last_mut() {
+        *last = 2;
+    }
+    let u2 = hashed_uniform(seed, &keyed);
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
 /// FNV-1a hash of a name, to key draws by sequence name.
 pub(crate) fn name_hash(name: &str) -> u64 {
     name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
@@ -114,6 +127,16 @@ fn splitmix64(x: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hashed_normals_have_zero_mean_and_unit_variance() {
+        let z: Vec<f64> = (0..20_000u64).map(|i| hashed_normal(3, &[i])).collect();
+        let mean = z.iter().sum::<f64>() / z.len() as f64;
+        let var = z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / z.len() as f64;
+        assert!(mean.abs() < 0.03, "mean {mean}");
+        assert!((var - 1.0).abs() < 0.05, "variance {var}");
+        assert_eq!(hashed_normal(3, &[7]), hashed_normal(3, &[7]));
+    }
     use crate::features::top_n::TopN;
     use std::cmp::Reverse;
 

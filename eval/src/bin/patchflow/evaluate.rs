@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::{
-    BaselineParams, GpMethod, evaluate_dataset, method_prefix, progress_bar, scans_to_evaluate,
-    write_report,
+    BaselineParams, GpMethod, PerceptionTiming, evaluate_dataset, method_prefix, progress_bar,
+    scans_to_evaluate, write_report,
 };
 use patchflow_learn::MotionEstimator;
 
@@ -35,12 +35,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .collect::<anyhow::Result<Vec<_>>>()?;
     let methods = gp_methods(&estimators)?;
     let dataset = Dataset::open(&args.data)?;
-    let (report, perception_secs) = evaluate_with_bar(&dataset, &methods)?;
+    let (report, perception) = evaluate_with_bar(&dataset, &methods)?;
     let files = write_report(&report, &args.out)?;
-    println!(
-        "perception (maps, clusters, patches, GP prediction): {:.1} ms per scan",
-        perception_secs * 1e3
-    );
+    println!("perception: {}", perception.summary());
     println!("wrote {}", files.report_md.display());
     Ok(())
 }
@@ -63,7 +60,7 @@ pub fn gp_methods(estimators: &[MotionEstimator]) -> anyhow::Result<Vec<GpMethod
 pub fn evaluate_with_bar(
     dataset: &Dataset,
     methods: &[GpMethod<'_>],
-) -> anyhow::Result<(patchflow_eval::BenchmarkReport, f64)> {
+) -> anyhow::Result<(patchflow_eval::BenchmarkReport, PerceptionTiming)> {
     let bar = progress_bar(scans_to_evaluate(dataset)?, "evaluating scans");
     let result = evaluate_dataset(dataset, methods, &BaselineParams::default(), &|| bar.inc(1));
     bar.finish_and_clear();
