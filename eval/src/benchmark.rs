@@ -124,6 +124,11 @@ fn evaluate_scan(
         ..TruthAtScan::from_velocity(index, [target.velocity_mps[0], target.velocity_mps[1]])
     };
     let target_cluster = cluster_with_most_points_of(&features, &current, target.id);
+    let target_points = target_cluster.map_or(0, |c| features.clusters().members(c).len());
+    let truth = TruthAtScan {
+        target_points: Some(target_points),
+        ..truth
+    };
     let start = std::time::Instant::now();
     let mut gp = Vec::with_capacity(methods.len());
     for method in methods {
@@ -149,7 +154,7 @@ fn evaluate_scan(
     let perception = PerceptionTiming {
         maps_secs,
         estimate_secs: start.elapsed().as_secs_f64() / methods.len().max(1) as f64,
-        target_points: target_cluster.map_or(0, |c| features.clusters().members(c).len()) as f64,
+        target_points: target_points as f64,
     };
     let observation = ScanObservation {
         scan: index,

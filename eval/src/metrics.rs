@@ -129,6 +129,7 @@ mod tests {
             speed_mps,
             velocity_xy_mps: [speed_mps * h.cos(), speed_mps * h.sin()],
             range_m: None,
+            target_points: None,
         }
     }
 

@@ -25,6 +25,9 @@ pub struct TruthAtScan {
     /// breaks the heading error down by it (the height slice thins out with range).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub range_m: Option<f64>,
+    /// Sliced points in the target's cluster (what ICP and the GP estimators see), when known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_points: Option<usize>,
 }
 
 impl TruthAtScan {
@@ -37,6 +40,7 @@ impl TruthAtScan {
             speed_mps: vx.hypot(vy),
             velocity_xy_mps,
             range_m: None,
+            target_points: None,
         }
     }
 }

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 
 use crate::method::ordered_methods;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
-use crate::metrics::{heading_error_deg, rmse};
+use crate::report::breakdown::breakdown_sections;
 use crate::report::files::fmt_opt;
 use crate::result::{BenchmarkReport, SituationResult};
 use crate::thesis_tables::{thesis_row, thesis_situation};
@@ -41,7 +41,7 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetr
     summary_section(&mut md, metrics);
     for ((name, scans, methods), situation) in metrics.iter().zip(&report.situations) {
         situation_section(&mut md, name, *scans, methods);
-        range_section(&mut md, situation);
+        breakdown_sections(&mut md, situation);
     }
     if let Some(cv) = &report.cv {
         // The CV tables sit one heading level below the report's title.
@@ -210,77 +210,4 @@ fn notes_section(md: &mut String, report: &BenchmarkReport) {
         "- Thesis Tables 4.13 and 4.15 print an ME above the RMSE for some GP rows, which a mean \
          absolute error cannot exceed; they are transcribed as printed."
     );
-}
-
-/// Upper edges of the range bins of [`range_section`], metres.
-const RANGE_BINS_M: [f64; 3] = [15.0, 30.0, f64::INFINITY];
-
-/// Heading RMSE of every method by the target's range: the height slice holds fewer lidar rings
-/// the farther the target, so this shows how much of an error comes from distant scans.
-fn range_section(md: &mut String, situation: &SituationResult) {
-    if situation.truth.iter().all(|t| t.range_m.is_none()) {
-        return;
-    }
-    let bin_of = |range: f64| RANGE_BINS_M.iter().position(|edge| range < *edge);
-    let _ = writeln!(md, "#### Heading RMSE (°) by the target's range\n");
-    let _ = writeln!(
-        md,
-        "| Method | under 15 m | 15-30 m | 30 m and more |\n|---|---|---|---|"
-    );
-    let names: Vec<&str> = situation.methods.keys().map(String::as_str).collect();
-    for method in ordered_methods(names) {
-        let mut errors: [Vec<f64>; 3] = Default::default();
-        for (truth, estimate) in situation.truth.iter().zip(&situation.methods[&method]) {
-            let (Some(e), Some(range)) = (estimate, truth.range_m) else {
-                continue;
-            };
-            if truth.speed_mps < MIN_SCORED_SPEED_MPS {
-                continue;
-            }
-            if let Some(bin) = bin_of(range) {
-                errors[bin].push(heading_error_deg(e.heading_rad, truth.heading_rad));
-            }
-        }
-        let cells: Vec<String> = errors
-            .iter()
-            .map(|e| match rmse(e) {
-                Some(v) => format!("{v:.2} ({})", e.len()),
-                None => "–".into(),
-            })
-            .collect();
-        let _ = writeln!(md, "| {method} | {} |", cells.join(" | "));
-    }
-    let _ = writeln!(md, "\n*Scored scans in brackets.*\n");
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::report::synthetic::synthetic_situation;
-
-    #[test]
-    fn heading_errors_are_broken_down_by_the_targets_range_when_it_is_known() {
-        let mut situation = synthetic_situation("situation3", 30, 4);
-        for (k, truth) in situation.truth.iter_mut().enumerate() {
-            truth.range_m = Some(5.0 + 1.5 * k as f64); // 5 m to 48.5 m: all three bins
-        }
-        let mut md = String::new();
-        range_section(&mut md, &situation);
-        assert!(md.contains("by the target's range"), "{md}");
-        let kf_row = md.lines().find(|l| l.starts_with("| KF |")).unwrap();
-        let counts: Vec<usize> = kf_row
-            .split('(')
-            .skip(1)
-            .map(|c| c.split(')').next().unwrap().parse().unwrap())
-            .collect();
-        assert_eq!(counts.len(), 3, "{kf_row}");
-        assert!(counts.iter().all(|&c| c > 0), "{kf_row}");
-    }
-
-    #[test]
-    fn no_range_table_is_written_without_ranges() {
-        let mut md = String::new();
-        range_section(&mut md, &synthetic_situation("situation1", 10, 1));
-        assert!(md.is_empty());
-    }
 }

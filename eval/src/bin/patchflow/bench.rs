@@ -226,7 +226,11 @@ fn notes(
         perception.summary()
     ));
     notes.push(
-        "Reading the range tables: the height slice (0.5-1.0 m above ground) holds fewer lidar rings the farther the target, so map patches of distant targets carry little motion (the thesis gives 40-50 m as the usable range, 4.1). Where the GP methods miss the thesis' pattern, compare their error below 15 m with their error beyond 30 m."
+        "Why training differs from the thesis (ARCHITECTURE.md has the measurements): with exactly aligned training speed patches, a merged heading 30-60° off made the speed GP read the car as nearly still (situation 5: per-point speed along the true heading 5.9-7.6 m/s, along the merged heading 2.1-4.2 m/s; truth 7.0), and right-hand traffic put 70 % of the drawn samples on one side of the line of sight, which the GPs learned as a prior and which misread a target crossing from the other side (situation 3 beyond 30 m: 61° heading RMSE). Training on mirror images and on speed patches aligned with a 25° heading error takes SPGP-HET-ALL from 3 to 5 situations under 25° and 1.5 m/s on our data."
+            .to_owned(),
+    );
+    notes.push(
+        "Reading the breakdown tables: the height slice (0.5-1.0 m above ground) holds fewer lidar rings the farther the target, so map patches of distant targets carry little motion (the thesis gives 40-50 m as the usable range, 4.1); and a cluster with few points fixes a rotation poorly, which is where ICP is hurt (thesis 4.4). Compare each method's error in the first and last columns."
             .to_owned(),
     );
     notes.push(
