@@ -9,7 +9,7 @@ use crate::method::ordered_methods;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
 use crate::report::breakdown::breakdown_sections;
 use crate::report::files::fmt_opt;
-use crate::result::{BenchmarkReport, SituationResult};
+use crate::result::BenchmarkReport;
 use crate::thesis_tables::{thesis_row, thesis_situation};
 
 /// Metrics of every situation, in report order: (name, scans, method → metrics).
