@@ -45,6 +45,26 @@ impl Default for EstimatorParams {
 }
 
 impl EstimatorParams {
+    /// The thesis' training set exactly: no mirror images, training speed patches aligned to the
+    /// exact true heading (`FeatureParams::speed_jitter_deg = 0`). See ARCHITECTURE.md for why
+    /// the defaults differ.
+    ///
+    /// ```
+    /// let p = patchflow_learn::EstimatorParams::thesis();
+    /// assert!(!p.mirror_images && p.features.speed_jitter_deg == 0.0);
+    /// ```
+    pub fn thesis() -> Self {
+        let defaults = Self::default();
+        Self {
+            mirror_images: false,
+            features: FeatureParams {
+                speed_jitter_deg: 0.0,
+                ..defaults.features.clone()
+            },
+            ..defaults
+        }
+    }
+
     /// Checks the parameters once, before any work.
     pub fn validate(&self) -> Result<()> {
         self.features.validate()?;

@@ -36,18 +36,29 @@ pub struct Args {
     /// Seed of sampling and initialisation.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Train on the thesis' training set exactly: no mirror images, speed patches aligned to the
+    /// exact true heading (see ARCHITECTURE.md for why the default differs).
+    #[arg(long)]
+    pub thesis_training: bool,
 }
 
 /// Runs `patchflow train`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let base = match args.thesis_training {
+        true => EstimatorParams::thesis(),
+        false => EstimatorParams::default(),
+    };
     let params = EstimatorParams {
         gp: parse_gp(&args.gp)?,
         feature: parse_feature(&args.feature)?,
-        features: FeatureParams::with_prior(args.prior),
+        features: FeatureParams {
+            prior: args.prior,
+            ..base.features.clone()
+        },
         samples: args.samples,
         pseudo_inputs: args.pseudo,
         seed: args.seed,
-        ..EstimatorParams::default()
+        ..base
     };
     let dataset = Dataset::open(&args.data)?;
     let estimator = train_with_bar(&dataset, &params)?;
