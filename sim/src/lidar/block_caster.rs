@@ -1,6 +1,8 @@
-//! Casting one azimuth block into the scene as moved to the block's instant: everything the rays
-//! of the block share is computed once (sensor origin and yaw, the rotation into the reference
-//! sensor frame, each actor's label), so the work per ray is one `cast_ray` plus a few flops.
+//! Casting one azimuth block into the scene at the block's instant: everything the rays of the
+//! block share is computed once (sensor origin and yaw, the rotation into the reference sensor
+//! frame, the movers' poses and each actor's label), so the work per ray is one `cast_ray` plus a
+//! few flops. The casters of all blocks of a sweep exist at once, so every column of the sweep
+//! can be cast in one parallel loop.
 
 use patchflow_dataset::PointLabel;
 use rand::rngs::Xoshiro256PlusPlus;
@@ -13,7 +15,7 @@ use super::intensity::intensity;
 use super::scan::{ColumnSlots, Return};
 use crate::motion::MotionState;
 use crate::scenario::LidarConfig;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneInstant};
 use crate::seed::sub_seed;
 use crate::simulation::MOVING_SPEED_MPS;
 
@@ -23,6 +25,8 @@ const MIN_RANGE_M: f32 = 0.05;
 /// What every ray of one azimuth block shares.
 pub(super) struct BlockCaster<'a> {
     scene: &'a Scene,
+    /// The scene's movers at the block's instant.
+    instant: &'a SceneInstant,
     table: &'a FiringTable,
     time_in_sweep_secs: f32,
     /// Sensor origin at the block's instant, world frame.
@@ -35,7 +39,6 @@ pub(super) struct BlockCaster<'a> {
     yaw_since_reference_cos_sin: (f32, f32),
     /// Label of every actor at the block's instant (moving class once it moves).
     actor_labels: Vec<PointLabel>,
-    states: &'a [MotionState],
     max_range_m: f32,
     noise_std_m: f32,
     dropout: f32,
@@ -44,11 +47,14 @@ pub(super) struct BlockCaster<'a> {
 }
 
 impl<'a> BlockCaster<'a> {
-    /// The shared facts of a block cast at `time_in_sweep_secs`, with the scene already moved to
-    /// that instant; `ego` is the ego state then and `ego_ref` the ego state at the sweep start
-    /// (the reference sensor frame: above the ego centre at the mount height, yawed with it).
+    /// The shared facts of a block cast at `time_in_sweep_secs`, with `instant` the scene's
+    /// movers then (its ray-cast tree spanning that instant); `ego` is the ego state then and
+    /// `ego_ref` the ego state at the sweep start (the reference sensor frame: above the ego
+    /// centre at the mount height, yawed with it).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn new(
         scene: &'a Scene,
+        instant: &'a SceneInstant,
         table: &'a FiringTable,
         config: &LidarConfig,
         time_in_sweep_secs: f64,
@@ -62,7 +68,7 @@ impl<'a> BlockCaster<'a> {
         let dx = ego.position_m[0] - ego_ref.position_m[0];
         let dy = ego.position_m[1] - ego_ref.position_m[1];
         let mount_m = config.mount_height_m as f32;
-        let states = scene.actor_states();
+        let states = instant.actor_states();
         let actor_labels = scene
             .actors()
             .iter()
@@ -71,6 +77,7 @@ impl<'a> BlockCaster<'a> {
             .collect();
         Self {
             scene,
+            instant,
             table,
             time_in_sweep_secs: time_in_sweep_secs as f32,
             origin: Vector::new(ego.position_m[0] as f32, ego.position_m[1] as f32, mount_m),
@@ -82,7 +89,6 @@ impl<'a> BlockCaster<'a> {
             ),
             yaw_since_reference_cos_sin: (cd as f32, sd as f32),
             actor_labels,
-            states,
             max_range_m: config.max_range_m as f32,
             noise_std_m: config.range_noise_std_m as f32,
             dropout: config.dropout_probability as f32,
@@ -96,11 +102,13 @@ impl<'a> BlockCaster<'a> {
     /// does not depend on which thread casts the column.
     pub(super) fn cast_column(&self, j: usize, out: &mut ColumnSlots<'_>) {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(sub_seed(self.noise_key, j as u64));
-        let qp = self.scene.query_pipeline();
+        // Built per column: a Rapier query pipeline is not `Sync` (its filter may hold a closure).
+        let query = self.scene.query_at(self.instant);
+        let states = self.instant.actor_states();
         for &ray in self.table.column(j) {
             let dir = rotate_z(self.yaw_cos_sin, ray);
             let Some((handle, toi)) =
-                qp.cast_ray(&Ray::new(self.origin, dir), self.max_range_m, true)
+                query.cast_ray(&Ray::new(self.origin, dir), self.max_range_m, true)
             else {
                 continue;
             };
@@ -115,7 +123,7 @@ impl<'a> BlockCaster<'a> {
             } else {
                 0.0
             };
-            let Some(surface) = self.scene.surface(handle) else {
+            let Some(surface) = query.surface(handle) else {
                 continue;
             };
             let hit = self.origin + dir * toi;
@@ -124,7 +132,7 @@ impl<'a> BlockCaster<'a> {
                 + rotate_z(self.yaw_since_reference_cos_sin, ray) * range_m;
             let (label, flow_mps) = match surface
                 .actor
-                .and_then(|a| Some((*self.actor_labels.get(a)?, self.states.get(a)?)))
+                .and_then(|a| Some((*self.actor_labels.get(a)?, states.get(a)?)))
             {
                 Some((label, state)) => {
                     let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);

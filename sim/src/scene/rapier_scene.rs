@@ -8,7 +8,7 @@ use rapier3d::prelude::*;
 
 use super::collider_tables::ColliderTables;
 use super::ray_tree::{QueryTree, RayTree};
-use super::{SceneActor, Surface};
+use super::{InstantQuery, SceneActor, SceneInstant, Surface};
 use crate::error::{Result, SimError};
 use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
@@ -145,6 +145,35 @@ impl Scene {
     /// once per sweep, so a sweep's cost does not depend on what the scene did before.
     pub fn rebuild_ray_tree(&mut self) {
         self.ray_tree.rebuild(&self.colliders);
+    }
+
+    /// The movers of the scene at `t_secs` (from their trajectories; the scene is not moved).
+    pub fn instant(&self, t_secs: f64) -> SceneInstant {
+        SceneInstant::new(
+            t_secs,
+            (&self.ego, &self.actors),
+            (&self.bodies, &self.colliders),
+            &self.surfaces,
+            &self.actor_surfaces,
+        )
+    }
+
+    /// Rebuilds the ray-cast tree from scratch with every mover's leaf covering it as last moved
+    /// and at each of `instants`, so [`Scene::query_at`] gives exact hits at any of them.
+    pub fn rebuild_ray_tree_spanning(&mut self, instants: &[SceneInstant]) {
+        self.ray_tree.rebuild_spanning(&self.colliders, instants);
+    }
+
+    /// Ray queries against the scene at `instant` through the ray-cast tree, ego car excluded;
+    /// the tree must have been built spanning `instant` ([`Scene::rebuild_ray_tree_spanning`]).
+    pub fn query_at<'a>(&'a self, instant: &'a SceneInstant) -> InstantQuery<'a> {
+        InstantQuery::new(self, instant)
+    }
+
+    /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
+    #[inline]
+    pub(super) fn mover_of_collider(&self, index: u32) -> Option<usize> {
+        self.ray_tree.mover_of(index)
     }
 
     /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego
