@@ -15,7 +15,7 @@ use super::intensity::intensity;
 use super::scan::{ColumnSlots, Return};
 use crate::motion::MotionState;
 use crate::scenario::LidarConfig;
-use crate::scene::{Scene, SceneInstant};
+use crate::scene::{InstantQuery, Scene, SceneInstant};
 use crate::seed::sub_seed;
 use crate::simulation::MOVING_SPEED_MPS;
 
@@ -24,9 +24,8 @@ const MIN_RANGE_M: f32 = 0.05;
 
 /// What every ray of one azimuth block shares.
 pub(super) struct BlockCaster<'a> {
-    scene: &'a Scene,
-    /// The scene's movers at the block's instant.
-    instant: &'a SceneInstant,
+    /// Ray queries against the scene at the block's instant.
+    query: InstantQuery<'a>,
     table: &'a FiringTable,
     time_in_sweep_secs: f32,
     /// Sensor origin at the block's instant, world frame.
@@ -76,8 +75,7 @@ impl<'a> BlockCaster<'a> {
             .map(|(a, s)| PointLabel::new(a.class.semantic(s.speed_mps >= MOVING_SPEED_MPS), a.id))
             .collect();
         Self {
-            scene,
-            instant,
+            query: scene.query_at(instant),
             table,
             time_in_sweep_secs: time_in_sweep_secs as f32,
             origin: Vector::new(ego.position_m[0] as f32, ego.position_m[1] as f32, mount_m),
@@ -102,9 +100,8 @@ impl<'a> BlockCaster<'a> {
     /// does not depend on which thread casts the column.
     pub(super) fn cast_column(&self, j: usize, out: &mut ColumnSlots<'_>) {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(sub_seed(self.noise_key, j as u64));
-        // Built per column: a Rapier query pipeline is not `Sync` (its filter may hold a closure).
-        let query = self.scene.query_at(self.instant);
-        let states = self.instant.actor_states();
+        let query = &self.query;
+        let states = query.actor_states();
         for &ray in self.table.column(j) {
             let dir = rotate_z(self.yaw_cos_sin, ray);
             let Some((handle, toi)) =

@@ -1,40 +1,39 @@
 //! Rapier's ray query against the scene as it stands at one [`SceneInstant`]: the scene's
-//! query pipeline (its colliders, shapes, filter and ray-cast tree) with the pose of every mover
-//! taken from the instant instead of from its collider. The ray traversal and the ray-shape
-//! tests are parry's own (`CompositeShapeRef::cast_local_ray`, which `QueryPipeline::cast_ray`
-//! runs too), so the hits are Rapier's exact hits on the scene moved to that instant, provided
-//! the tree's leaves cover the movers there (see `Scene::rebuild_ray_tree_spanning`).
+//! colliders, shapes and ray-cast tree with the pose of every mover taken from the instant
+//! instead of from its collider, and the ego car left out (the filter of
+//! [`Scene::query_pipeline`], read from the mover table instead of the collider). The ray
+//! traversal and the ray-shape tests are parry's own (`CompositeShapeRef::cast_local_ray`, which
+//! `QueryPipeline::cast_ray` runs too), so the hits are Rapier's exact hits on the scene moved to
+//! that instant, provided the tree's leaves cover the movers there (see
+//! [`Scene::rebuild_ray_tree_spanning`]). Unlike a `QueryPipeline` it is `Sync`, so one serves
+//! all threads.
 
 use rapier3d::parry::partitioning::Bvh;
 use rapier3d::parry::query::details::NormalConstraints;
 use rapier3d::parry::shape::{CompositeShape, CompositeShapeRef, Shape, TypedCompositeShape};
-use rapier3d::prelude::{ColliderHandle, Pose, QueryPipeline, Ray};
+use rapier3d::prelude::{ColliderHandle, ColliderSet, Pose, Ray};
 
 use super::{Scene, SceneInstant, Surface};
 
 /// Ray queries against a scene at one instant.
 pub struct InstantQuery<'a> {
-    scene: &'a Scene,
-    pipeline: QueryPipeline<'a>,
-    instant: &'a SceneInstant,
+    /// The scene (surfaces and the mover table).
+    pub(super) scene: &'a Scene,
+    /// Its colliders (fixed colliders stand where they are; movers take the instant's poses).
+    pub(super) colliders: &'a ColliderSet,
+    /// Its ray-cast tree, spanning the instant.
+    pub(super) bvh: &'a Bvh,
+    /// The movers at the instant.
+    pub(super) instant: &'a SceneInstant,
 }
 
-impl<'a> InstantQuery<'a> {
-    /// Queries against `scene` at `instant` through its ray-cast tree, the ego car excluded.
-    pub(super) fn new(scene: &'a Scene, instant: &'a SceneInstant) -> Self {
-        Self {
-            scene,
-            pipeline: scene.query_pipeline(),
-            instant,
-        }
-    }
-
+impl InstantQuery<'_> {
     /// The first collider hit by `ray` within `max_toi` and the hit's time of impact, as
     /// `QueryPipeline::cast_ray` would give with the scene moved to the instant.
     #[inline]
     pub fn cast_ray(&self, ray: &Ray, max_toi: f32, solid: bool) -> Option<(ColliderHandle, f32)> {
         let (id, toi) = CompositeShapeRef(self).cast_local_ray(ray, max_toi, solid)?;
-        let (_, handle) = self.pipeline.colliders.get_unknown_gen(id)?;
+        let (_, handle) = self.colliders.get_unknown_gen(id)?;
         Some((handle, toi))
     }
 
@@ -64,7 +63,7 @@ impl CompositeShape for InstantQuery<'_> {
     }
 
     fn bvh(&self) -> &Bvh {
-        self.pipeline.bvh
+        self.bvh
     }
 }
 
@@ -78,18 +77,14 @@ impl TypedCompositeShape for InstantQuery<'_> {
         shape_id: u32,
         mut f: impl FnMut(Option<&Pose>, &Self::PartShape, Option<&Self::PartNormalConstraints>) -> T,
     ) -> Option<T> {
-        let (collider, handle) = self.pipeline.colliders.get_unknown_gen(shape_id)?;
-        if !self
-            .pipeline
-            .filter
-            .test(self.pipeline.bodies, handle, collider)
-        {
-            return None;
-        }
-        let pose = match self.scene.mover_of_collider(shape_id) {
-            Some(k) => self.instant.mover_pose(k)?,
-            None => collider.position(),
+        let mover_pose = match self.scene.mover_of_collider(shape_id) {
+            // Mover 0 is the ego car, which its own lidar never sees.
+            Some(0) => return None,
+            Some(k) => Some(self.instant.mover_pose(k)?),
+            None => None,
         };
+        let (collider, _) = self.colliders.get_unknown_gen(shape_id)?;
+        let pose = mover_pose.unwrap_or_else(|| collider.position());
         Some(f(Some(pose), collider.shape(), None))
     }
 

@@ -167,7 +167,12 @@ impl Scene {
     /// Ray queries against the scene at `instant` through the ray-cast tree, ego car excluded;
     /// the tree must have been built spanning `instant` ([`Scene::rebuild_ray_tree_spanning`]).
     pub fn query_at<'a>(&'a self, instant: &'a SceneInstant) -> InstantQuery<'a> {
-        InstantQuery::new(self, instant)
+        InstantQuery {
+            scene: self,
+            colliders: &self.colliders,
+            bvh: self.ray_tree.bvh(),
+            instant,
+        }
     }
 
     /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
