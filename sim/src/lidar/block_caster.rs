@@ -22,6 +22,9 @@ use crate::simulation::MOVING_SPEED_MPS;
 /// Rays shorter than this (the origin inside a shape) are not returns, metres.
 const MIN_RANGE_M: f32 = 0.05;
 
+/// World rays written ahead of casting (a whole HDL-64E column).
+const RAY_BATCH: usize = 64;
+
 /// What every ray of one azimuth block shares.
 pub(super) struct BlockCaster<'a> {
     /// Ray queries against the scene at the block's instant.
@@ -98,58 +101,77 @@ impl<'a> BlockCaster<'a> {
     /// Casts the rays of azimuth column `j` and writes its labelled returns. Dropout and range
     /// noise come from one stream per column (seeded from the sweep key and `j`), so the result
     /// does not depend on which thread casts the column.
+    ///
+    /// The world rays are written in batches before any is cast: parry reads each ray back
+    /// from memory, and a ray stored just before (as one per loop turn would be) cannot be
+    /// forwarded from the store buffer to that wider load, which then waits for the store.
     pub(super) fn cast_column(&self, j: usize, out: &mut ColumnSlots<'_>) {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(sub_seed(self.noise_key, j as u64));
-        let query = &self.query;
-        let states = query.actor_states();
-        for &ray in self.table.column(j) {
-            let dir = rotate_z(self.yaw_cos_sin, ray);
-            let Some((handle, toi)) =
-                query.cast_ray(&Ray::new(self.origin, dir), self.max_range_m, true)
-            else {
-                continue;
-            };
-            if toi < MIN_RANGE_M {
-                continue;
+        let mut rays = [Ray::new(self.origin, Vector::ZERO); RAY_BATCH];
+        for batch in self.table.column(j).chunks(RAY_BATCH) {
+            for (ray, &in_sensor) in rays.iter_mut().zip(batch) {
+                ray.dir = rotate_z(self.yaw_cos_sin, in_sensor);
             }
-            if self.dropout > 0.0 && rng.random::<f32>() < self.dropout {
-                continue;
-            }
-            let noise_m = if self.noise_std_m > 0.0 {
-                self.noise_std_m * rng.sample::<f32, _>(StandardNormal)
-            } else {
-                0.0
-            };
-            let Some(surface) = query.surface(handle) else {
-                continue;
-            };
-            let hit = self.origin + dir * toi;
-            let range_m = (toi + noise_m).max(0.0);
-            let point = self.origin_in_reference
-                + rotate_z(self.yaw_since_reference_cos_sin, ray) * range_m;
-            let (label, flow_mps) = match surface
-                .actor
-                .and_then(|a| Some((*self.actor_labels.get(a)?, states.get(a)?)))
-            {
-                Some((label, state)) => {
-                    let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);
-                    (label, [v[0] as f32, v[1] as f32, 0.0])
-                }
-                None => (PointLabel::new(surface.semantic, 0), [0.0; 3]),
-            };
-            out.push(Return {
-                point_in_sensor: [point.x, point.y, point.z],
-                intensity: intensity(
-                    surface.reflectivity,
-                    surface.cos_incidence(hit, dir),
-                    toi,
-                    self.attenuation_per_m,
-                ),
-                label,
-                flow_mps,
-                time_in_sweep_secs: self.time_in_sweep_secs,
-            });
+            out.extend(
+                batch
+                    .iter()
+                    .zip(&rays)
+                    .filter_map(|(&in_sensor, ray)| self.cast_ray(in_sensor, ray, &mut rng)),
+            );
         }
+    }
+
+    /// The labelled return of one ray (`ray`, whose direction in the sensor frame is
+    /// `in_sensor`), if it hits something.
+    #[inline]
+    fn cast_ray(
+        &self,
+        in_sensor: Vector,
+        ray: &Ray,
+        rng: &mut Xoshiro256PlusPlus,
+    ) -> Option<Return> {
+        let dir = ray.dir;
+        let (surface, toi) = self
+            .query
+            .cast_ray_to_surface(ray, self.max_range_m, true)?;
+        if toi < MIN_RANGE_M {
+            return None;
+        }
+        if self.dropout > 0.0 && rng.random::<f32>() < self.dropout {
+            return None;
+        }
+        let noise_m = if self.noise_std_m > 0.0 {
+            self.noise_std_m * rng.sample::<f32, _>(StandardNormal)
+        } else {
+            0.0
+        };
+        let hit = self.origin + dir * toi;
+        let range_m = (toi + noise_m).max(0.0);
+        let point = self.origin_in_reference
+            + rotate_z(self.yaw_since_reference_cos_sin, in_sensor) * range_m;
+        let states = self.query.actor_states();
+        let (label, flow_mps) = match surface
+            .actor
+            .and_then(|a| Some((*self.actor_labels.get(a)?, states.get(a)?)))
+        {
+            Some((label, state)) => {
+                let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);
+                (label, [v[0] as f32, v[1] as f32, 0.0])
+            }
+            None => (PointLabel::new(surface.semantic, 0), [0.0; 3]),
+        };
+        Some(Return {
+            point_in_sensor: [point.x, point.y, point.z],
+            intensity: intensity(
+                surface.reflectivity,
+                surface.cos_incidence(hit, dir),
+                toi,
+                self.attenuation_per_m,
+            ),
+            label,
+            flow_mps,
+            time_in_sweep_secs: self.time_in_sweep_secs,
+        })
     }
 }
 

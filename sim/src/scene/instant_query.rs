@@ -37,10 +37,29 @@ impl InstantQuery<'_> {
         Some((handle, toi))
     }
 
+    /// The surface first hit by `ray` within `max_toi` (placed at the instant) and the hit's
+    /// time of impact: [`InstantQuery::cast_ray`] and [`InstantQuery::surface`] in one step,
+    /// straight from the tree's leaf index.
+    #[inline]
+    pub fn cast_ray_to_surface(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+        solid: bool,
+    ) -> Option<(&Surface, f32)> {
+        let (id, toi) = CompositeShapeRef(self).cast_local_ray(ray, max_toi, solid)?;
+        Some((self.surface_at(self.scene.surface_at(id)?)?, toi))
+    }
+
     /// The surface a collider stands for, placed at the instant (actors) or where it stands.
     #[inline]
     pub fn surface(&self, handle: ColliderHandle) -> Option<&Surface> {
-        let surface = self.scene.surface(handle)?;
+        self.surface_at(self.scene.surface(handle)?)
+    }
+
+    /// `surface` itself for fixed colliders, or the same actor's surface placed at the instant.
+    #[inline]
+    fn surface_at<'s>(&'s self, surface: &'s Surface) -> Option<&'s Surface> {
         match surface.actor {
             Some(actor) => self.instant.actor_surface(actor),
             None => Some(surface),

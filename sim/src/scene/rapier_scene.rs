@@ -208,10 +208,14 @@ impl Scene {
     /// The surface a collider stands for, placed as the scene was last moved (one array read).
     #[inline]
     pub fn surface(&self, handle: ColliderHandle) -> Option<&Surface> {
-        let index = *self
-            .surface_of_collider
-            .get(handle.into_raw_parts().0 as usize)?;
-        self.surfaces.get(index as usize)
+        self.surface_at(handle.into_raw_parts().0)
+    }
+
+    /// The surface of the collider at arena index `index` (a leaf index of the ray-cast tree).
+    #[inline]
+    pub(super) fn surface_at(&self, index: u32) -> Option<&Surface> {
+        let surface = *self.surface_of_collider.get(index as usize)?;
+        self.surfaces.get(surface as usize)
     }
 
     /// Motion state of every actor at the instant the scene was last moved, in actor order.
