@@ -15,7 +15,7 @@ use super::intensity::intensity;
 use super::scan::{ColumnSlots, Return};
 use crate::motion::MotionState;
 use crate::scenario::LidarConfig;
-use crate::scene::{InstantQuery, Scene, SceneInstant};
+use crate::scene::InstantQuery;
 use crate::seed::sub_seed;
 use crate::simulation::MOVING_SPEED_MPS;
 
@@ -49,14 +49,11 @@ pub(super) struct BlockCaster<'a> {
 }
 
 impl<'a> BlockCaster<'a> {
-    /// The shared facts of a block cast at `time_in_sweep_secs`, with `instant` the scene's
-    /// movers then (its ray-cast tree spanning that instant); `ego` is the ego state then and
-    /// `ego_ref` the ego state at the sweep start (the reference sensor frame: above the ego
-    /// centre at the mount height, yawed with it).
-    #[allow(clippy::too_many_arguments)]
+    /// The shared facts of a block cast at `time_in_sweep_secs` through `query`, the scene at
+    /// that instant; `ego` is the ego state then and `ego_ref` the ego state at the sweep start
+    /// (the reference sensor frame: above the ego centre at the mount height, yawed with it).
     pub(super) fn new(
-        scene: &'a Scene,
-        instant: &'a SceneInstant,
+        query: InstantQuery<'a>,
         table: &'a FiringTable,
         config: &LidarConfig,
         time_in_sweep_secs: f64,
@@ -70,15 +67,16 @@ impl<'a> BlockCaster<'a> {
         let dx = ego.position_m[0] - ego_ref.position_m[0];
         let dy = ego.position_m[1] - ego_ref.position_m[1];
         let mount_m = config.mount_height_m as f32;
-        let states = instant.actor_states();
-        let actor_labels = scene
+        let states = query.actor_states();
+        let actor_labels = query
+            .scene()
             .actors()
             .iter()
             .zip(states)
             .map(|(a, s)| PointLabel::new(a.class.semantic(s.speed_mps >= MOVING_SPEED_MPS), a.id))
             .collect();
         Self {
-            query: scene.query_at(instant),
+            query,
             table,
             time_in_sweep_secs: time_in_sweep_secs as f32,
             origin: Vector::new(ego.position_m[0] as f32, ego.position_m[1] as f32, mount_m),

@@ -1,5 +1,5 @@
-//! The spinning lidar: casts one sweep into a scene, azimuth block by azimuth block, each block
-//! with the scene moved to its own instant (rolling shutter), the columns of a block in parallel.
+//! The spinning lidar: casts one sweep into a scene, each azimuth block against the scene at its
+//! own instant (rolling shutter), all columns of the sweep in one parallel loop.
 //! Also the bare `cast_ray` loop over the same rays, the yardstick of the SPEC §8 speed target.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -85,8 +85,7 @@ impl Lidar {
                     .trajectory
                     .state_at(start_secs + block.offset_secs);
                 BlockCaster::new(
-                    scene,
-                    instant,
+                    scene.query_at(instant),
                     &self.table,
                     &self.config,
                     block.offset_secs,

@@ -3,9 +3,11 @@
 //! hundred scene moves ray casts through it cost 25–35 % more than through the fresh tree (and
 //! the cost then depends on the scene's history, not only on the instant). So the scene keeps its
 //! own parry `Bvh` over the tight collider AABBs, rebuilt from scratch with the ray-cast oriented
-//! PLOC builder at the start of every sweep and refitted in place for the few moving colliders at
-//! every block (they move at most metres within one sweep). Rapier's `QueryPipeline` is queried
-//! through this tree, so the hits are Rapier's exact ray-shape hits.
+//! PLOC builder at the start of every sweep, with the leaf of each of the few moving colliders
+//! spanning its poses at all block instants of the sweep (they move at most metres within one
+//! sweep), so one tree serves every block; [`Scene::move_to`](super::Scene::move_to) refits those
+//! leaves in place. Rapier's `QueryPipeline` (and the lidar's per-instant query) traverse this
+//! tree, so the hits are Rapier's exact ray-shape hits.
 
 use rapier3d::parry::bounding_volume::BoundingVolume;
 use rapier3d::parry::partitioning::{Bvh, BvhBuildStrategy};
