@@ -51,13 +51,14 @@ impl ColumnSlots<'_> {
     /// registers and no bounds checks.
     #[inline]
     pub(super) fn extend(&mut self, returns: impl Iterator<Item = Return>) {
-        let start = self.len.min(self.points.len());
-        let slots = self.points[start..]
+        let start = self.len;
+        // Plain slice iterators, so the zip steps them with one index.
+        let slots = tail(self.points, start)
             .iter_mut()
-            .zip(self.intensities.iter_mut().skip(start))
-            .zip(self.labels.iter_mut().skip(start))
-            .zip(self.flows.iter_mut().skip(start))
-            .zip(self.times.iter_mut().skip(start));
+            .zip(tail(self.intensities, start))
+            .zip(tail(self.labels, start))
+            .zip(tail(self.flows, start))
+            .zip(tail(self.times, start));
         let mut len = start;
         for (r, ((((point, intensity), label), flow), time)) in returns.zip(slots) {
             *point = r.point_in_sensor;
@@ -69,6 +70,13 @@ impl ColumnSlots<'_> {
         }
         self.len = len;
     }
+}
+
+/// The slots of `slots` from `start` on (none if `start` is past the end).
+#[inline]
+fn tail<T>(slots: &mut [T], start: usize) -> &mut [T] {
+    let start = start.min(slots.len());
+    &mut slots[start..]
 }
 
 /// One slot per ray of a sweep, plus the number of returns of each column (scratch space).
