@@ -23,6 +23,8 @@ pub(super) struct FiringTable {
     channels: usize,
     rays_in_sensor: Vec<Vector>,
     blocks: Vec<BlockSpan>,
+    /// Index of the block of every column.
+    block_of_column: Vec<u32>,
 }
 
 impl FiringTable {
@@ -66,10 +68,16 @@ impl FiringTable {
                 offset_secs: 0.0,
             }]
         };
+        let block_of_column = blocks
+            .iter()
+            .enumerate()
+            .flat_map(|(b, block)| block.columns.clone().map(move |_| b as u32))
+            .collect();
         Self {
             channels: elevation_sin_cos.len(),
             rays_in_sensor,
             blocks,
+            block_of_column,
         }
     }
 
@@ -92,6 +100,12 @@ impl FiringTable {
     /// The azimuth blocks in firing order.
     pub(super) fn blocks(&self) -> &[BlockSpan] {
         &self.blocks
+    }
+
+    /// Index in [`FiringTable::blocks`] of the block holding column `j`.
+    #[inline]
+    pub(super) fn block_of(&self, j: usize) -> usize {
+        self.block_of_column[j] as usize
     }
 }
 
@@ -118,6 +132,19 @@ mod tests {
                     && w[0].offset_secs < w[1].offset_secs)
         );
         assert!(blocks[6].offset_secs < config.period_secs());
+    }
+
+    #[test]
+    fn every_column_knows_the_block_that_holds_it() {
+        let config = LidarConfig {
+            azimuth_steps: 100,
+            blocks: 7,
+            ..LidarConfig::default()
+        };
+        let table = FiringTable::new(&config);
+        for (b, block) in table.blocks().iter().enumerate() {
+            assert!(block.columns.clone().all(|j| table.block_of(j) == b));
+        }
     }
 
     #[test]

@@ -1,5 +1,5 @@
-//! The spinning lidar: casts one sweep into a scene, azimuth block by azimuth block, each block
-//! with the scene moved to its own instant (rolling shutter), the columns of a block in parallel.
+//! The spinning lidar: casts one sweep into a scene, each azimuth block against the scene at its
+//! own instant (rolling shutter), all columns of the sweep in one parallel loop.
 //! Also the bare `cast_ray` loop over the same rays, the yardstick of the SPEC §8 speed target.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -11,7 +11,7 @@ use super::firing_table::FiringTable;
 use super::scan::{Scan, ScanSlots};
 use crate::motion::MotionState;
 use crate::scenario::LidarConfig;
-use crate::scene::{QueryTree, Scene};
+use crate::scene::{QueryTree, Scene, SceneInstant};
 
 /// A spinning multi-beam lidar with its firing pattern computed once.
 #[derive(Debug, Clone)]
@@ -59,33 +59,51 @@ impl Lidar {
     }
 
     /// Casts one sweep starting at scenario time `start_secs` (the reference time). With the
-    /// rolling shutter on, azimuth block `b` is cast with the scene moved to the block's middle
-    /// instant; otherwise the whole sweep sees the scene at `start_secs`. Noise is drawn from one
-    /// stream per column derived from `noise_key`, so the result does not depend on threads.
-    /// Takes `&mut self` only to reuse its scratch slots.
+    /// rolling shutter on, azimuth block `b` is cast against the scene at the block's middle
+    /// instant; otherwise the whole sweep sees the scene at `start_secs`. The movers' poses at
+    /// every block instant are taken up front and the ray-cast tree is rebuilt once so that its
+    /// leaves span them, so all columns of the sweep are cast in one parallel loop, each against
+    /// its own block's instant. Noise is drawn from one stream per column derived from
+    /// `noise_key`, so the result does not depend on threads. Takes `&mut self` only to reuse its
+    /// scratch slots. The scene is left moved to `start_secs`.
     pub fn scan(&mut self, scene: &mut Scene, start_secs: f64, noise_key: u64) -> Scan {
         let ego_ref = scene.ego().trajectory.state_at(start_secs);
         scene.move_to(start_secs);
-        scene.rebuild_ray_tree();
+        let blocks = self.table.blocks();
+        let instants: Vec<SceneInstant> = blocks
+            .iter()
+            .map(|block| scene.instant(start_secs + block.offset_secs))
+            .collect();
+        scene.rebuild_ray_tree_spanning(&instants);
+        let scene = &*scene;
+        let casters: Vec<BlockCaster<'_>> = blocks
+            .iter()
+            .zip(&instants)
+            .map(|(block, instant)| {
+                let ego = scene
+                    .ego()
+                    .trajectory
+                    .state_at(start_secs + block.offset_secs);
+                BlockCaster::new(
+                    scene.query_at(instant),
+                    &self.table,
+                    &self.config,
+                    block.offset_secs,
+                    &ego,
+                    &ego_ref,
+                    noise_key,
+                )
+            })
+            .collect();
         let slots = &mut self.slots;
-        slots.reset(self.config.azimuth_steps as usize, self.table.channels());
-        for block in self.table.blocks() {
-            let t = start_secs + block.offset_secs;
-            scene.move_to(t);
-            let ego = scene.ego().trajectory.state_at(t);
-            let caster = BlockCaster::new(
-                scene,
-                &self.table,
-                &self.config,
-                block.offset_secs,
-                &ego,
-                &ego_ref,
-                noise_key,
-            );
-            slots.fill_columns(block.columns.clone(), |j, column| {
-                caster.cast_column(j, column)
-            });
-        }
+        let columns = self.config.azimuth_steps as usize;
+        slots.reset(columns, self.table.channels());
+        let table = &self.table;
+        slots.fill_columns(0..columns, |j, column| {
+            if let Some(caster) = casters.get(table.block_of(j)) {
+                caster.cast_column(j, column);
+            }
+        });
         slots.gather(scene.actors().len())
     }
 

@@ -1,12 +1,16 @@
 //! The Rapier scene: ground, static boxes, kinematic actors and the ego car.
 
 mod collider_tables;
+mod instant_query;
 mod rapier_scene;
 mod ray_tree;
 mod scene_actor;
+mod scene_instant;
 mod surface;
 
+pub use instant_query::InstantQuery;
 pub use rapier_scene::Scene;
 pub use ray_tree::QueryTree;
 pub use scene_actor::SceneActor;
+pub use scene_instant::SceneInstant;
 pub use surface::Surface;

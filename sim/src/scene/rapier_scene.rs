@@ -8,7 +8,7 @@ use rapier3d::prelude::*;
 
 use super::collider_tables::ColliderTables;
 use super::ray_tree::{QueryTree, RayTree};
-use super::{SceneActor, Surface};
+use super::{InstantQuery, SceneActor, SceneInstant, Surface};
 use crate::error::{Result, SimError};
 use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
@@ -147,6 +147,40 @@ impl Scene {
         self.ray_tree.rebuild(&self.colliders);
     }
 
+    /// The movers of the scene at `t_secs` (from their trajectories; the scene is not moved).
+    pub fn instant(&self, t_secs: f64) -> SceneInstant {
+        SceneInstant::new(
+            t_secs,
+            (&self.ego, &self.actors),
+            (&self.bodies, &self.colliders),
+            &self.surfaces,
+            &self.actor_surfaces,
+        )
+    }
+
+    /// Rebuilds the ray-cast tree from scratch with every mover's leaf covering it as last moved
+    /// and at each of `instants`, so [`Scene::query_at`] gives exact hits at any of them.
+    pub fn rebuild_ray_tree_spanning(&mut self, instants: &[SceneInstant]) {
+        self.ray_tree.rebuild_spanning(&self.colliders, instants);
+    }
+
+    /// Ray queries against the scene at `instant` through the ray-cast tree, ego car excluded;
+    /// the tree must have been built spanning `instant` ([`Scene::rebuild_ray_tree_spanning`]).
+    pub fn query_at<'a>(&'a self, instant: &'a SceneInstant) -> InstantQuery<'a> {
+        InstantQuery {
+            scene: self,
+            colliders: &self.colliders,
+            bvh: self.ray_tree.bvh(),
+            instant,
+        }
+    }
+
+    /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
+    #[inline]
+    pub(super) fn mover_of_collider(&self, index: u32) -> Option<usize> {
+        self.ray_tree.mover_of(index)
+    }
+
     /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego
     /// car excluded from its rays.
     pub fn query_pipeline(&self) -> QueryPipeline<'_> {
@@ -174,10 +208,14 @@ impl Scene {
     /// The surface a collider stands for, placed as the scene was last moved (one array read).
     #[inline]
     pub fn surface(&self, handle: ColliderHandle) -> Option<&Surface> {
-        let index = *self
-            .surface_of_collider
-            .get(handle.into_raw_parts().0 as usize)?;
-        self.surfaces.get(index as usize)
+        self.surface_at(handle.into_raw_parts().0)
+    }
+
+    /// The surface of the collider at arena index `index` (a leaf index of the ray-cast tree).
+    #[inline]
+    pub(super) fn surface_at(&self, index: u32) -> Option<&Surface> {
+        let surface = *self.surface_of_collider.get(index as usize)?;
+        self.surfaces.get(surface as usize)
     }
 
     /// Motion state of every actor at the instant the scene was last moved, in actor order.

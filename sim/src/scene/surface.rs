@@ -62,13 +62,29 @@ impl Surface {
         }
     }
 
-    /// |cos| of the angle between the world direction `dir` (unit) and the face containing `p`.
+    /// |cos| of the angle between the world direction `dir` (unit) and the face containing `p`
+    /// (the face of [`Surface::normal_at`], chosen without branches: the lidar calls this for
+    /// every return, and which face a ray meets is hard to predict).
+    #[inline]
     pub fn cos_incidence(&self, p: Vector, dir: Vector) -> f32 {
         let (c, s) = self.yaw_cos_sin;
-        match self.face_of(p).0 {
-            0 => (c * dir.x + s * dir.y).abs(),
-            1 => (c * dir.y - s * dir.x).abs(),
-            _ => dir.z.abs(),
+        let d = p - self.centre_m;
+        let k = self.inverse_half_extents;
+        let ratio_x = (c * d.x + s * d.y).abs() * k[0];
+        let ratio_y = (c * d.y - s * d.x).abs() * k[1];
+        let ratio_z = d.z.abs() * k[2];
+        let cos_x = (c * dir.x + s * dir.y).abs();
+        let cos_y = (c * dir.y - s * dir.x).abs();
+        // Ties go to the lower axis, as in `face_of`.
+        let (ratio_xy, cos_xy) = if ratio_x >= ratio_y {
+            (ratio_x, cos_x)
+        } else {
+            (ratio_y, cos_y)
+        };
+        if ratio_xy >= ratio_z {
+            cos_xy
+        } else {
+            dir.z.abs()
         }
     }
 
@@ -126,5 +142,31 @@ mod tests {
         let expected = dir.dot(surface.normal_at(p)).abs();
         assert!((surface.cos_incidence(p, dir) - expected).abs() < 1e-6);
         assert!((expected - 0.6).abs() < 1e-5);
+    }
+
+    #[test]
+    fn the_incidence_cosine_uses_the_face_of_the_normal_on_every_face_and_edge() {
+        let surface = rotated_car();
+        let dir = Vector::new(0.48, -0.6, -0.64);
+        // Points on each face, on edges and corners (ties), of the box (centre 10, 0, 0.7;
+        // local x along world y, local y along world −x after the 90° yaw).
+        for local in [
+            [2.0, 0.3, 0.1],
+            [-2.0, -0.5, 0.2],
+            [0.4, 1.0, -0.3],
+            [1.1, -1.0, 0.6],
+            [0.5, 0.2, 0.7],
+            [-1.5, 0.9, -0.7],
+            [2.0, 1.0, 0.2],
+            [2.0, 0.5, 0.7],
+            [-2.0, -1.0, -0.7],
+        ] {
+            let p = Vector::new(10.0 - local[1], local[0], 0.7 + local[2]);
+            let expected = dir.dot(surface.normal_at(p)).abs();
+            assert!(
+                (surface.cos_incidence(p, dir) - expected).abs() < 1e-6,
+                "{local:?}"
+            );
+        }
     }
 }

@@ -1,0 +1,173 @@
+//! Rapier's ray query against the scene as it stands at one [`SceneInstant`]: the scene's
+//! colliders, shapes and ray-cast tree with the pose of every mover taken from the instant
+//! instead of from its collider, and the ego car left out (the filter of
+//! [`Scene::query_pipeline`], read from the mover table instead of the collider). The ray
+//! traversal and the ray-shape tests are parry's own (`CompositeShapeRef::cast_local_ray`, which
+//! `QueryPipeline::cast_ray` runs too), so the hits are Rapier's exact hits on the scene moved to
+//! that instant, provided the tree's leaves cover the movers there (see
+//! [`Scene::rebuild_ray_tree_spanning`]). Unlike a `QueryPipeline` it is `Sync`, so one serves
+//! all threads.
+
+use rapier3d::parry::partitioning::Bvh;
+use rapier3d::parry::query::details::NormalConstraints;
+use rapier3d::parry::shape::{CompositeShape, CompositeShapeRef, Shape, TypedCompositeShape};
+use rapier3d::prelude::{ColliderHandle, ColliderSet, Pose, Ray};
+
+use super::{Scene, SceneInstant, Surface};
+
+/// Ray queries against a scene at one instant.
+pub struct InstantQuery<'a> {
+    /// The scene (surfaces and the mover table).
+    pub(super) scene: &'a Scene,
+    /// Its colliders (fixed colliders stand where they are; movers take the instant's poses).
+    pub(super) colliders: &'a ColliderSet,
+    /// Its ray-cast tree, spanning the instant.
+    pub(super) bvh: &'a Bvh,
+    /// The movers at the instant.
+    pub(super) instant: &'a SceneInstant,
+}
+
+impl InstantQuery<'_> {
+    /// The first collider hit by `ray` within `max_toi` and the hit's time of impact, as
+    /// `QueryPipeline::cast_ray` would give with the scene moved to the instant.
+    #[inline]
+    pub fn cast_ray(&self, ray: &Ray, max_toi: f32, solid: bool) -> Option<(ColliderHandle, f32)> {
+        let (id, toi) = CompositeShapeRef(self).cast_local_ray(ray, max_toi, solid)?;
+        let (_, handle) = self.colliders.get_unknown_gen(id)?;
+        Some((handle, toi))
+    }
+
+    /// The surface first hit by `ray` within `max_toi` (placed at the instant) and the hit's
+    /// time of impact: [`InstantQuery::cast_ray`] and [`InstantQuery::surface`] in one step,
+    /// straight from the tree's leaf index.
+    #[inline]
+    pub fn cast_ray_to_surface(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+        solid: bool,
+    ) -> Option<(&Surface, f32)> {
+        let (id, toi) = CompositeShapeRef(self).cast_local_ray(ray, max_toi, solid)?;
+        Some((self.surface_at(self.scene.surface_at(id)?)?, toi))
+    }
+
+    /// The surface a collider stands for, placed at the instant (actors) or where it stands.
+    #[inline]
+    pub fn surface(&self, handle: ColliderHandle) -> Option<&Surface> {
+        self.surface_at(self.scene.surface(handle)?)
+    }
+
+    /// `surface` itself for fixed colliders, or the same actor's surface placed at the instant.
+    #[inline]
+    fn surface_at<'s>(&'s self, surface: &'s Surface) -> Option<&'s Surface> {
+        match surface.actor {
+            Some(actor) => self.instant.actor_surface(actor),
+            None => Some(surface),
+        }
+    }
+
+    /// The scene queried.
+    pub fn scene(&self) -> &Scene {
+        self.scene
+    }
+
+    /// Motion state of every actor at the instant, in actor order.
+    pub fn actor_states(&self) -> &[crate::motion::MotionState] {
+        self.instant.actor_states()
+    }
+}
+
+impl CompositeShape for InstantQuery<'_> {
+    fn map_part_at(
+        &self,
+        shape_id: u32,
+        f: &mut dyn FnMut(Option<&Pose>, &dyn Shape, Option<&dyn NormalConstraints>),
+    ) {
+        self.map_untyped_part_at(shape_id, f);
+    }
+
+    fn bvh(&self) -> &Bvh {
+        self.bvh
+    }
+}
+
+impl TypedCompositeShape for InstantQuery<'_> {
+    type PartNormalConstraints = ();
+    type PartShape = dyn Shape;
+
+    #[inline]
+    fn map_typed_part_at<T>(
+        &self,
+        shape_id: u32,
+        mut f: impl FnMut(Option<&Pose>, &Self::PartShape, Option<&Self::PartNormalConstraints>) -> T,
+    ) -> Option<T> {
+        let mover_pose = match self.scene.mover_of_collider(shape_id) {
+            // Mover 0 is the ego car, which its own lidar never sees.
+            Some(0) => return None,
+            Some(k) => Some(self.instant.mover_pose(k)?),
+            None => None,
+        };
+        let (collider, _) = self.colliders.get_unknown_gen(shape_id)?;
+        let pose = mover_pose.unwrap_or_else(|| collider.position());
+        Some(f(Some(pose), collider.shape(), None))
+    }
+
+    #[inline]
+    fn map_untyped_part_at<T>(
+        &self,
+        shape_id: u32,
+        mut f: impl FnMut(Option<&Pose>, &dyn Shape, Option<&dyn NormalConstraints>) -> T,
+    ) -> Option<T> {
+        self.map_typed_part_at(shape_id, |pose, shape, _| f(pose, shape, None))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use rapier3d::prelude::{Ray, Vector};
+
+    use crate::Scenario;
+    use crate::scene::Scene;
+
+    const TINY: &str = include_str!("../../../scenarios/tiny.toml");
+
+    #[test]
+    fn a_cast_at_an_instant_hits_what_a_cast_into_the_scene_moved_there_hits() {
+        let scenario = Scenario::from_toml(TINY, "tiny.toml", "tiny").unwrap();
+        let mut swept = Scene::build(&scenario, &scenario.actors).unwrap();
+        let mut moved = Scene::build(&scenario, &scenario.actors).unwrap();
+        // Four block instants 25 ms apart: the crossing car moves 20 cm between them.
+        let start = scenario.start_secs + 1.0;
+        let times: Vec<f64> = (0..4).map(|b| start + 0.025 * f64::from(b)).collect();
+        swept.move_to(start);
+        let instants: Vec<_> = times.iter().map(|&t| swept.instant(t)).collect();
+        swept.rebuild_ray_tree_spanning(&instants);
+        let mut actor_hits = 0;
+        for (&t, instant) in times.iter().zip(&instants) {
+            moved.move_to(t);
+            moved.rebuild_ray_tree();
+            let ego = moved.ego().trajectory.state_at(t);
+            let origin = Vector::new(ego.position_m[0] as f32, ego.position_m[1] as f32, 1.73);
+            for k in 0..2880 {
+                let azimuth = std::f32::consts::TAU * (k / 4) as f32 / 720.0;
+                let elevation = -0.02 - 0.06 * (k % 4) as f32;
+                let dir = Vector::new(
+                    elevation.cos() * azimuth.cos(),
+                    elevation.cos() * azimuth.sin(),
+                    elevation.sin(),
+                );
+                let ray = Ray::new(origin, dir);
+                let expected = moved.query_pipeline().cast_ray(&ray, 120.0, true);
+                let query = swept.query_at(instant);
+                assert_eq!(query.cast_ray(&ray, 120.0, true), expected, "t {t} ray {k}");
+                let surface = expected.and_then(|(handle, _)| query.surface(handle));
+                if let Some(surface) = surface.filter(|s| s.actor.is_some()) {
+                    actor_hits += 1;
+                    // The instant's surface is placed where the moved scene's surface is.
+                    assert_eq!(Some(surface), expected.and_then(|(h, _)| moved.surface(h)));
+                }
+            }
+        }
+        assert!(actor_hits > 40, "{actor_hits} hits on the moving car");
+    }
+}
