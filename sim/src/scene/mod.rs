@@ -6,6 +6,7 @@ mod rapier_scene;
 mod ray_tree;
 mod scene_actor;
 mod scene_instant;
+mod scene_queries;
 mod surface;
 
 pub use instant_query::InstantQuery;

@@ -7,8 +7,8 @@
 use rapier3d::prelude::*;
 
 use super::collider_tables::ColliderTables;
-use super::ray_tree::{QueryTree, RayTree};
-use super::{InstantQuery, SceneActor, SceneInstant, Surface};
+use super::ray_tree::RayTree;
+use super::{SceneActor, Surface};
 use crate::error::{Result, SimError};
 use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
@@ -18,21 +18,21 @@ const GROUND_HALF_M: f32 = 2000.0;
 
 /// Rapier sets and pipelines plus the actor and surface tables.
 pub struct Scene {
-    bodies: RigidBodySet,
-    colliders: ColliderSet,
-    broad_phase: BroadPhaseBvh,
-    narrow_phase: NarrowPhase,
+    pub(super) bodies: RigidBodySet,
+    pub(super) colliders: ColliderSet,
+    pub(super) broad_phase: BroadPhaseBvh,
+    pub(super) narrow_phase: NarrowPhase,
     islands: IslandManager,
     collision_pipeline: CollisionPipeline,
     params: IntegrationParameters,
-    surfaces: Vec<Surface>,
+    pub(super) surfaces: Vec<Surface>,
     surface_of_collider: Vec<u32>,
-    actors: Vec<SceneActor>,
-    actor_surfaces: Vec<usize>,
+    pub(super) actors: Vec<SceneActor>,
+    pub(super) actor_surfaces: Vec<usize>,
     actor_states: Vec<MotionState>,
-    ego: SceneActor,
+    pub(super) ego: SceneActor,
     ego_surface: usize,
-    ray_tree: RayTree,
+    pub(super) ray_tree: RayTree,
 }
 
 impl Scene {
@@ -139,70 +139,6 @@ impl Scene {
             &(),
         );
         self.ray_tree.refit_moving(&self.colliders);
-    }
-
-    /// Rebuilds the ray-cast tree from scratch over the scene as last moved; the lidar calls it
-    /// once per sweep, so a sweep's cost does not depend on what the scene did before.
-    pub fn rebuild_ray_tree(&mut self) {
-        self.ray_tree.rebuild(&self.colliders);
-    }
-
-    /// The movers of the scene at `t_secs` (from their trajectories; the scene is not moved).
-    pub fn instant(&self, t_secs: f64) -> SceneInstant {
-        SceneInstant::new(
-            t_secs,
-            (&self.ego, &self.actors),
-            (&self.bodies, &self.colliders),
-            &self.surfaces,
-            &self.actor_surfaces,
-        )
-    }
-
-    /// Rebuilds the ray-cast tree from scratch with every mover's leaf covering it as last moved
-    /// and at each of `instants`, so [`Scene::query_at`] gives exact hits at any of them.
-    pub fn rebuild_ray_tree_spanning(&mut self, instants: &[SceneInstant]) {
-        self.ray_tree.rebuild_spanning(&self.colliders, instants);
-    }
-
-    /// Ray queries against the scene at `instant` through the ray-cast tree, ego car excluded;
-    /// the tree must have been built spanning `instant` ([`Scene::rebuild_ray_tree_spanning`]).
-    pub fn query_at<'a>(&'a self, instant: &'a SceneInstant) -> InstantQuery<'a> {
-        InstantQuery {
-            scene: self,
-            colliders: &self.colliders,
-            bvh: self.ray_tree.bvh(),
-            instant,
-        }
-    }
-
-    /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
-    #[inline]
-    pub(super) fn mover_of_collider(&self, index: u32) -> Option<usize> {
-        self.ray_tree.mover_of(index)
-    }
-
-    /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego
-    /// car excluded from its rays.
-    pub fn query_pipeline(&self) -> QueryPipeline<'_> {
-        self.query_pipeline_on(QueryTree::RayCast)
-    }
-
-    /// A query pipeline over the scene as last moved through the given tree, ego car excluded.
-    pub fn query_pipeline_on(&self, tree: QueryTree) -> QueryPipeline<'_> {
-        let filter = QueryFilter::default().exclude_rigid_body(self.ego.body);
-        let rapier = self.broad_phase.as_query_pipeline(
-            self.narrow_phase.query_dispatcher(),
-            &self.bodies,
-            &self.colliders,
-            filter,
-        );
-        match tree {
-            QueryTree::RayCast => QueryPipeline {
-                bvh: self.ray_tree.bvh(),
-                ..rapier
-            },
-            QueryTree::RapierBroadPhase => rapier,
-        }
     }
 
     /// The surface a collider stands for, placed as the scene was last moved (one array read).

@@ -1,0 +1,74 @@
+//! How the lidar queries the scene: the per-sweep ray-cast tree (rebuilt, or spanning the
+//! instants of a rolling-shutter sweep), the scene at one instant, and Rapier query pipelines
+//! through either tree with the ego car excluded.
+
+use rapier3d::prelude::*;
+
+use super::ray_tree::QueryTree;
+use super::{InstantQuery, Scene, SceneInstant};
+
+impl Scene {
+    /// Rebuilds the ray-cast tree from scratch over the scene as last moved; the lidar calls it
+    /// once per sweep, so a sweep's cost does not depend on what the scene did before.
+    pub fn rebuild_ray_tree(&mut self) {
+        self.ray_tree.rebuild(&self.colliders);
+    }
+
+    /// The movers of the scene at `t_secs` (from their trajectories; the scene is not moved).
+    pub fn instant(&self, t_secs: f64) -> SceneInstant {
+        SceneInstant::new(
+            t_secs,
+            (&self.ego, &self.actors),
+            (&self.bodies, &self.colliders),
+            &self.surfaces,
+            &self.actor_surfaces,
+        )
+    }
+
+    /// Rebuilds the ray-cast tree from scratch with every mover's leaf covering it as last moved
+    /// and at each of `instants`, so [`Scene::query_at`] gives exact hits at any of them.
+    pub fn rebuild_ray_tree_spanning(&mut self, instants: &[SceneInstant]) {
+        self.ray_tree.rebuild_spanning(&self.colliders, instants);
+    }
+
+    /// Ray queries against the scene at `instant` through the ray-cast tree, ego car excluded;
+    /// the tree must have been built spanning `instant` ([`Scene::rebuild_ray_tree_spanning`]).
+    pub fn query_at<'a>(&'a self, instant: &'a SceneInstant) -> InstantQuery<'a> {
+        InstantQuery {
+            scene: self,
+            colliders: &self.colliders,
+            bvh: self.ray_tree.bvh(),
+            instant,
+        }
+    }
+
+    /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
+    #[inline]
+    pub(super) fn mover_of_collider(&self, index: u32) -> Option<usize> {
+        self.ray_tree.mover_of(index)
+    }
+
+    /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego
+    /// car excluded from its rays.
+    pub fn query_pipeline(&self) -> QueryPipeline<'_> {
+        self.query_pipeline_on(QueryTree::RayCast)
+    }
+
+    /// A query pipeline over the scene as last moved through the given tree, ego car excluded.
+    pub fn query_pipeline_on(&self, tree: QueryTree) -> QueryPipeline<'_> {
+        let filter = QueryFilter::default().exclude_rigid_body(self.ego.body);
+        let rapier = self.broad_phase.as_query_pipeline(
+            self.narrow_phase.query_dispatcher(),
+            &self.bodies,
+            &self.colliders,
+            filter,
+        );
+        match tree {
+            QueryTree::RayCast => QueryPipeline {
+                bvh: self.ray_tree.bvh(),
+                ..rapier
+            },
+            QueryTree::RapierBroadPhase => rapier,
+        }
+    }
+}
