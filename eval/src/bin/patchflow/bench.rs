@@ -226,7 +226,7 @@ fn notes(
         perception.summary()
     ));
     notes.push(
-        "Why training differs from the thesis (ARCHITECTURE.md has the measurements): with exactly aligned training speed patches, a merged heading 30-60° off made the speed GP read the car as nearly still (situation 5: per-point speed along the true heading 5.9-7.6 m/s, along the merged heading 2.1-4.2 m/s; truth 7.0), and right-hand traffic put 70 % of the drawn samples on one side of the line of sight, which the GPs learned as a prior and which misread a target crossing from the other side (situation 3 beyond 30 m: 61° heading RMSE). Training on mirror images and on speed patches aligned with a 25° heading error takes SPGP-HET-ALL from 3 to 5 situations under 25° and 1.5 m/s on our data."
+        "Why training differs from the thesis (ARCHITECTURE.md has the measurements that found it): at run time speed patches follow the estimated heading, and a speed GP trained only on exactly aligned patches read a car whose merged heading was 30-60° off as nearly still; and right-hand traffic puts most drawn samples on one side of the line of sight, which the GPs learned as a prior that misreads a target crossing from the other side. `patchflow train --thesis-training` trains without either addition."
             .to_owned(),
     );
     notes.push(
