@@ -119,27 +119,17 @@ pub fn cross_validate_samples(
         let gabor = GaborBank::new(&feature_params.gabor, feature_params.cell_m);
         let mirrored = params.mirror_images.then(|| set.mirror_images());
         for feature in [CvFeature::Patch, CvFeature::Gabor] {
-            let fold_data = |set: &SampleSet| FoldData {
-                heading_x: features_of(set, feature, &gabor, |s| &s.heading_features),
-                speed_x: features_of(set, feature, &gabor, |s| &s.speed_features),
-                sin: set
-                    .samples
-                    .iter()
-                    .map(|s| s.sin_rel)
-                    .collect::<Vec<_>>()
-                    .into(),
-                cos: set
-                    .samples
-                    .iter()
-                    .map(|s| s.cos_rel)
-                    .collect::<Vec<_>>()
-                    .into(),
-                speed: set
-                    .samples
-                    .iter()
-                    .map(|s| s.speed_mps)
-                    .collect::<Vec<_>>()
-                    .into(),
+            let fold_data = |set: &SampleSet| {
+                let target = |f: fn(&patchflow_learn::Sample) -> f64| {
+                    DVector::from_iterator(set.samples.len(), set.samples.iter().map(f))
+                };
+                FoldData {
+                    heading_x: features_of(set, feature, &gabor, |s| &s.heading_features),
+                    speed_x: features_of(set, feature, &gabor, |s| &s.speed_features),
+                    sin: target(|s| s.sin_rel),
+                    cos: target(|s| s.cos_rel),
+                    speed: target(|s| s.speed_mps),
+                }
             };
             let (data, mirror) = (fold_data(set), mirrored.as_ref().map(fold_data));
             // The thesis judges speed on map patches only, with the prior that served heading best (0.5).
