@@ -445,4 +445,33 @@ mod tests {
             "{err}"
         );
     }
+
+    #[test]
+    fn mirror_images_double_the_rows_each_gp_is_fitted_to() {
+        let dir = tempfile::tempdir().unwrap();
+        let dataset = write_dataset(dir.path(), &[(0.4, 5.0)]);
+        let params = EstimatorParams {
+            max_iters: 5,
+            ..small_params()
+        };
+        let set = SampleSet::collect(
+            &dataset,
+            &params.features,
+            params.feature,
+            params.samples,
+            params.seed,
+        )
+        .unwrap();
+        let n = set.samples.len();
+        let with = MotionEstimator::fit_samples(&set, &params).unwrap();
+        let thesis = EstimatorParams {
+            mirror_images: false,
+            ..params
+        };
+        let without = MotionEstimator::fit_samples(&set, &thesis).unwrap();
+        assert!(with.gps().iter().all(|gp| gp.fit_report().n == 2 * n));
+        assert!(without.gps().iter().all(|gp| gp.fit_report().n == n));
+        assert_eq!(with.training().samples, n);
+        assert!(with.training().mirror_images && !without.training().mirror_images);
+    }
 }

@@ -6,7 +6,8 @@ use crate::{FeatureKind, FeatureParams, GpKind, LearnError, Result};
 ///
 /// `Default` gives the thesis' setup: SPGP-HET on 242-value map patches, prior 0.5, 1,600
 /// importance-sampled training samples and 100 pseudo-inputs (thesis 4.3), plus the samples'
-/// mirror images (see [`Self::mirror_images`]).
+/// mirror images ([`Self::mirror_images`]) and training speed patches aligned with a heading
+/// error (`FeatureParams::speed_jitter_deg`); [`Self::thesis`] leaves both out.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EstimatorParams {
     /// GP used for all three regressions (sin, cos of the relative heading; speed).

@@ -162,3 +162,43 @@ fn sample_at(
         ),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::features::samples::tests::write_dataset;
+    use crate::{FeatureKind, FeatureParams, SampleSet};
+    use patchflow_dataset::Dataset;
+
+    fn draw(jitter_deg: f64) -> SampleSet {
+        let dir = tempfile::tempdir().unwrap();
+        write_dataset(dir.path(), 3);
+        let dataset = Dataset::open(dir.path()).unwrap();
+        let params = FeatureParams {
+            speed_jitter_deg: jitter_deg,
+            ..FeatureParams::default()
+        };
+        SampleSet::collect(&dataset, &params, FeatureKind::Patch, 40, 3).unwrap()
+    }
+
+    #[test]
+    fn the_speed_alignment_error_moves_only_the_speed_patches() {
+        let (exact, jittered) = (draw(0.0), draw(25.0));
+        assert_eq!(exact.samples.len(), jittered.samples.len());
+        let mut moved = 0;
+        for (a, b) in exact.samples.iter().zip(&jittered.samples) {
+            assert_eq!(
+                (a.point, a.scan),
+                (b.point, b.scan),
+                "the same samples are drawn"
+            );
+            assert_eq!(a.heading_features, b.heading_features);
+            assert_eq!((a.speed_mps, a.heading_rad), (b.speed_mps, b.heading_rad));
+            moved += usize::from(a.speed_features != b.speed_features);
+        }
+        assert!(
+            moved * 10 >= exact.samples.len() * 9,
+            "{moved} of {} moved",
+            exact.samples.len()
+        );
+    }
+}

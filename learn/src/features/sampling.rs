@@ -128,6 +128,9 @@ fn splitmix64(x: u64) -> u64 {
 mod tests {
     use super::*;
 
+    use crate::features::top_n::TopN;
+    use std::cmp::Reverse;
+
     #[test]
     fn hashed_normals_have_zero_mean_and_unit_variance() {
         let z: Vec<f64> = (0..20_000u64).map(|i| hashed_normal(3, &[i])).collect();
@@ -137,8 +140,6 @@ mod tests {
         assert!((var - 1.0).abs() < 0.05, "variance {var}");
         assert_eq!(hashed_normal(3, &[7]), hashed_normal(3, &[7]));
     }
-    use crate::features::top_n::TopN;
-    use std::cmp::Reverse;
 
     #[test]
     fn high_weights_dominate_but_low_weights_are_still_drawn() {
