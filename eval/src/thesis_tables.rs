@@ -7,6 +7,8 @@
 //! SPGP-BEST, SPGP-HET-BEST) print an ME larger than the RMSE, which cannot hold for a mean
 //! absolute error; we keep the printed values.
 
+use crate::method::CANONICAL_METHODS;
+
 /// One method's RMSE and ME in a thesis table.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ThesisRow {
@@ -39,15 +41,8 @@ pub struct ThesisSituation {
     pub speed_figure: &'static str,
 }
 
+/// The thesis' six methods: the first six of [`CANONICAL_METHODS`] (it has no `-AUTO` variants).
 const fn rows(values: [(f64, f64); 6]) -> [ThesisRow; 6] {
-    let names = [
-        "SPGP-ALL",
-        "SPGP-BEST",
-        "SPGP-HET-ALL",
-        "SPGP-HET-BEST",
-        "KF",
-        "ICP",
-    ];
     let mut out = [ThesisRow {
         method: "",
         rmse: 0.0,
@@ -56,7 +51,7 @@ const fn rows(values: [(f64, f64); 6]) -> [ThesisRow; 6] {
     let mut i = 0;
     while i < 6 {
         out[i] = ThesisRow {
-            method: names[i],
+            method: CANONICAL_METHODS[i],
             rmse: values[i].0,
             me: values[i].1,
         };

@@ -161,6 +161,12 @@ mod tests {
             heavy += picked.iter().filter(|&&i| i % 2 == 0).count();
             light += picked.iter().filter(|&&i| i % 2 == 1).count();
         }
+        assert_heavy_items_dominate(heavy, light);
+    }
+
+    /// 20 draws of 100 from 500 items of weight 1 and 500 of weight 0.1: the heavy share of
+    /// draws without replacement is about 0.906, and the light items are still drawn.
+    fn assert_heavy_items_dominate(heavy: usize, light: usize) {
         let share = heavy as f64 / 2000.0;
         assert!((share - 0.906).abs() < 0.03, "heavy share {share}");
         assert!(light >= 100, "light items drawn {light} times");
@@ -204,9 +210,7 @@ mod tests {
             heavy += picked.iter().filter(|&&i| i % 2 == 0).count();
             light += picked.iter().filter(|&&i| i % 2 == 1).count();
         }
-        let share = heavy as f64 / 2000.0;
-        assert!((share - 0.906).abs() < 0.03, "heavy share {share}");
-        assert!(light >= 100, "light items drawn {light} times");
+        assert_heavy_items_dominate(heavy, light);
     }
 
     #[test]

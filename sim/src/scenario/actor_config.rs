@@ -3,6 +3,8 @@
 use patchflow_dataset::ActorClass;
 use serde::{Deserialize, Serialize};
 
+use super::schema::reflectivity_problem;
+
 /// Car body styles; they set the default box size of a car.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -229,14 +231,7 @@ impl ActorConfig {
                 format!("acceleration limit must be in (0, 10] m/s², got {a}"),
             ));
         }
-        if let Some(r) = self.reflectivity
-            && !(0.0..=1.0).contains(&r)
-        {
-            out.push((
-                "reflectivity",
-                format!("reflectivity must be in [0, 1], got {r}"),
-            ));
-        }
+        out.extend(reflectivity_problem(self.reflectivity));
         out
     }
 }

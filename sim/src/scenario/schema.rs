@@ -36,6 +36,17 @@ impl Default for TrafficConfig {
     }
 }
 
+/// The problem with a surface's lidar reflectivity, if it lies outside [0, 1].
+pub(crate) fn reflectivity_problem(reflectivity: Option<f64>) -> Option<(&'static str, String)> {
+    let r = reflectivity?;
+    (!(0.0..=1.0).contains(&r)).then(|| {
+        (
+            "reflectivity",
+            format!("reflectivity must be in [0, 1], got {r}"),
+        )
+    })
+}
+
 impl TrafficConfig {
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
         let mut out = Vec::new();

@@ -3,6 +3,8 @@
 use patchflow_dataset::SemanticClass;
 use serde::{Deserialize, Serialize};
 
+use super::schema::reflectivity_problem;
+
 /// What a static structure is; sets its label, default size and reflectivity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -145,14 +147,7 @@ impl StructureConfig {
         if self.centres_m().len() > 10_000 {
             out.push(("spacing_m", "a row may hold at most 10000 boxes".to_owned()));
         }
-        if let Some(r) = self.reflectivity
-            && !(0.0..=1.0).contains(&r)
-        {
-            out.push((
-                "reflectivity",
-                format!("reflectivity must be in [0, 1], got {r}"),
-            ));
-        }
+        out.extend(reflectivity_problem(self.reflectivity));
         out
     }
 }
