@@ -47,9 +47,8 @@ impl Plan {
                 samples: 600,
                 pseudo_inputs: 30,
                 max_iters: 60,
-                priors: vec![0.01, 0.5],
                 seed: SEED,
-                mirror_images: true,
+                ..CvParams::default()
             };
             Self {
                 training,
@@ -59,14 +58,12 @@ impl Plan {
                 cv,
             }
         } else {
+            // The thesis' samples, pseudo-inputs and priors; fewer folds and iterations for time.
             let cv = CvParams {
                 folds: 3,
-                samples: 1600,
-                pseudo_inputs: 100,
                 max_iters: 100,
-                priors: vec![0.01, 0.5],
                 seed: SEED,
-                mirror_images: true,
+                ..CvParams::default()
             };
             Self {
                 training: all,
