@@ -1,0 +1,187 @@
+//! The first steps of the ground estimate: each coarse cell's lowest robust return, and the
+//! moments of its ground band (the returns a little above that lowest one).
+//!
+//! As in grid-based ground segmentation (GroundGrid, Steinke et al. 2024; the elevation maps of
+//! Himmelsbach et al. 2010), the lowest returns in a cell of a metre or two are the ground
+//! wherever the ground is seen at all: objects stand on it, canopies hang over it.
+
+use crate::features::grid::GridWindow;
+
+/// A cell's lowest robust height: the single lowest return is dropped once the cell holds this
+/// many returns (one noisy or mixed return must not set the ground).
+const DROP_LOWEST_FROM: u32 = 4;
+/// Returns this far above the cell's lowest robust height belong to its ground band: the lower
+/// half of a cell on a 10 % grade, and only the foot of a wall or car face standing in the cell
+/// (whose returns would lift the band's mean height by half the band).
+pub(crate) const BAND_M: f64 = 0.06;
+/// Returns this far below the lowest robust height still count (range noise).
+const BELOW_M: f64 = 0.05;
+/// Returns up to this far above the lowest robust height (but above the band) make a cell look
+/// like the foot of a vertical face rather than open ground.
+const FACE_M: f64 = 0.5;
+
+/// Per cell of a window: how many returns fell in it and its lowest robust height (`+∞` if
+/// empty). Row-major like every grid here.
+#[derive(Debug, Clone)]
+pub(crate) struct CellLows {
+    /// Cell of every point (`u32::MAX` outside the window), in point order.
+    pub(crate) cell_of_point: Vec<u32>,
+    /// Lowest robust height per cell, world z, metres.
+    pub(crate) low_m: Vec<f64>,
+}
+
+impl CellLows {
+    /// Bins world points into `window`'s cells and keeps each cell's two lowest heights.
+    pub(crate) fn bin(points_in_world: &[[f64; 3]], window: &GridWindow) -> Self {
+        let mut lowest = vec![[f64::INFINITY; 2]; window.len()];
+        let mut counts = vec![0u32; window.len()];
+        let cell_of_point: Vec<u32> = points_in_world
+            .iter()
+            .map(|p| {
+                let Some((c, r)) = window.cell_of(p[0], p[1]) else {
+                    return u32::MAX;
+                };
+                let k = window.index(c, r);
+                counts[k] += 1;
+                let low = &mut lowest[k];
+                if p[2] < low[0] {
+                    *low = [p[2], low[0]];
+                } else if p[2] < low[1] {
+                    low[1] = p[2];
+                }
+                k as u32
+            })
+            .collect();
+        let low_m = lowest
+            .iter()
+            .zip(&counts)
+            .map(|(low, &n)| {
+                if n >= DROP_LOWEST_FROM {
+                    low[1]
+                } else {
+                    low[0]
+                }
+            })
+            .collect();
+        Self {
+            cell_of_point,
+            low_m,
+        }
+    }
+}
+
+/// Moments of one cell's ground band in window-local metres, `[1, x, y, z, xx, xy, yy, xz, yz]`,
+/// each averaged over the band and weighted by the cell's share of open ground (below).
+pub(crate) type Moments = [f64; 9];
+
+/// The ground band moments of every accepted cell (zeros elsewhere).
+///
+/// A cell weighs `band / (band + face)` returns, where `face` counts the returns up to
+/// [`FACE_M`] above its band: 1 for open ground however densely it is hit, about 0.2 for the
+/// lowest visible stretch of a wall whose foot is hidden behind a parked car (which the slope
+/// filter cannot tell from a raised sidewalk far from any seen ground), in between for ground
+/// at the foot of a face.
+pub(crate) fn band_moments(
+    points_in_world: &[[f64; 3]],
+    window: &GridWindow,
+    lows: &CellLows,
+    ground: &[bool],
+) -> Vec<Moments> {
+    let mut sums = vec![[0.0; 9]; window.len()];
+    let mut face = vec![0u32; window.len()];
+    let (x0, y0) = (
+        window.origin_col as f64 * window.cell_m,
+        window.origin_row as f64 * window.cell_m,
+    );
+    for (p, &k) in points_in_world.iter().zip(&lows.cell_of_point) {
+        let k = k as usize;
+        if k >= sums.len() || !ground[k] {
+            continue;
+        }
+        let low = lows.low_m[k];
+        if p[2] < low - BELOW_M || p[2] > low + FACE_M {
+            continue;
+        }
+        if p[2] > low + BAND_M {
+            face[k] += 1;
+            continue;
+        }
+        let (x, y, z) = (p[0] - x0, p[1] - y0, p[2]);
+        let m = &mut sums[k];
+        for (slot, v) in m
+            .iter_mut()
+            .zip([1.0, x, y, z, x * x, x * y, y * y, x * z, y * z])
+        {
+            *slot += v;
+        }
+    }
+    for (m, &face) in sums.iter_mut().zip(&face) {
+        let band = m[0];
+        if band > 0.0 {
+            let weight = band / (band + f64::from(face));
+            m.iter_mut().for_each(|v| *v *= weight / band);
+        }
+    }
+    sums
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn window() -> GridWindow {
+        GridWindow::centred([0.0, 0.0], 2.0, 1.0)
+    }
+
+    #[test]
+    fn a_cell_keeps_its_lowest_return_and_drops_a_lone_outlier_once_it_has_four() {
+        let w = window();
+        let few = CellLows::bin(&[[0.5, 0.5, 0.3], [0.5, 0.6, 0.1]], &w);
+        let k = w.index(
+            w.cell_of(0.5, 0.5).unwrap().0,
+            w.cell_of(0.5, 0.5).unwrap().1,
+        );
+        assert_eq!(few.low_m[k], 0.1);
+        let many = CellLows::bin(
+            &[
+                [0.5, 0.5, 0.3],
+                [0.5, 0.6, -0.8],
+                [0.2, 0.6, 0.02],
+                [0.4, 0.1, 0.9],
+            ],
+            &w,
+        );
+        assert_eq!(many.low_m[k], 0.02);
+        assert!(many.low_m.iter().filter(|v| v.is_finite()).count() == 1);
+    }
+
+    #[test]
+    fn band_moments_average_the_returns_near_the_lowest_and_weigh_the_cell_by_its_open_ground() {
+        let w = window();
+        let points = [
+            [0.25, 0.5, 0.0],
+            [0.75, 0.5, 0.04],
+            [0.5, 0.5, 1.2],
+            [0.5, 0.6, 0.3],
+        ];
+        let lows = CellLows::bin(&points, &w);
+        let (c, r) = w.cell_of(0.5, 0.5).unwrap();
+        let k = w.index(c, r);
+        let mut accepted = vec![false; w.len()];
+        accepted[k] = true;
+        let m = band_moments(&points, &w, &lows, &accepted);
+        let x0 = w.origin_col as f64;
+        // Two band returns and one face return (0.3 m), the 1.2 m one left out: weight 2/3.
+        assert!((m[k][0] - 2.0 / 3.0).abs() < 1e-12);
+        assert!(
+            (m[k][1] / m[k][0] - (0.5 - x0)).abs() < 1e-12,
+            "mean x of the band"
+        );
+        assert!(
+            (m[k][3] / m[k][0] - 0.02).abs() < 1e-12,
+            "mean z of the band"
+        );
+        accepted[k] = false;
+        assert_eq!(band_moments(&points, &w, &lows, &accepted)[k], [0.0; 9]);
+    }
+}
