@@ -13,7 +13,7 @@ const DROP_LOWEST_FROM: u32 = 4;
 /// Returns this far above the cell's lowest robust height belong to its ground band: the lower
 /// half of a cell on a 10 % grade, and only the foot of a wall or car face standing in the cell
 /// (whose returns would lift the band's mean height by half the band).
-pub(crate) const BAND_M: f64 = 0.06;
+pub(crate) const BAND_M: f64 = 0.03;
 /// Returns this far below the lowest robust height still count (range noise).
 const BELOW_M: f64 = 0.05;
 /// Returns up to this far above the lowest robust height (but above the band) make a cell look
@@ -160,7 +160,7 @@ mod tests {
         let w = window();
         let points = [
             [0.25, 0.5, 0.0],
-            [0.75, 0.5, 0.04],
+            [0.75, 0.5, 0.02],
             [0.5, 0.5, 1.2],
             [0.5, 0.6, 0.3],
         ];
@@ -178,7 +178,7 @@ mod tests {
             "mean x of the band"
         );
         assert!(
-            (m[k][3] / m[k][0] - 0.02).abs() < 1e-12,
+            (m[k][3] / m[k][0] - 0.01).abs() < 1e-12,
             "mean z of the band"
         );
         accepted[k] = false;
