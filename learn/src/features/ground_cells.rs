@@ -35,13 +35,21 @@ impl CellLows {
     pub(crate) fn bin(points_in_world: &[[f64; 3]], window: &GridWindow) -> Self {
         let mut lowest = vec![[f64::INFINITY; 2]; window.len()];
         let mut counts = vec![0u32; window.len()];
+        let inv_cell = 1.0 / window.cell_m;
+        let (x0, y0) = (
+            window.origin_col as f64 * window.cell_m,
+            window.origin_row as f64 * window.cell_m,
+        );
+        let (cols, rows) = (window.cols as f64, window.rows as f64);
         let cell_of_point: Vec<u32> = points_in_world
             .iter()
             .map(|p| {
-                let Some((c, r)) = window.cell_of(p[0], p[1]) else {
+                // Truncation is the floor here: negative coordinates are outside.
+                let (u, v) = ((p[0] - x0) * inv_cell, (p[1] - y0) * inv_cell);
+                if !(u >= 0.0 && v >= 0.0 && u < cols && v < rows) {
                     return u32::MAX;
-                };
-                let k = window.index(c, r);
+                }
+                let k = v as usize * window.cols + u as usize;
                 counts[k] += 1;
                 let low = &mut lowest[k];
                 if p[2] < low[0] {

@@ -1,10 +1,11 @@
 //! The ground height at every cell centre: a least-squares plane through the ground bands of the
 //! cells around it (region-wise plane fitting, as Patchwork does per bin), in the smallest
 //! square window whose ground cells pin a plane down (enough of them, spread in both
-//! directions). Near the sensor the 3 × 3 window smooths over 3 m; under a car, between far
-//! rings (6 m apart at 40 m) or behind a wall the window grows until it reaches ground on the
-//! other side, which fills the hole by the plane through its rim. A single ring arc does not
-//! pin the slope across it, so its window grows to the next ring.
+//! directions). Near the sensor the 3 × 3 window smooths over 3 m. A single ring arc does not
+//! pin the slope across it, so its window grows to the next ring. A cell without ground of its
+//! own (under a car, between far rings, 6 m apart at 40 m) takes the smallest window whose ground
+//! surrounds it, up to 9 m; a wider hole is a shadow seen from one side (behind parked cars or
+//! a wall), held at the level of the nearest ground's rim.
 //!
 //! Summed-area tables of the cells' moments give any window's sums in O(1), so the whole grid
 //! costs a few operations per cell whatever the window sizes.
@@ -94,7 +95,8 @@ impl MomentTable {
     /// (a shadow seen from one side only), the smallest window's plane is followed to the rim of
     /// its ground and held level beyond. `None` if no window pins a plane.
     fn height_at(&self, c: usize, r: usize, centre: [f64; 2]) -> Option<f64> {
-        let hole = self.window_sum(c, c + 1, r, r + 1)[0] == 0.0;
+        // Below any real cell's weight; the table's differences leave rounding dust.
+        let hole = self.window_sum(c, c + 1, r, r + 1)[0] < 1e-9;
         let mut one_sided = None;
         for k in RADII {
             let sums = self.window_sum(

@@ -31,6 +31,57 @@ pub struct GroundGrid {
     heights_m: Vec<f64>,
     /// Bound on |∇ ground| over the grid (the steepest step between neighbouring centres).
     max_gradient: f64,
+    /// The lattice of cell centres the queries interpolate on.
+    centres: CentreLattice,
+}
+
+/// Cell-centre heights with the last column and row repeated once more, so a bilinear query
+/// needs no edge cases (the slice asks a few hundred thousand per sweep).
+#[derive(Debug, Clone, PartialEq)]
+struct CentreLattice {
+    padded_m: Vec<f64>,
+    stride: usize,
+    inv_cell: f64,
+    /// Lattice coordinate of world x = 0 (y = 0), negated.
+    offset: [f64; 2],
+    /// Largest lattice coordinate (the outermost centre) per axis.
+    last: [f64; 2],
+}
+
+impl CentreLattice {
+    fn new(heights_m: &[f64], window: &GridWindow) -> Self {
+        let (cols, rows) = (window.cols, window.rows);
+        let stride = cols + 1;
+        let mut padded_m = Vec::with_capacity(stride * (rows + 1));
+        for r in (0..rows).chain([rows - 1]) {
+            let row = &heights_m[r * cols..(r + 1) * cols];
+            padded_m.extend_from_slice(row);
+            padded_m.push(row[cols - 1]);
+        }
+        Self {
+            padded_m,
+            stride,
+            inv_cell: 1.0 / window.cell_m,
+            offset: [
+                window.origin_col as f64 + 0.5,
+                window.origin_row as f64 + 0.5,
+            ],
+            last: [(cols - 1) as f64, (rows - 1) as f64],
+        }
+    }
+
+    /// Bilinear between centres, held beyond the outermost ones.
+    fn at(&self, x_m: f64, y_m: f64) -> f64 {
+        let u = (x_m * self.inv_cell - self.offset[0]).clamp(0.0, self.last[0]);
+        let v = (y_m * self.inv_cell - self.offset[1]).clamp(0.0, self.last[1]);
+        let (c, r) = (u as usize, v as usize);
+        let (tu, tv) = (u - c as f64, v - r as f64);
+        let s = self.stride;
+        let h = &self.padded_m[r * s + c..r * s + c + s + 2];
+        let below = h[0] + (h[1] - h[0]) * tu;
+        let above = h[s] + (h[s + 1] - h[s]) * tu;
+        below + (above - below) * tv
+    }
 }
 
 impl GroundGrid {
@@ -71,24 +122,19 @@ impl GroundGrid {
         // and fills the holes under objects and between rings. Without any ground, z = 0.
         let heights_m = MomentTable::new(&moments, &window).fit_heights(&window, 0.0);
         let max_gradient = max_gradient(&heights_m, &window);
+        let centres = CentreLattice::new(&heights_m, &window);
         Self {
             window,
             heights_m,
             max_gradient,
+            centres,
         }
     }
 
     /// Ground height at world `(x, y)`, metres: bilinear between cell centres, held constant
     /// beyond the outermost centres.
     pub fn ground_z_m(&self, x_m: f64, y_m: f64) -> f64 {
-        let w = &self.window;
-        let [u, v] = w.to_local(x_m, y_m);
-        let (c0, c1, tu) = neighbours(u, w.cols);
-        let (r0, r1, tv) = neighbours(v, w.rows);
-        let at = |c: usize, r: usize| self.heights_m[r * w.cols + c];
-        let below = at(c0, r0) + (at(c1, r0) - at(c0, r0)) * tu;
-        let above = at(c0, r1) + (at(c1, r1) - at(c0, r1)) * tu;
-        below + (above - below) * tv
+        self.centres.at(x_m, y_m)
     }
 
     /// The window of ground cells.
@@ -105,14 +151,6 @@ impl GroundGrid {
     pub fn max_gradient(&self) -> f64 {
         self.max_gradient
     }
-}
-
-/// The two cell centres around local coordinate `u` along an axis of `n` cells and the weight of
-/// the second, held at the outermost centres.
-fn neighbours(u: f64, n: usize) -> (usize, usize, f64) {
-    let u = (u - 0.5).clamp(0.0, (n - 1) as f64);
-    let first = (u as usize).min(n.saturating_sub(2));
-    (first, (first + 1).min(n - 1), u - first as f64)
 }
 
 /// Every point of the sweep in the world frame; a non-finite point is an error.

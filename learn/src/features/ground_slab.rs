@@ -11,11 +11,11 @@ use crate::features::ground_grid::GroundGrid;
 
 /// How far `h` may bend away from a straight line on one piece, metres: a fraction of the 0.5 m
 /// slice, and about the ground estimate's own accuracy.
-const TOLERANCE_M: f64 = 0.02;
+const TOLERANCE_M: f64 = 0.03;
 /// Halvings of a beam at most: pieces of 1/16 of the beam.
 const MAX_DEPTH: u32 = 4;
 /// The most the ground is assumed to bend away from a straight line under one piece, metres.
-const MAX_BEND_M: f64 = 0.5;
+const MAX_BEND_M: f64 = 0.15;
 
 /// The slab `[min_m, max_m]` above a ground, seen from one sensor origin.
 pub(crate) struct SlabAboveGround<'a> {
@@ -46,7 +46,8 @@ impl<'a> SlabAboveGround<'a> {
         let beam = Beam {
             slab: self,
             end,
-            length_xy_m: (end[0] - self.origin[0]).hypot(end[1] - self.origin[1]),
+            length_xy_m: ((end[0] - self.origin[0]).powi(2) + (end[1] - self.origin[1]).powi(2))
+                .sqrt(),
         };
         beam.piece(0.0, 1.0, self.origin_height_m, end_height, 0, out);
         (self.min_m..=self.max_m).contains(&end_height)
