@@ -1,8 +1,10 @@
 //! How well the per-sweep ground estimate finds the true ground of a generated dataset, and what
 //! it changes in the height slice: for every `STEP`-th sweep of every sequence, the height of each
 //! ground-labelled return (road, parking, sidewalk, other ground, terrain) above the estimated
-//! ground and above the flat z = 0, within the map window; and how many returns of the ground,
-//! of actors and of everything else fall in the 0.5-1.0 m slice above each ground.
+//! ground and above the flat z = 0, within the map window; how many returns of the ground, of
+//! actors and of everything else fall in the 0.5-1.0 m slice above each ground; and how well
+//! each slice picks the actor returns that truly lie 0.5-1.0 m above the bottom of their truth
+//! box (the ground they stand on).
 //!
 //! `cargo run --release -p patchflow-learn --example ground_check -- DATASET [STEP] [OUT_DIR]`
 //!
@@ -36,6 +38,9 @@ struct Tally {
     flat_m: BTreeMap<&'static str, Vec<f64>>,
     /// Returns in the slice above [estimated, flat] ground: ground, actors, the rest.
     in_slice: BTreeMap<&'static str, [u64; 2]>,
+    /// Actor returns against their truth box, above [estimated, flat] ground: in the slice and
+    /// truly 0.5-1.0 m above the box bottom, in the slice but not, truly but not in the slice.
+    actors: BTreeMap<&'static str, [u64; 2]>,
     estimate_ms: Vec<f64>,
     sweeps: usize,
 }
@@ -111,6 +116,19 @@ fn check_sweep(
             tally.flat_m.entry(class).or_default().push(p.z.abs());
         }
     }
+    // Actor returns whose height above their truth box's bottom lies in the slice.
+    let truly: BTreeMap<usize, bool> = (0..sweep.len())
+        .filter_map(|i| {
+            let id = sweep.labels[i].instance();
+            let object = sweep.objects.iter().find(|o| o.id == id && id != 0)?;
+            let p = sweep.point_in_world(i);
+            let above = p.z - (object.centre_m[2] - object.size_m[2] / 2.0);
+            inside(p.x, p.y).then_some((
+                i,
+                (params.slice_min_m..=params.slice_max_m).contains(&above),
+            ))
+        })
+        .collect();
     for (k, slice) in [
         HeightSlice::cut_above(sweep, &ground, params)?,
         HeightSlice::cut(sweep, flat)?,
@@ -118,6 +136,17 @@ fn check_sweep(
     .iter()
     .enumerate()
     {
+        let sliced: std::collections::BTreeSet<usize> =
+            slice.points.iter().map(|p| p.index).collect();
+        for (i, &truth) in &truly {
+            let kind = match (sliced.contains(i), truth) {
+                (true, true) => "in the slice, truly",
+                (true, false) => "in the slice, truly not",
+                (false, true) => "missed",
+                (false, false) => continue,
+            };
+            tally.actors.entry(kind).or_default()[k] += 1;
+        }
         for point in slice.points.iter().filter(|p| inside(p.x_m, p.y_m)) {
             let label = sweep.labels[point.index];
             let kind = if GROUND_CLASSES.iter().any(|(id, _)| *id == label.semantic()) {
@@ -197,6 +226,10 @@ fn report(tally: &Tally, root: &Path, step: usize, pose_source: &str) -> (String
     for (kind, [e, f]) in &tally.in_slice {
         md += &format!("| {kind} | {e} | {f} |\n");
     }
+    md += "\n| actor returns vs. 0.5-1.0 m above their truth box bottom | above the estimated ground | above z = 0 |\n|---|---|---|\n";
+    for (kind, [e, f]) in &tally.actors {
+        md += &format!("| {kind} | {e} | {f} |\n");
+    }
     let mut ms = tally.estimate_ms.clone();
     let timing = [0.5, 0.9].map(|q| quantile(&mut ms, q));
     md += &format!(
@@ -211,6 +244,7 @@ fn report(tally: &Tally, root: &Path, step: usize, pose_source: &str) -> (String
         "quantiles": [0.5, 0.9, 0.99],
         "classes": classes,
         "in_slice_estimated_flat": tally.in_slice,
+        "actor_returns_estimated_flat": tally.actors,
         "estimate_ms_median_p90": timing,
     });
     (format!("{json:#}\n"), md)

@@ -51,29 +51,36 @@ impl CellLows {
                 }
                 let k = v as usize * window.cols + u as usize;
                 counts[k] += 1;
-                let low = &mut lowest[k];
-                if p[2] < low[0] {
-                    *low = [p[2], low[0]];
-                } else if p[2] < low[1] {
-                    low[1] = p[2];
-                }
+                Self::keep_lowest(&mut lowest[k], p[2]);
                 k as u32
             })
             .collect();
         let low_m = lowest
             .iter()
             .zip(&counts)
-            .map(|(low, &n)| {
-                if n >= DROP_LOWEST_FROM {
-                    low[1]
-                } else {
-                    low[0]
-                }
-            })
+            .map(|(low, &n)| Self::robust_low(low, n))
             .collect();
         Self {
             cell_of_point,
             low_m,
+        }
+    }
+
+    /// Keeps the two lowest heights seen, lowest first.
+    pub(crate) fn keep_lowest(low: &mut [f64; 2], z: f64) {
+        if z < low[0] {
+            *low = [z, low[0]];
+        } else if z < low[1] {
+            low[1] = z;
+        }
+    }
+
+    /// The lowest robust height of a cell with `count` returns whose two lowest are `low`.
+    pub(crate) fn robust_low(low: &[f64; 2], count: u32) -> f64 {
+        if count >= DROP_LOWEST_FROM {
+            low[1]
+        } else {
+            low[0]
         }
     }
 }

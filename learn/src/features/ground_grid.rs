@@ -10,6 +10,7 @@ use crate::features::grid::GridWindow;
 use crate::features::ground_cells::{CellLows, band_moments};
 use crate::features::ground_envelope::ground_cells;
 use crate::features::ground_fit::MomentTable;
+use crate::features::ground_pits::lift_pits;
 use crate::{LearnError, Result};
 
 /// A ground height per 1 m cell, bilinear between cell centres.
@@ -112,8 +113,9 @@ impl GroundGrid {
         half_extent_m: f64,
     ) -> Self {
         let window = GridWindow::centred(centre_xy, half_extent_m + Self::MARGIN_M, Self::CELL_M);
-        // The lowest robust return of every cell.
-        let lows = CellLows::bin(points_in_world, &window);
+        // The lowest robust return of every cell, not deep below its neighbourhood.
+        let mut lows = CellLows::bin(points_in_world, &window);
+        lift_pits(points_in_world, &window, &mut lows);
         // Slope-based filter: cells standing above their surroundings are objects, not ground.
         let ground = ground_cells(&lows.low_m, &window);
         // The ground band of every ground cell, as moments.

@@ -12,6 +12,7 @@ mod ground_cells;
 mod ground_envelope;
 mod ground_fit;
 mod ground_grid;
+mod ground_pits;
 mod ground_slab;
 mod line;
 mod mirror;
