@@ -110,10 +110,9 @@ mod tests {
     fn a_ten_percent_grade_with_a_curb_is_all_ground() {
         let w = window();
         let mut low = plane(&w, 0.10);
-        for k in 0..w.len() {
-            if k / w.cols >= 6 {
-                low[k] += 0.15;
-            }
+        // Rows 6 and up are a sidewalk behind a 0.15 m curb.
+        for row in low.chunks_mut(w.cols).skip(6) {
+            row.iter_mut().for_each(|z| *z += 0.15);
         }
         assert!(ground_cells(&low, &w).iter().all(|&g| g));
     }
