@@ -233,7 +233,7 @@ fn report(tally: &Tally, root: &Path, step: usize, pose_source: &str) -> (String
     let mut ms = tally.estimate_ms.clone();
     let timing = [0.5, 0.9].map(|q| quantile(&mut ms, q));
     md += &format!(
-        "\nGround estimate per sweep: median {:.2} ms, p90 {:.2} ms (one thread).\n",
+        "\nGround estimate per sweep: median {:.2} ms, p90 {:.2} ms (wall time, one thread).\n",
         timing[0], timing[1]
     );
     let json = serde_json::json!({

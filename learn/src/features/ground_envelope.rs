@@ -9,11 +9,15 @@
 
 use crate::features::grid::GridWindow;
 
-/// The steepest ground the filter keeps: 25 %, well above street grades (≤ 10 %) and camber
-/// (2-3 %); steeper terrain is filled from its lower parts.
-pub(crate) const MAX_SLOPE: f64 = 0.25;
+/// The steepest ground the filter keeps over more than a few metres: 15 %, above street grades
+/// (≤ 10 %), camber (2-3 %) and the realism branch's terrain hummocks; steeper ground is filled
+/// from its lower parts. Measured on the realism branch's urban sweeps, 25 % let hedges, bushes
+/// and grass tufts pass as ground: terrain returns lay up to 0.4 m (p1) below the estimate,
+/// p99 |error| 0.47 m; at 15 % 0.27 m and 0.36 m, the road and sidewalk within a centimetre or
+/// two of before.
+pub(crate) const MAX_SLOPE: f64 = 0.15;
 /// The rise allowed on top of the slope: a curb (0.12-0.15 m) and the cell's own ground band.
-pub(crate) const STEP_M: f64 = 0.2;
+pub(crate) const STEP_M: f64 = 0.15;
 
 /// True for every cell whose lowest height lies within `STEP_M` of the slope envelope; empty
 /// cells are false.
