@@ -16,9 +16,10 @@ const DROP_LOWEST_FROM: u32 = 4;
 pub(crate) const BAND_M: f64 = 0.03;
 /// Returns this far below the lowest robust height still count (range noise).
 const BELOW_M: f64 = 0.05;
-/// Returns up to this far above the lowest robust height (but above the band) make a cell look
-/// like the foot of a vertical face rather than open ground.
-const FACE_M: f64 = 0.5;
+/// Returns between these heights above the lowest robust height make a cell look like the foot of
+/// a vertical face (a wall, a car, a hedge) rather than open ground: above any grade or curb
+/// across one cell, within the first metre of the face.
+const FACE_M: [f64; 2] = [0.25, 1.0];
 
 /// Per cell of a window: how many returns fell in it and its lowest robust height (`+∞` if
 /// empty). Row-major like every grid here.
@@ -91,11 +92,13 @@ pub(crate) type Moments = [f64; 9];
 
 /// The ground band moments of every accepted cell (zeros elsewhere).
 ///
-/// A cell weighs `band / (band + face)` returns, where `face` counts the returns up to
-/// [`FACE_M`] above its band: 1 for open ground however densely it is hit, about 0.2 for the
-/// lowest visible stretch of a wall whose foot is hidden behind a parked car (which the slope
-/// filter cannot tell from a raised sidewalk far from any seen ground), in between for ground
-/// at the foot of a face.
+/// A cell weighs `(band / (band + face))²`, where `band` and `face` count its returns in the band
+/// and in [`FACE_M`]: 1 for open ground however densely it is hit, less at the foot of a face,
+/// and nothing once the face has as many returns as the band: then the lowest return is most
+/// likely the lowest *visible* stretch of a wall or car whose foot is hidden (behind a parked
+/// car, or between far rings), which the slope filter cannot tell from ground seen nowhere near
+/// other ground. On the `ideal` world (flat ground) a linear weight left 10 % of the cells
+/// within 40 m more than 0.2 m off z = 0 and 4 % more returns in the slice than above z = 0.
 pub(crate) fn band_moments(
     points_in_world: &[[f64; 3]],
     window: &GridWindow,
@@ -114,11 +117,10 @@ pub(crate) fn band_moments(
             continue;
         }
         let low = lows.low_m[k];
-        if p[2] < low - BELOW_M || p[2] > low + FACE_M {
-            continue;
-        }
-        if p[2] > low + BAND_M {
-            face[k] += 1;
+        if p[2] < low - BELOW_M || p[2] > low + BAND_M {
+            if (low + FACE_M[0]..=low + FACE_M[1]).contains(&p[2]) {
+                face[k] += 1;
+            }
             continue;
         }
         let (x, y, z) = (p[0] - x0, p[1] - y0, p[2]);
@@ -133,7 +135,12 @@ pub(crate) fn band_moments(
     for (m, &face) in sums.iter_mut().zip(&face) {
         let band = m[0];
         if band > 0.0 {
-            let weight = band / (band + f64::from(face));
+            let face = f64::from(face);
+            let weight = if face >= band {
+                0.0
+            } else {
+                (band / (band + face)).powi(2)
+            };
             m.iter_mut().for_each(|v| *v *= weight / band);
         }
     }
@@ -186,8 +193,8 @@ mod tests {
         accepted[k] = true;
         let m = band_moments(&points, &w, &lows, &accepted);
         let x0 = w.origin_col as f64;
-        // Two band returns and one face return (0.3 m), the 1.2 m one left out: weight 2/3.
-        assert!((m[k][0] - 2.0 / 3.0).abs() < 1e-12);
+        // Two band returns and one face return (0.3 m), the 1.2 m one left out: weight (2/3)².
+        assert!((m[k][0] - 4.0 / 9.0).abs() < 1e-12);
         assert!(
             (m[k][1] / m[k][0] - (0.5 - x0)).abs() < 1e-12,
             "mean x of the band"
