@@ -33,7 +33,9 @@ pub(crate) fn provenance(
         let info = match SequenceReader::open(dir) {
             Ok(reader) => reader.info().clone(),
             Err(e) => {
-                return Provenance::Different(format!("its finished data does not read back ({e})"));
+                return Provenance::Different(format!(
+                    "its finished data does not read back ({e})"
+                ));
             }
         };
         // Markers written before the hash was recorded: hash the stored scenario instead.
