@@ -285,7 +285,7 @@ fn read_words(path: &Path, per_record: usize, n: Option<usize>) -> Result<Vec<u3
         (other, _) => other,
     })?;
     let len = bytes.len() as u64;
-    if len % record != 0 {
+    if !len.is_multiple_of(record) {
         let reason = format!("{len} bytes is not a whole number of {record}-byte records");
         return Err(DatasetError::corrupt(path, reason));
     }
