@@ -212,3 +212,27 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
 pub(crate) fn sweep_path(dir: &Path, folder: &str, index: u32, ext: &str) -> PathBuf {
     dir.join(folder).join(format!("{index:06}.{ext}"))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_atomic_write_leaves_no_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        // Renaming a file onto a folder fails after the temporary file was written.
+        let target = dir.path().join("000000.bin");
+        std::fs::create_dir(&target).unwrap();
+        assert!(write_atomic(&target, b"data").is_err());
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().collect();
+        assert_eq!(left.len(), 1, "{left:?}");
+    }
+
+    #[test]
+    fn the_scenario_hash_is_what_sha256sum_prints() {
+        assert_eq!(
+            sha256_hex(b"abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+    }
+}
