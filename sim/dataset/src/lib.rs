@@ -18,6 +18,7 @@ mod manifest;
 mod object;
 mod pose;
 mod reader;
+mod record_files;
 mod semantic;
 mod sweep;
 mod sweep_checks;
