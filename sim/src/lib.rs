@@ -12,6 +12,7 @@ mod error;
 mod generate;
 mod lidar;
 mod motion;
+mod provenance;
 mod scenario;
 mod scene;
 mod seed;

@@ -2,6 +2,8 @@
 //! scenario set, and seeded random traffic.
 
 mod actor_config;
+mod bounds;
+mod derived_limits;
 mod embedded;
 mod lidar_config;
 mod load;
@@ -10,6 +12,7 @@ mod structure_config;
 mod traffic;
 
 pub use actor_config::{ActorConfig, CarModel};
+pub(crate) use derived_limits::{GROUND_HALF_M, gigabytes, sweep_memory_bytes};
 pub use embedded::EMBEDDED_SCENARIOS;
 pub use lidar_config::{ElevationSpacing, LidarConfig};
 pub use schema::{Scenario, TrafficConfig};

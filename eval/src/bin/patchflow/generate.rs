@@ -23,6 +23,10 @@ pub struct Args {
     /// Take every N-th unit of work starting at I (0-based), as `I/N`.
     #[arg(long)]
     pub shard: Option<String>,
+    /// Delete and regenerate the sequences this run covers (without it, a sequence written by
+    /// another seed, scenario text or version is refused, never mixed in).
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 /// Runs `patchflow generate`.
@@ -44,6 +48,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         out: args.out.clone(),
         seed: args.seed,
         shard,
+        overwrite: args.overwrite,
     };
     let manifest = generate_with_progress(&sources, &options)?;
     let points: u64 = manifest.sequences.iter().map(|s| s.points).sum();
@@ -71,6 +76,11 @@ pub fn generate_with_progress(
     let on_progress = |event: Progress| {
         let Ok(mut open) = open.lock() else { return };
         match event {
+            Progress::Waiting { name } => {
+                let _ = bars.println(format!(
+                    "{name:>12} is being written by another run; waiting for it"
+                ));
+            }
             Progress::SequenceStarted { name, sweeps } => {
                 let bar = bars.add(
                     ProgressBar::new(u64::from(sweeps))
