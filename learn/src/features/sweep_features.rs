@@ -197,17 +197,11 @@ fn points_in_window(curr_slice: &HeightSlice, params: &FeatureParams) -> Vec<Sli
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::GroundMode;
     use crate::features::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 
     /// A car driving away along the line of sight (+x) and a static wall off to the side; the
     /// ego drives 0.5 m along +y between the sweeps.
     fn car_and_wall() -> SweepFeatures {
-        car_and_wall_above(GroundMode::Estimated).0
-    }
-
-    /// The features of [`car_and_wall`] above the given ground, and the current sweep.
-    fn car_and_wall_above(ground: GroundMode) -> (SweepFeatures, Sweep) {
         let scene = SyntheticScene {
             boxes: vec![
                 SceneBox::car(7, [14.0, 0.0], 0.0, 6.0),
@@ -219,7 +213,6 @@ mod tests {
         let curr = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
         let params = FeatureParams {
             half_extent_m: 25.0,
-            ground,
             ..FeatureParams::default()
         };
         let f = SweepFeatures::compute(&prev, &curr, &params).unwrap();
@@ -228,7 +221,7 @@ mod tests {
                 .iter()
                 .all(|p| curr.labels[p.index].semantic() != 40)
         );
-        (f, curr)
+        f
     }
 
     fn mean_patch_weight(f: &SweepFeatures, on: impl Fn(&SlicedPoint) -> bool) -> f64 {
@@ -269,34 +262,5 @@ mod tests {
                 .len(),
             242
         );
-    }
-
-    #[test]
-    fn on_flat_ground_the_estimated_ground_gives_the_clusters_of_the_flat_one() {
-        let ((flat, sweep), (estimated, _)) = (
-            car_and_wall_above(GroundMode::Flat),
-            car_and_wall_above(GroundMode::Estimated),
-        );
-        // Each cluster as the set of its points' indices into the sweep.
-        let clusters = |f: &SweepFeatures| -> Vec<std::collections::BTreeSet<usize>> {
-            (0..f.clusters().len())
-                .map(|c| {
-                    let members = f.clusters().members(c).iter();
-                    members.map(|&i| f.points()[i].index).collect()
-                })
-                .collect()
-        };
-        let (a, b) = (clusters(&flat), clusters(&estimated));
-        assert_eq!(a.len(), b.len());
-        for (ca, cb) in a.iter().zip(&b) {
-            assert!(ca.intersection(cb).count() * 10 > 9 * ca.len());
-            // The estimate stands a centimetre high at the foot of the wall: a ring of the wall
-            // at 1.0001 m joins the slice. Nothing else changes sides.
-            for &i in ca.symmetric_difference(cb) {
-                let z = sweep.point_in_world(i).z;
-                let from_edge = (z - 0.5).abs().min((z - 1.0).abs());
-                assert!(from_edge < 0.02, "point {i} at {z:.4} m changed clusters");
-            }
-        }
     }
 }
