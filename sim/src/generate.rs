@@ -171,6 +171,8 @@ pub fn generate_sequence(
         "# resolved scenario {name}, generated with seed {seed}\n{resolved}"
     ))?;
     let mut sim = Simulation::new(scenario, seed)?;
+    writer.write_static_obstacles(&sim.scene().static_obstacles())?;
+    writer.write_sensor(&crate::lidar::sensor_info(&scenario.lidar))?;
     for index in 0..scenario.sweeps {
         let mut points = 0;
         if !writer.has_sweep(index) {

@@ -17,6 +17,8 @@ mod object;
 mod pose;
 mod reader;
 mod semantic;
+mod sensor_info;
+mod static_obstacle;
 mod sweep;
 mod writer;
 
@@ -26,6 +28,8 @@ pub use object::{ActorClass, ObjectTruth};
 pub use pose::{format_kitti_pose, parse_kitti_pose};
 pub use reader::{Dataset, SequenceReader};
 pub use semantic::{PointLabel, SemanticClass};
+pub use sensor_info::{SensorInfo, SensorKind};
+pub use static_obstacle::StaticObstacle;
 pub use sweep::Sweep;
 pub use writer::{SequenceWriter, write_atomic};
 

@@ -1,4 +1,5 @@
-//! The `[lidar]` table: a spinning multi-beam lidar, by default like a Velodyne HDL-64E on KITTI's car.
+//! The `[lidar]` table: a spinning multi-beam lidar, by default like a Velodyne HDL-64E on KITTI's
+//! car, or (`kind = "planar"`) a planar range scanner (see `planar_config.rs`).
 
 use serde::{Deserialize, Serialize};
 
@@ -14,10 +15,32 @@ pub enum ElevationSpacing {
     Uniform,
 }
 
-/// Settings of the spinning lidar. Every field can be overridden in a scenario's `[lidar]` table.
+/// Which range sensor the `[lidar]` table describes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SensorKind {
+    /// A spinning multi-beam lidar (the default, HDL-64E-like).
+    #[default]
+    Spinning,
+    /// A planar range scanner: one channel at 0° elevation, `beams` beams over `fov_deg`
+    /// centred on the sensor's forward axis, each scan cast at one instant (SICK LMS291-like).
+    Planar,
+}
+
+impl SensorKind {
+    /// True for the spinning lidar (the kind left out of resolved scenario files).
+    pub fn is_spinning(&self) -> bool {
+        *self == Self::Spinning
+    }
+}
+
+/// Settings of the range sensor. Every field can be overridden in a scenario's `[lidar]` table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LidarConfig {
+    /// Spinning lidar or planar scanner; a planar scanner fixes the spinner-only fields.
+    #[serde(skip_serializing_if = "SensorKind::is_spinning")]
+    pub kind: SensorKind,
     /// Number of channels (lasers), stacked vertically.
     pub channels: u32,
     /// Elevation of the highest channel, degrees.
@@ -44,6 +67,13 @@ pub struct LidarConfig {
     pub rolling_shutter: bool,
     /// Azimuth blocks per turn; the scene is moved once per block.
     pub blocks: u32,
+    /// Horizontal field of view of a planar scanner, degrees, centred on the forward axis
+    /// (planar only; resolved to 180).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fov_deg: Option<f64>,
+    /// Beams of a planar scanner, evenly spread over `fov_deg` (planar only; resolved to 181).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beams: Option<u32>,
 }
 
 impl Default for LidarConfig {
@@ -62,6 +92,9 @@ impl Default for LidarConfig {
             attenuation_per_m: 0.004,
             rolling_shutter: true,
             blocks: 60,
+            kind: SensorKind::Spinning,
+            fov_deg: None,
+            beams: None,
         }
     }
 }
@@ -161,6 +194,20 @@ impl LidarConfig {
                 self.azimuth_steps, self.blocks
             ),
         );
+        if let Some(fov) = self.fov_deg {
+            check(
+                "fov_deg",
+                fov.is_finite() && fov > 0.0 && fov <= 360.0,
+                format!("fov_deg must be in (0, 360], got {fov}"),
+            );
+        }
+        if let Some(beams) = self.beams {
+            check(
+                "beams",
+                (2..=100_000).contains(&beams),
+                format!("beams must be 2 to 100000, got {beams}"),
+            );
+        }
         out
     }
 }

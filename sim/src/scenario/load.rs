@@ -50,8 +50,14 @@ impl Scenario {
         if scenario.name.is_empty() {
             scenario.name = default_name.to_owned();
         }
+        let lidar_problems = scenario.lidar.resolve_kind(&keys_of_table(text, "lidar"));
         scenario.resolve();
-        if let Some((at, reason)) = scenario.problems().into_iter().next() {
+        let mut problems: Vec<Problem> = lidar_problems
+            .into_iter()
+            .map(|(field, reason)| (vec![Seg::Key("lidar"), Seg::Key(field)], reason))
+            .collect();
+        problems.extend(scenario.problems());
+        if let Some((at, reason)) = problems.into_iter().next() {
             return Err(SimError::at_offset(file, text, locate(text, &at), reason));
         }
         Ok(scenario)
@@ -186,6 +192,18 @@ impl Scenario {
     }
 }
 
+/// The keys a top-level table of `text` sets (none if it is absent or the text does not parse).
+fn keys_of_table(text: &str, table: &str) -> Vec<String> {
+    let Ok(root) = DeTable::parse(text) else {
+        return Vec::new();
+    };
+    let found = root.get_ref().iter().find(|(k, _)| k.get_ref() == table);
+    match found.map(|(_, v)| v.get_ref()) {
+        Some(DeValue::Table(t)) => t.iter().map(|(k, _)| k.get_ref().to_string()).collect(),
+        _ => Vec::new(),
+    }
+}
+
 /// Byte offset of the value at `path` in `text`: the deepest part of the path that exists
 /// (a field left to its default points at its table).
 fn locate(text: &str, path: &[Seg]) -> usize {
@@ -301,6 +319,24 @@ mod tests {
         let (line, reason) = error_of(&format!("{BASE}[lidar]\nchannels = 16\nrate_hz = 0.0\n"));
         assert_eq!(line, 7);
         assert!(reason.contains("rate_hz"), "{reason}");
+    }
+
+    #[test]
+    fn a_spinner_only_field_in_a_planar_table_points_at_its_line() {
+        let (line, reason) = error_of(&format!(
+            "{BASE}[lidar]\nkind = \"planar\"\nbeams = 70\nblocks = 10\n"
+        ));
+        assert_eq!(line, 8);
+        assert!(reason.contains("blocks"), "{reason}");
+    }
+
+    #[test]
+    fn a_resolved_planar_scenario_reads_back_equal() {
+        let text = format!("{BASE}[lidar]\nkind = \"planar\"\nbeams = 70\nmax_range_m = 20.0\n");
+        let s = Scenario::from_toml(&text, "ok.toml", "ok").unwrap();
+        assert_eq!((s.lidar.channels, s.lidar.azimuth_steps), (1, 70));
+        let back = Scenario::from_toml(&s.to_toml(), "resolved.toml", "x").unwrap();
+        assert_eq!(back, s);
     }
 
     #[test]

@@ -5,13 +5,15 @@ mod actor_config;
 mod embedded;
 mod lidar_config;
 mod load;
+mod planar_config;
 mod schema;
 mod structure_config;
 mod traffic;
 
 pub use actor_config::{ActorConfig, CarModel};
 pub use embedded::EMBEDDED_SCENARIOS;
-pub use lidar_config::{ElevationSpacing, LidarConfig};
+pub use lidar_config::{ElevationSpacing, LidarConfig, SensorKind};
+pub use planar_config::{PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M};
 pub use schema::{Scenario, TrafficConfig};
 pub use structure_config::{StructureConfig, StructureKind};
 pub use traffic::random_traffic;
