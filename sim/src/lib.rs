@@ -27,9 +27,9 @@ pub use motion::{
 };
 pub use patchflow_dataset as dataset;
 pub use scenario::{
-    ActorConfig, CarModel, EMBEDDED_SCENARIOS, ElevationSpacing, LidarConfig, PLANAR_BEAMS,
-    PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M, Scenario, SensorKind,
-    StructureConfig, StructureKind, TrafficConfig,
+    ActorConfig, CarModel, EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, ElevationSpacing,
+    LidarConfig, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M, Scenario,
+    SensorKind, StructureConfig, StructureKind, TrafficConfig,
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;

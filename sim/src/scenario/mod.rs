@@ -11,7 +11,7 @@ mod structure_config;
 mod traffic;
 
 pub use actor_config::{ActorConfig, CarModel};
-pub use embedded::EMBEDDED_SCENARIOS;
+pub use embedded::{EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS};
 pub use lidar_config::{ElevationSpacing, LidarConfig, SensorKind};
 pub use planar_config::{PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M};
 pub use schema::{Scenario, TrafficConfig};
