@@ -4,9 +4,13 @@
 mod error;
 mod estimator;
 mod features;
-mod gp;
+mod table;
 
 pub use error::{LearnError, Result};
 pub use estimator::*;
 pub use features::*;
-pub use gp::*;
+pub use patchflow_gp::{
+    FULL_GP_MAX_SAMPLES, FitReport, GP_MODEL_FORMAT, GP_MODEL_VERSION, GpError, GpKind, GpModel,
+    GpObjective, GpParams, GpPrediction, GpValidParams, Standardiser,
+};
+pub use table::{Columns, Table, TrainingColumns};

@@ -2,12 +2,12 @@
 //! D = 242), printing wall time and process CPU time (the machine may be shared, so CPU time
 //! divided by the thread count is the fairer figure).
 //!
-//! `cargo run --release -p patchflow-learn --example gp_timing -- [N] [D] [M] [EVALS] [fit]`
+//! `cargo run --release -p patchflow-gp --example gp_timing -- [N] [D] [M] [EVALS] [fit]`
 
 use std::time::Instant;
 
 use nalgebra::{DMatrix, DVector};
-use patchflow_learn::{GpKind, GpObjective, GpParams};
+use patchflow_gp::{GpKind, GpObjective, GpParams};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -29,7 +29,7 @@ fn cpu_seconds() -> f64 {
     (ticks(11) + ticks(12)) / 100.0
 }
 
-fn main() -> Result<(), patchflow_learn::LearnError> {
+fn main() -> Result<(), patchflow_gp::GpError> {
     let args: Vec<String> = std::env::args().collect();
     let arg =
         |i: usize, default: usize| args.get(i).and_then(|v| v.parse().ok()).unwrap_or(default);

@@ -14,7 +14,7 @@ use super::params::{GpKind, GpParams, GpValidParams};
 use super::sparse_posterior::SparsePosterior;
 use super::train_data::TrainData;
 use super::transform::Standardiser;
-use crate::{LearnError, Result};
+use crate::{GpError, Result};
 
 /// Correction pairs kept by L-BFGS.
 const LBFGS_MEMORY: usize = 10;
@@ -42,7 +42,7 @@ fn condition(data: &TrainData, kind: GpKind, h: &Hyper, jitter: f64) -> Result<(
 }
 
 fn check_data(x: &DMatrix<f64>, y: &DVector<f64>, names: &[String]) -> Result<()> {
-    let bad = |why: String| Err(LearnError::DegenerateData(why));
+    let bad = |why: String| Err(GpError::DegenerateData(why));
     if x.nrows() != y.len() {
         return bad(format!("{} input rows but {} targets", x.nrows(), y.len()));
     }

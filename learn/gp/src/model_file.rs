@@ -15,7 +15,7 @@ use super::params::GpKind;
 use super::sparse_posterior::SparsePosterior;
 use super::train_data::TrainData;
 use super::transform::Standardiser;
-use crate::{LearnError, Result};
+use crate::{GpError, Result};
 
 /// The `format` tag of a GP model file.
 pub const GP_MODEL_FORMAT: &str = "patchflow-gp-model";
@@ -228,7 +228,7 @@ impl GpModel {
 
     /// The model as a JSON value, e.g. to embed it in a larger model file.
     pub fn to_json_value(&self) -> Result<serde_json::Value> {
-        serde_json::to_value(self.to_file()).map_err(|e| LearnError::Model {
+        serde_json::to_value(self.to_file()).map_err(|e| GpError::Model {
             path: "<GP model>".into(),
             reason: e.to_string(),
         })
@@ -236,7 +236,7 @@ impl GpModel {
 
     /// Reads a model from a JSON value; `origin` names the file it came from in errors.
     pub fn from_json_value(value: serde_json::Value, origin: &Path) -> Result<Self> {
-        let err = |reason: String| LearnError::Model {
+        let err = |reason: String| GpError::Model {
             path: origin.to_path_buf(),
             reason,
         };
@@ -251,11 +251,11 @@ impl GpModel {
 
     /// Writes the model to `path` (atomically: a temporary file renamed into place).
     pub fn save(&self, path: &Path) -> Result<()> {
-        let io = |source| LearnError::Io {
+        let io = |source| GpError::Io {
             path: path.to_path_buf(),
             source,
         };
-        let mut bytes = serde_json::to_vec(&self.to_file()).map_err(|e| LearnError::Model {
+        let mut bytes = serde_json::to_vec(&self.to_file()).map_err(|e| GpError::Model {
             path: path.to_path_buf(),
             reason: e.to_string(),
         })?;
@@ -267,12 +267,12 @@ impl GpModel {
 
     /// Reads a model written by [`GpModel::save`].
     pub fn load(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|source| LearnError::Io {
+        let bytes = std::fs::read(path).map_err(|source| GpError::Io {
             path: path.to_path_buf(),
             source,
         })?;
         let value: serde_json::Value =
-            serde_json::from_slice(&bytes).map_err(|e| LearnError::Model {
+            serde_json::from_slice(&bytes).map_err(|e| GpError::Model {
                 path: path.to_path_buf(),
                 reason: format!("not valid JSON: {e}"),
             })?;

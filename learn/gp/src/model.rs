@@ -8,7 +8,7 @@ use super::hyper::Hyper;
 use super::params::GpKind;
 use super::sparse_posterior::SparsePosterior;
 use super::transform::Standardiser;
-use crate::{LearnError, Result};
+use crate::{GpError, Result};
 
 /// Predictive distribution at many test inputs, in the target's units.
 #[derive(Debug, Clone, PartialEq)]
@@ -123,14 +123,14 @@ impl GpModel {
     pub fn predict(&self, x: &DMatrix<f64>) -> Result<GpPrediction> {
         let d = self.input_names.len();
         if x.ncols() != d {
-            return Err(LearnError::InvalidParams(format!(
+            return Err(GpError::InvalidParams(format!(
                 "the model takes {d} input columns, got {}",
                 x.ncols()
             )));
         }
         if let Some(pos) = x.iter().position(|v| !v.is_finite()) {
             let (row, col) = (pos % x.nrows(), pos / x.nrows());
-            return Err(LearnError::DegenerateData(format!(
+            return Err(GpError::DegenerateData(format!(
                 "test input row {row}, column '{}' is not finite",
                 self.input_names[col]
             )));
@@ -152,7 +152,7 @@ impl GpModel {
     pub fn predict_rows_f32(&self, rows: &[&[f32]]) -> Result<GpPrediction> {
         let d = self.input_names.len();
         if let Some(bad) = rows.iter().position(|r| r.len() != d) {
-            return Err(LearnError::InvalidParams(format!(
+            return Err(GpError::InvalidParams(format!(
                 "row {bad} has {} values, the model takes {d}",
                 rows[bad].len()
             )));

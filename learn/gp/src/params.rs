@@ -6,7 +6,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use crate::{LearnError, Result};
+use crate::{GpError, Result};
 
 /// Which Gaussian process to fit (thesis 3.1.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -38,13 +38,13 @@ impl fmt::Display for GpKind {
 }
 
 impl FromStr for GpKind {
-    type Err = LearnError;
+    type Err = GpError;
     fn from_str(s: &str) -> Result<Self> {
         match s {
             "full" => Ok(Self::Full),
             "spgp" => Ok(Self::Spgp),
             "spgp-het" => Ok(Self::SpgpHet),
-            other => Err(LearnError::InvalidParams(format!(
+            other => Err(GpError::InvalidParams(format!(
                 "unknown GP kind '{other}' (expected full, spgp or spgp-het)"
             ))),
         }
@@ -126,7 +126,7 @@ impl GpParams {
 
     /// Validates the parameters.
     pub fn check(&self) -> Result<GpValidParams> {
-        let bad = |what: &str| Err(LearnError::InvalidParams(what.to_string()));
+        let bad = |what: &str| Err(GpError::InvalidParams(what.to_string()));
         if self.kind != GpKind::Full && self.pseudo_inputs == 0 {
             return bad("a sparse GP needs at least one pseudo-input");
         }

@@ -2,7 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::{GpKind, GpModel, GpParams, LearnError};
+use crate::{GpError, GpKind, GpModel, GpParams};
 
 fn fitted(kind: GpKind) -> GpModel {
     let x = DMatrix::from_fn(30, 2, |i, d| (i as f64 * 0.37 + d as f64).sin() * 3.0);
@@ -56,7 +56,7 @@ fn another_version_a_foreign_file_and_broken_json_are_model_errors_naming_the_fi
         let path = dir.path().join(name);
         std::fs::write(&path, text).expect("writes");
         let err = GpModel::load(&path).expect_err("must be rejected");
-        assert!(matches!(err, LearnError::Model { .. }), "{name}: {err}");
+        assert!(matches!(err, GpError::Model { .. }), "{name}: {err}");
         assert!(
             err.to_string().contains(name),
             "{name}: message does not name the file: {err}"

@@ -5,7 +5,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-use crate::{GpKind, GpParams, LearnError};
+use crate::{GpError, GpKind, GpParams};
 
 /// y = sin(x) on [0, 10] with noise sd `low` below x = 5 and `high` above.
 fn toy(n: usize, low: f64, high: f64, seed: u64) -> (DMatrix<f64>, DVector<f64>) {
@@ -103,7 +103,7 @@ fn fits_or_errors(kind: GpKind, x: &DMatrix<f64>, y: &DVector<f64>, m: usize) {
             );
         }
         Err(e) => assert!(
-            matches!(e, LearnError::DegenerateData(_) | LearnError::Numerical(_)),
+            matches!(e, GpError::DegenerateData(_) | GpError::Numerical(_)),
             "{kind}: {e}"
         ),
     }
@@ -141,7 +141,7 @@ fn non_finite_inputs_or_too_few_samples_are_errors() {
     let err = GpParams::new(GpKind::Spgp)
         .fit(&x, &y)
         .expect_err("NaN input");
-    assert!(matches!(err, LearnError::DegenerateData(_)), "{err}");
+    assert!(matches!(err, GpError::DegenerateData(_)), "{err}");
     let one = DMatrix::from_element(1, 1, 0.5);
     assert!(
         GpParams::new(GpKind::Full)

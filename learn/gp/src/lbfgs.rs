@@ -6,7 +6,7 @@ use std::collections::VecDeque;
 
 use nalgebra::DVector;
 
-use crate::{LearnError, Result};
+use crate::{GpError, Result};
 
 /// Sufficient-decrease and curvature constants of the strong Wolfe conditions.
 const C1: f64 = 1e-4;
@@ -185,7 +185,7 @@ where
     let mut obj = Counted { f, evals: 1 };
     let (f0, g0) = (obj.f)(&x0)?;
     if !f0.is_finite() || g0.iter().any(|v| !v.is_finite()) {
-        return Err(LearnError::Numerical(
+        return Err(GpError::Numerical(
             "the objective is not finite at the starting point".into(),
         ));
     }
@@ -298,7 +298,7 @@ mod tests {
         // A quadratic with its minimum at 3 that cannot be evaluated beyond 3.2 (NaN or error).
         let f = |x: &DVector<f64>| -> Result<(f64, DVector<f64>)> {
             if x[0] > 3.5 {
-                return Err(LearnError::Numerical("outside".into()));
+                return Err(GpError::Numerical("outside".into()));
             }
             if x[0] > 3.2 {
                 return Ok((f64::NAN, DVector::from_element(1, f64::NAN)));

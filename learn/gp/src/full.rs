@@ -11,7 +11,7 @@ use super::linalg::{
     cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse, mul, t_view,
 };
 use super::train_data::TrainData;
-use crate::{LearnError, Result};
+use crate::{GpError, Result};
 
 /// The largest training set the exact GP accepts (its cost is O(N³) time and O(N²) memory).
 pub const FULL_GP_MAX_SAMPLES: usize = 4000;
@@ -19,7 +19,7 @@ pub const FULL_GP_MAX_SAMPLES: usize = 4000;
 /// K + σ²I factored with jitter; returns (L, jitter).
 fn factor(x: &DMatrix<f64>, h: &Hyper, jitter: f64) -> Result<(DMatrix<f64>, DMatrix<f64>, f64)> {
     if x.nrows() > FULL_GP_MAX_SAMPLES {
-        return Err(LearnError::InvalidParams(format!(
+        return Err(GpError::InvalidParams(format!(
             "the full GP takes at most {FULL_GP_MAX_SAMPLES} samples, got {}; use SPGP",
             x.nrows()
         )));
@@ -116,7 +116,7 @@ impl FullPosterior {
         let v = self
             .l
             .solve_lower_triangular(&k_star)
-            .ok_or_else(|| LearnError::Numerical("chol(K + σ²I) has a zero pivot".into()))?;
+            .ok_or_else(|| GpError::Numerical("chol(K + σ²I) has a zero pivot".into()))?;
         let var = colsum_product(&v, &v).map(|q| (h.signal_variance - q).max(0.0));
         Ok((mean, var))
     }
@@ -125,9 +125,9 @@ impl FullPosterior {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gp::fitc;
-    use crate::gp::hyper::Layout;
-    use crate::gp::sparse_posterior::SparsePosterior;
+    use crate::fitc;
+    use crate::hyper::Layout;
+    use crate::sparse_posterior::SparsePosterior;
 
     fn problem() -> (TrainData, Hyper) {
         let x = DMatrix::from_fn(15, 2, |n, d| ((n * (3 + d) + d) % 11) as f64 / 5.0 - 1.0);

@@ -3,7 +3,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector};
-use patchflow_learn::{GpKind, GpObjective, GpParams};
+use patchflow_gp::{GpKind, GpObjective, GpParams};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;

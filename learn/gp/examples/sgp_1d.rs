@@ -2,18 +2,18 @@
 //! small noise on the left half and large noise on the right. Prints the predictive mean and
 //! standard deviation (with noise) of both models on a grid, and SPGP-HET's pseudo-input noise h.
 //!
-//! `cargo run --release -p patchflow-learn --example sgp_1d`
+//! `cargo run --release -p patchflow-gp --example sgp_1d`
 
 use nalgebra::{DMatrix, DVector};
-use patchflow_learn::{GpKind, GpParams};
+use patchflow_gp::{GpKind, GpParams};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-fn main() -> Result<(), patchflow_learn::LearnError> {
+fn main() -> Result<(), patchflow_gp::GpError> {
     let mut rng = ChaCha8Rng::seed_from_u64(3);
-    let unit = Normal::new(0.0, 1.0)
-        .map_err(|e| patchflow_learn::LearnError::InvalidParams(e.to_string()))?;
+    let unit =
+        Normal::new(0.0, 1.0).map_err(|e| patchflow_gp::GpError::InvalidParams(e.to_string()))?;
     let x: DMatrix<f64> = DMatrix::from_fn(200, 1, |_, _| rng.random_range(0.0..10.0));
     let noise_sd = |x: f64| if x < 5.0 { 0.05 } else { 0.5 };
     let y = DVector::from_fn(200, |i, _| {

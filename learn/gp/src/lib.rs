@@ -1,17 +1,19 @@
-//! Gaussian-process regression: full GP, SPGP (FITC) and SPGP-HET (thesis 3.1.3).
+//! patchflow's Gaussian processes: regression with a full GP, SPGP (FITC) and SPGP-HET (Hess 2008,
+//! thesis 3.1.3). Depends on no other patchflow crate.
 //!
 //! ```
 //! use nalgebra::{DMatrix, DVector};
-//! use patchflow_learn::{GpKind, GpParams};
+//! use patchflow_gp::{GpKind, GpParams};
 //!
 //! let x = DMatrix::from_fn(40, 1, |i, _| i as f64 / 8.0);
 //! let y = x.column(0).map(|v| v.sin());
 //! let model = GpParams::new(GpKind::Spgp).pseudo_inputs(8).max_iters(50).fit(&x, &y)?;
 //! let p = model.predict(&DMatrix::from_element(1, 1, 2.0))?;
 //! assert!((p.mean[0] - 2f64.sin()).abs() < 0.1);
-//! # Ok::<(), patchflow_learn::LearnError>(())
+//! # Ok::<(), patchflow_gp::GpError>(())
 //! ```
 
+mod error;
 mod fit;
 mod fitc;
 mod full;
@@ -25,14 +27,13 @@ mod model_file;
 mod objective;
 mod params;
 mod sparse_posterior;
-mod table;
 mod train_data;
 mod transform;
 
+pub use error::{GpError, Result};
 pub use full::FULL_GP_MAX_SAMPLES;
 pub use model::{FitReport, GpModel, GpPrediction};
 pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
 pub use objective::GpObjective;
 pub use params::{GpKind, GpParams, GpValidParams};
-pub use table::{Columns, Table, TrainingColumns};
 pub use transform::Standardiser;

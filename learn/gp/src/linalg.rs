@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector, Dyn, Matrix, MatrixView, Storage};
 /// A dense matrix view with arbitrary strides (e.g. a transpose).
 pub(crate) type StridedView<'a> = MatrixView<'a, f64, Dyn, Dyn, Dyn, Dyn>;
 
-use crate::{LearnError, Result};
+use crate::{GpError, Result};
 
 /// How many times the jitter is multiplied by 10 before a factorisation is declared failed.
 const JITTER_RETRIES: usize = 5;
@@ -54,16 +54,14 @@ pub(crate) struct JitteredCholesky {
 }
 
 /// Factors `a + jitter·I`; on failure retries with 10× the jitter up to five times (GPy's `jitchol`,
-/// gp.md §5.1), then returns [`LearnError::Numerical`] naming `what`.
+/// gp.md §5.1), then returns [`GpError::Numerical`] naming `what`.
 pub(crate) fn cholesky_with_jitter(
     a: &DMatrix<f64>,
     jitter: f64,
     what: &str,
 ) -> Result<JitteredCholesky> {
     if a.iter().any(|v| !v.is_finite()) {
-        return Err(LearnError::Numerical(format!(
-            "{what} has non-finite entries"
-        )));
+        return Err(GpError::Numerical(format!("{what} has non-finite entries")));
     }
     let n = a.nrows();
     let mean_diag = if n == 0 {
@@ -87,7 +85,7 @@ pub(crate) fn cholesky_with_jitter(
             eps = (eps * 10.0).max(1e-10 * mean_diag);
         }
     }
-    Err(LearnError::Numerical(format!(
+    Err(GpError::Numerical(format!(
         "{what} ({n}×{n}) is not positive definite even with jitter {eps:.3e}"
     )))
 }
@@ -97,7 +95,7 @@ pub(crate) fn lower_inverse(l: &DMatrix<f64>, what: &str) -> Result<DMatrix<f64>
     let n = l.nrows();
     l.solve_lower_triangular(&DMatrix::identity(n, n))
         .filter(|inv| inv.iter().all(|v| v.is_finite()))
-        .ok_or_else(|| LearnError::Numerical(format!("{what} has a zero pivot")))
+        .ok_or_else(|| GpError::Numerical(format!("{what} has a zero pivot")))
 }
 
 /// Sum of the logs of the diagonal of a triangular factor (half the log-determinant).
@@ -151,7 +149,7 @@ mod tests {
         bad[(0, 1)] = f64::NAN;
         assert!(matches!(
             cholesky_with_jitter(&bad, 1e-6, "K"),
-            Err(LearnError::Numerical(_))
+            Err(GpError::Numerical(_))
         ));
     }
 }
