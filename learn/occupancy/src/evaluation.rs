@@ -56,6 +56,8 @@ pub struct MapFigure {
 pub struct SequenceScores {
     /// Sequence name.
     pub name: String,
+    /// Time of each query scan, seconds since the sequence started (the paper's t).
+    pub query_secs: BTreeMap<usize, f64>,
     /// Query points per query scan.
     pub query_points: BTreeMap<usize, usize>,
     /// Occupied query points per query scan (truth).
@@ -98,11 +100,18 @@ pub fn evaluate_sequence(
             query_secs: query.stamp_secs,
         };
         // The lattice the sensor observes and the exact occupancy there at the query time.
-        let grid = QueryGrid::observed_by(query, &sequence.sensor, params.query_spacing_m);
+        let grid = QueryGrid::observed_by(
+            query,
+            &sequence.sensor,
+            params.query_spacing_m,
+            &sequence.truth,
+            sequence.scan_height_m(),
+        );
         let truth =
             sequence
                 .truth
                 .occupancy(&grid.points_m, sequence.scan_height_m(), query.stamp_secs);
+        scores.query_secs.insert(t, query.stamp_secs);
         scores.query_points.insert(t, grid.len());
         scores
             .occupied_points

@@ -50,6 +50,65 @@ impl OrientedBox {
     }
 }
 
+impl OrientedBox {
+    /// How far inside the footprint `xy_m` lies (distance to its nearest side), `None` outside.
+    pub fn depth_m(&self, xy_m: [f64; 2]) -> Option<f64> {
+        let (s, c) = self.yaw_rad.sin_cos();
+        let (dx, dy) = (xy_m[0] - self.centre_m[0], xy_m[1] - self.centre_m[1]);
+        let along = self.half_extents_m[0] - (c * dx + s * dy).abs();
+        let across = self.half_extents_m[1] - (c * dy - s * dx).abs();
+        (along >= 0.0 && across >= 0.0).then_some(along.min(across))
+    }
+
+    /// The point of the footprint's outline nearest to `xy_m` (a point inside moves out to its
+    /// nearest side).
+    pub fn nearest_outline_point(&self, xy_m: [f64; 2]) -> [f64; 2] {
+        let (s, c) = self.yaw_rad.sin_cos();
+        let (dx, dy) = (xy_m[0] - self.centre_m[0], xy_m[1] - self.centre_m[1]);
+        let mut local = [c * dx + s * dy, c * dy - s * dx];
+        let h = self.half_extents_m;
+        let clamped = [local[0].clamp(-h[0], h[0]), local[1].clamp(-h[1], h[1])];
+        if clamped == local {
+            // Inside: out through the nearer side.
+            let axis = usize::from(h[1] - local[1].abs() < h[0] - local[0].abs());
+            local[axis] = h[axis].copysign(local[axis]);
+        } else {
+            local = clamped;
+        }
+        [
+            self.centre_m[0] + c * local[0] - s * local[1],
+            self.centre_m[1] + s * local[0] + c * local[1],
+        ]
+    }
+
+    /// Distance from `origin_m` along the unit direction `dir` (ground plane) to where the ray
+    /// enters the footprint; 0 if `origin_m` is inside, `None` if the ray misses it.
+    pub fn ray_entry_m(&self, origin_m: [f64; 2], dir: [f64; 2]) -> Option<f64> {
+        let (s, c) = self.yaw_rad.sin_cos();
+        let (dx, dy) = (
+            origin_m[0] - self.centre_m[0],
+            origin_m[1] - self.centre_m[1],
+        );
+        // Origin and direction in the box's own frame; then the slab test on both axes.
+        let o = [c * dx + s * dy, c * dy - s * dx];
+        let d = [c * dir[0] + s * dir[1], c * dir[1] - s * dir[0]];
+        let (mut enter, mut exit) = (0.0f64, f64::INFINITY);
+        for axis in 0..2 {
+            let h = self.half_extents_m[axis];
+            if d[axis].abs() < 1e-15 {
+                if o[axis].abs() > h {
+                    return None;
+                }
+                continue;
+            }
+            let (t0, t1) = ((-h - o[axis]) / d[axis], (h - o[axis]) / d[axis]);
+            enter = enter.max(t0.min(t1));
+            exit = exit.min(t0.max(t1));
+        }
+        (enter <= exit).then_some(enter)
+    }
+}
+
 /// The truth of one sequence: static boxes, and the actors at every scan.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroundTruth {
@@ -66,6 +125,11 @@ impl GroundTruth {
             statics: statics.iter().map(OrientedBox::of_obstacle).collect(),
             scans,
         }
+    }
+
+    /// The static obstacles' boxes.
+    pub fn static_boxes(&self) -> &[OrientedBox] {
+        &self.statics
     }
 
     /// Every box at instant `t_secs`: the static ones and each actor, moved on from the latest
@@ -160,6 +224,24 @@ mod tests {
             [true, true, false, false, true]
         );
         assert_eq!(truth.occupancy(&[[10.0, 5.0]], 1.6, 2.0), [false]);
+    }
+
+    #[test]
+    fn a_ray_enters_a_yawed_box_where_its_face_is() {
+        let b = OrientedBox::of_object(&car(0.0));
+        // The car spans x 9 … 11, y 3 … 7: a ray along +x from (0, 5) enters at x = 9.
+        let entry = b.ray_entry_m([0.0, 5.0], [1.0, 0.0]).unwrap();
+        assert!((entry - 9.0).abs() < 1e-9, "{entry}");
+        assert_eq!(b.ray_entry_m([0.0, 8.0], [1.0, 0.0]), None);
+        assert_eq!(b.ray_entry_m([20.0, 5.0], [1.0, 0.0]), None);
+        assert_eq!(b.ray_entry_m([10.0, 5.0], [0.0, 1.0]), Some(0.0));
+        assert!((b.depth_m([10.5, 4.0]).unwrap() - 0.5).abs() < 1e-12);
+        let q = b.nearest_outline_point([10.5, 4.0]);
+        assert!(
+            (q[0] - 11.0).abs() < 1e-12 && (q[1] - 4.0).abs() < 1e-12,
+            "{q:?}"
+        );
+        assert_eq!(b.depth_m([11.5, 4.0]), None);
     }
 
     #[test]

@@ -1,11 +1,14 @@
 //! The query points a map is scored on (DGPOM paper, Table 1): a regular lattice over the area
-//! the sensor observes, i.e. within its maximum range and its field of view. The lattice is
-//! aligned to the world origin, so maps of one sequence share their points, and it keeps its
-//! rows and columns so maps can be drawn as images.
+//! the sensor observes: within its maximum range, inside its field of view, and not hidden behind
+//! static structure (a point at most one lattice step inside an obstacle still counts, so its
+//! faces are scored, but not a building's interior, which no scan can ever see). What moving actors hide
+//! stays in: reasoning about it is what the maps are compared on. The lattice is aligned to the
+//! world origin, so maps of one sequence share their points, and it keeps its rows and columns so
+//! maps can be drawn as images.
 
 use patchflow_dataset::SensorInfo;
 
-use crate::PlanarScan;
+use crate::{GroundTruth, OrientedBox, PlanarScan};
 
 /// Lattice points over a sensor's observed area.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,7 +27,8 @@ pub struct QueryGrid {
 
 impl QueryGrid {
     /// The lattice points with spacing `spacing_m` that `scan`'s sensor observes: within
-    /// `sensor.max_range_m` of it and inside the fan of its beams.
+    /// `sensor.max_range_m` of it, inside the fan of its beams, and in front of the static
+    /// obstacles of `truth` that reach the scan height `height_m` (or at most one step inside one).
     ///
     /// ```
     /// use patchflow_dataset::{SensorInfo, SensorKind};
@@ -40,11 +44,18 @@ impl QueryGrid {
     ///     elevations_deg: vec![0.0],
     /// };
     /// let scan = PlanarScan { index: 0, stamp_secs: 0.0, sensor_m: [0.0, 0.0], yaw_rad: 0.0, beams: vec![] };
-    /// let grid = QueryGrid::observed_by(&scan, &sensor, 1.0);
+    /// let open_field = patchflow_occupancy::GroundTruth::new(&[], Vec::new());
+    /// let grid = QueryGrid::observed_by(&scan, &sensor, 1.0, &open_field, 0.5);
     /// // Half a disc of radius 20 m: about π · 20² / 2 ≈ 628 points.
     /// assert!((600..660).contains(&grid.points_m.len()));
     /// ```
-    pub fn observed_by(scan: &PlanarScan, sensor: &SensorInfo, spacing_m: f64) -> Self {
+    pub fn observed_by(
+        scan: &PlanarScan,
+        sensor: &SensorInfo,
+        spacing_m: f64,
+        truth: &GroundTruth,
+        height_m: f64,
+    ) -> Self {
         let r = sensor.max_range_m;
         let [sx, sy] = scan.sensor_m;
         let lo = [
@@ -55,6 +66,11 @@ impl QueryGrid {
         let size = [(hi[0] - lo[0]) as usize + 1, (hi[1] - lo[1]) as usize + 1];
         let origin_m = [lo[0] * spacing_m, lo[1] * spacing_m];
         let (first, last) = fan_rad(sensor);
+        let walls: Vec<_> = truth
+            .static_boxes()
+            .iter()
+            .filter(|b| (b.z_range_m[0]..=b.z_range_m[1]).contains(&height_m))
+            .collect();
         let (mut points_m, mut cells) = (Vec::new(), Vec::new());
         for row in 0..size[1] {
             for column in 0..size[0] {
@@ -63,8 +79,20 @@ impl QueryGrid {
                     origin_m[1] + row as f64 * spacing_m,
                 ];
                 let (dx, dy) = (p[0] - sx, p[1] - sy);
-                let bearing = wrap(dy.atan2(dx) - scan.yaw_rad);
-                if dx.hypot(dy) <= r && bearing >= first && bearing <= last {
+                let (distance, bearing) = (dx.hypot(dy), wrap(dy.atan2(dx) - scan.yaw_rad));
+                if distance > r || bearing < first || bearing > last {
+                    continue;
+                }
+                // In front of every static surface, or at most a step inside one behind a face
+                // the sensor sees.
+                let seen = match walls.iter().find_map(|b| Some((b, b.depth_m(p)?))) {
+                    Some((b, depth)) => {
+                        depth <= spacing_m
+                            && in_sight(scan.sensor_m, b.nearest_outline_point(p), &walls)
+                    }
+                    None => in_sight(scan.sensor_m, p, &walls),
+                };
+                if seen {
                     points_m.push(p);
                     cells.push(row * size[0] + column);
                 }
@@ -88,6 +116,21 @@ impl QueryGrid {
     pub fn is_empty(&self) -> bool {
         self.points_m.is_empty()
     }
+}
+
+/// True if no box of `walls` lies across the segment from `sensor_m` to `p` (a box that `p` is on
+/// the outline of does not count, up to a micrometre).
+fn in_sight(sensor_m: [f64; 2], p: [f64; 2], walls: &[&OrientedBox]) -> bool {
+    let (dx, dy) = (p[0] - sensor_m[0], p[1] - sensor_m[1]);
+    let distance = dx.hypot(dy);
+    if distance < 1e-12 {
+        return true;
+    }
+    let dir = [dx / distance, dy / distance];
+    walls.iter().all(|b| {
+        b.ray_entry_m(sensor_m, dir)
+            .is_none_or(|entry| entry >= distance - 1e-6)
+    })
 }
 
 /// The lowest and highest beam azimuth of the sensor, radians in the sensor frame (a full
@@ -115,7 +158,7 @@ mod tests {
     use patchflow_dataset::SensorKind;
 
     #[test]
-    fn points_lie_in_range_in_front_of_the_sensor_on_the_world_lattice() {
+    fn points_lie_in_range_in_front_of_the_sensor_and_of_static_walls_on_the_world_lattice() {
         let sensor = SensorInfo {
             kind: SensorKind::Planar,
             rate_hz: 1.0,
@@ -134,7 +177,19 @@ mod tests {
             yaw_rad: std::f64::consts::FRAC_PI_2,
             beams: vec![],
         };
-        let grid = QueryGrid::observed_by(&scan, &sensor, 0.5);
+        let wall = patchflow_dataset::StaticObstacle {
+            semantic: 50,
+            centre_m: [15.0, 14.0, 4.0],
+            size_m: [60.0, 8.0, 8.0],
+            yaw_rad: 0.0,
+            exact: true,
+        };
+        let truth = GroundTruth::new(&[wall], Vec::new());
+        let grid = QueryGrid::observed_by(&scan, &sensor, 0.5, &truth, 0.5);
+        // The building's face (y = 10) and one step into it are scored, its interior is not.
+        assert!(grid.points_m.contains(&[15.0, 10.5]) && grid.points_m.contains(&[5.0, 10.5]));
+        let deep: Vec<_> = grid.points_m.iter().filter(|p| p[1] > 10.5).collect();
+        assert!(deep.is_empty(), "{deep:?}");
         assert!(grid.points_m.iter().all(|p| p[1] >= -0.1));
         assert!(
             grid.points_m
@@ -146,7 +201,7 @@ mod tests {
                 .iter()
                 .all(|p| (p[0] * 2.0).fract() == 0.0 && (p[1] * 2.0).fract() == 0.0)
         );
-        assert!(grid.points_m.contains(&[15.0, 19.5]) && grid.points_m.contains(&[-4.5, 0.0]));
+        assert!(grid.points_m.contains(&[15.0, 9.5]) && grid.points_m.contains(&[-4.5, 0.0]));
         for (p, &cell) in grid.points_m.iter().zip(&grid.cells) {
             let (row, column) = (cell / grid.size[0], cell % grid.size[0]);
             assert_eq!(grid.origin_m[0] + column as f64 * 0.5, p[0]);
