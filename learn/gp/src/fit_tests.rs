@@ -149,3 +149,28 @@ fn non_finite_inputs_or_too_few_samples_are_errors() {
             .is_err()
     );
 }
+
+#[test]
+fn held_pseudo_inputs_stay_at_their_seeded_subset_and_leave_the_vector() {
+    let (x, y) = toy(60, 0.1, 0.1, 8);
+    let params = GpParams::new(GpKind::SpgpHet)
+        .pseudo_inputs(6)
+        .max_iters(20);
+    let moving = params.clone().fit(&x, &y).expect("fits");
+    let held = params
+        .clone()
+        .optimise_pseudo_inputs(false)
+        .fit(&x, &y)
+        .expect("fits");
+    // The same seed draws the same starting subset; only the moving fit changes it.
+    let start = crate::GpObjective::new(&params.check().expect("valid"), &x, &y);
+    let z0 = start.start.pseudo_inputs.clone();
+    assert_eq!(held.pseudo_inputs(), &z0);
+    assert_ne!(moving.pseudo_inputs(), &z0);
+    let fixed = crate::GpObjective::new(
+        &params.optimise_pseudo_inputs(false).check().expect("valid"),
+        &x,
+        &y,
+    );
+    assert_eq!(start.dims() - fixed.dims(), 6);
+}

@@ -17,10 +17,13 @@ use super::train_data::TrainData;
 use crate::Result;
 
 /// Pass 1 of one row block: U_b = K_MB, V_b = L⁻¹U_b, g_b and the block's share of B and Ṽỹ.
-struct Pass1 {
-    k: DMatrix<f64>,
-    v: DMatrix<f64>,
-    g: DVector<f64>,
+pub(crate) struct Pass1 {
+    /// U_b = K_MB.
+    pub k: DMatrix<f64>,
+    /// V_b = L⁻¹U_b.
+    pub v: DMatrix<f64>,
+    /// g_b = λ_b + σ², the diagonal of Γ.
+    pub g: DVector<f64>,
     vvt: DMatrix<f64>,
     vy: DVector<f64>,
     yy: f64,
@@ -41,7 +44,8 @@ pub(crate) struct Factors {
     pub jitter: f64,
     /// The NLML 𝓛 (gp.md §1 step 8).
     pub nlml: f64,
-    blocks: Vec<Pass1>,
+    /// Pass 1 of each row block, in block order.
+    pub blocks: Vec<Pass1>,
 }
 
 /// The NLML, its gradient and ∂𝓛/∂ε = tr(∂𝓛/∂B_u).

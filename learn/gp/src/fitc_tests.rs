@@ -161,6 +161,7 @@ fn check_gradient(het: bool, seed: u64) {
         pseudo: 5,
         het,
         noise_floor: 0.0,
+        fixed_pseudo_inputs: None,
     };
     let theta = layout.pack(&h);
     let e = objective(&data, &h, 1e-8).expect("factors");

@@ -151,6 +151,7 @@ mod tests {
             pseudo: 0,
             het: false,
             noise_floor: 0.0,
+            fixed_pseudo_inputs: None,
         };
         let theta = layout.pack(&h);
         let e = objective(&data, &h, 0.0).expect("factors");

@@ -43,9 +43,9 @@ pub(crate) struct HyperGrad {
     pub log_pseudo_noise: Option<DVector<f64>>,
 }
 
-/// How a [`Hyper`] maps to a flat vector: [log ℓ (D), log s, log(σ² − floor), Z (column-major),
-/// logit(h/h_max)].
-#[derive(Debug, Clone, Copy)]
+/// How a [`Hyper`] maps to a flat vector: [log ℓ (D), log s, log(σ² − floor), Z (column-major,
+/// unless held fixed), logit(h/h_max)].
+#[derive(Debug, Clone)]
 pub(crate) struct Layout {
     /// Input dimension D.
     pub dims: usize,
@@ -55,12 +55,23 @@ pub(crate) struct Layout {
     pub het: bool,
     /// Lower bound on σ² (gp.md §1, numerical guard 2).
     pub noise_floor: f64,
+    /// Pseudo-inputs held fixed (not in the vector), or `None` when they are optimised.
+    pub fixed_pseudo_inputs: Option<DMatrix<f64>>,
 }
 
 impl Layout {
     /// Length of the flat vector.
     pub fn len(&self) -> usize {
-        self.dims + 2 + self.pseudo * self.dims + if self.het { self.pseudo } else { 0 }
+        self.dims + 2 + self.free_pseudo_len() + if self.het { self.pseudo } else { 0 }
+    }
+
+    /// Number of pseudo-input coordinates in the vector (M·D, or 0 when they are held fixed).
+    fn free_pseudo_len(&self) -> usize {
+        if self.fixed_pseudo_inputs.is_some() {
+            0
+        } else {
+            self.pseudo * self.dims
+        }
     }
 
     /// The flat vector of `h`.
@@ -69,7 +80,9 @@ impl Layout {
         v.extend(h.lengthscales.iter().map(|l| l.ln()));
         v.push(h.signal_variance.ln());
         v.push((h.noise_variance - self.noise_floor).max(1e-300).ln());
-        v.extend(h.pseudo_inputs.iter().copied());
+        if self.fixed_pseudo_inputs.is_none() {
+            v.extend(h.pseudo_inputs.iter().copied());
+        }
         if let Some(p) = &h.pseudo_noise {
             let top = PSEUDO_NOISE_MAX * (1.0 - 1e-12);
             v.extend(p.iter().map(|x| {
@@ -86,14 +99,16 @@ impl Layout {
         let ex = |x: f64| x.clamp(-LOG_LIMIT, LOG_LIMIT).exp();
         let lengthscales = DVector::from_iterator(d, v.rows(0, d).iter().map(|x| ex(*x)));
         let z0 = d + 2;
-        let pseudo_inputs = DMatrix::from_column_slice(m, d, &v.as_slice()[z0..z0 + m * d]);
+        let pseudo_inputs = match &self.fixed_pseudo_inputs {
+            Some(z) => z.clone(),
+            None => DMatrix::from_column_slice(m, d, &v.as_slice()[z0..z0 + m * d]),
+        };
+        let h0 = z0 + self.free_pseudo_len();
         let sigmoid = |x: f64| 1.0 / (1.0 + (-x.clamp(-LOG_LIMIT, LOG_LIMIT)).exp());
         let pseudo_noise = self.het.then(|| {
             DVector::from_iterator(
                 m,
-                v.rows(z0 + m * d, m)
-                    .iter()
-                    .map(|x| PSEUDO_NOISE_MAX * sigmoid(*x)),
+                v.rows(h0, m).iter().map(|x| PSEUDO_NOISE_MAX * sigmoid(*x)),
             )
         });
         Hyper {
@@ -112,7 +127,9 @@ impl Layout {
         v.push(g.log_signal_variance);
         // σ² = floor + e^θ, so ∂/∂θ = ∂/∂log σ² · (σ² − floor)/σ².
         v.push(g.log_noise_variance * (h.noise_variance - self.noise_floor) / h.noise_variance);
-        v.extend(g.pseudo_inputs.iter().copied());
+        if self.fixed_pseudo_inputs.is_none() {
+            v.extend(g.pseudo_inputs.iter().copied());
+        }
         if self.het {
             if let (Some(p), Some(hv)) = (&g.log_pseudo_noise, &h.pseudo_noise) {
                 // h = h_max·sigmoid(θ): ∂/∂θ = ∂/∂log h · (1 − h/h_max).
@@ -140,6 +157,7 @@ mod tests {
             pseudo: 3,
             het: true,
             noise_floor: 1e-6,
+            fixed_pseudo_inputs: None,
         };
         let h = Hyper {
             lengthscales: DVector::from_vec(vec![0.5, 2.0]),

@@ -1,5 +1,6 @@
 //! patchflow's Gaussian processes: regression with a full GP, SPGP (FITC) and SPGP-HET (Hess 2008,
-//! thesis 3.1.3). Depends on no other patchflow crate.
+//! thesis 3.1.3), and classification by probabilistic least squares on top of any of them (GPML
+//! §6.5, for GP occupancy maps). Depends on no other patchflow crate.
 //!
 //! ```
 //! use nalgebra::{DMatrix, DVector};
@@ -22,18 +23,25 @@ mod init;
 mod kernel;
 mod lbfgs;
 mod linalg;
+mod loo;
 mod model;
 mod model_file;
+mod normal;
 mod objective;
 mod params;
+mod pls;
 mod sparse_posterior;
+mod squashing;
 mod train_data;
 mod transform;
 
 pub use error::{GpError, Result};
 pub use full::FULL_GP_MAX_SAMPLES;
+pub use loo::LooMoments;
 pub use model::{FitReport, GpModel, GpPrediction};
 pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
 pub use objective::GpObjective;
 pub use params::{GpKind, GpParams, GpValidParams};
+pub use pls::{PlsClassifier, PlsParams, PlsPrediction, PlsValidParams};
+pub use squashing::Squashing;
 pub use transform::Standardiser;

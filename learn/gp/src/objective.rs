@@ -1,5 +1,6 @@
 //! The fit's objective as a public value: the NLML and its gradient over the flat parameter vector
-//! (log ℓ, log s, log(σ² − floor), Z, log h), at the seeded starting point or any other. The fit
+//! (log ℓ, log s, log(σ² − floor), Z unless held fixed, log h), at the seeded starting point or
+//! any other. The fit
 //! minimises exactly this; benches and diagnostics can call it directly.
 
 use nalgebra::{DMatrix, DVector};
@@ -44,6 +45,8 @@ impl GpObjective {
             pseudo: start.pseudo_inputs.nrows(),
             het: kind == GpKind::SpgpHet,
             noise_floor: params.noise_floor(),
+            fixed_pseudo_inputs: (!params.optimise_pseudo_inputs())
+                .then(|| start.pseudo_inputs.clone()),
         };
         Self {
             data,

@@ -63,6 +63,7 @@ pub struct GpParams {
     noise_floor: f64,
     grad_tol: f64,
     rel_tol: f64,
+    optimise_pseudo_inputs: bool,
 }
 
 impl Default for GpParams {
@@ -85,6 +86,7 @@ impl GpParams {
             noise_floor: 1e-6,
             grad_tol: 1e-5,
             rel_tol: 1e-9,
+            optimise_pseudo_inputs: true,
         }
     }
     /// Number of pseudo-inputs M (sparse kinds; capped at N during the fit).
@@ -121,6 +123,15 @@ impl GpParams {
     pub fn tolerances(mut self, grad_tol: f64, rel_tol: f64) -> Self {
         self.grad_tol = grad_tol;
         self.rel_tol = rel_tol;
+        self
+    }
+
+    /// Whether the pseudo-inputs are optimised with the hyperparameters (default, thesis 3.1.3) or
+    /// stay at their seeded random subset of the inputs (gp.md §5.5 item 7; egobox never moves
+    /// them). Holding them fixed avoids FITC's collapse of σ² on step-like targets such as ±1
+    /// labels, where moving pseudo-inputs let the diagonal correction absorb all noise.
+    pub fn optimise_pseudo_inputs(mut self, optimise: bool) -> Self {
+        self.optimise_pseudo_inputs = optimise;
         self
     }
 
@@ -179,6 +190,10 @@ impl GpValidParams {
     /// (gradient tolerance, relative objective tolerance).
     pub fn tolerances(&self) -> (f64, f64) {
         (self.0.grad_tol, self.0.rel_tol)
+    }
+    /// Whether the pseudo-inputs are optimised.
+    pub fn optimise_pseudo_inputs(&self) -> bool {
+        self.0.optimise_pseudo_inputs
     }
 }
 
