@@ -3,8 +3,8 @@
 
 use patchflow_dataset::{Dataset, SensorKind};
 use patchflow_occupancy::{
-    MapMethod, OccupancyGridMethod, OccupancyParams, OccupancySequence, SequenceScores,
-    evaluate_sequence,
+    GpomMethod, MapMethod, OccupancyGridMethod, OccupancyParams, OccupancySequence, SampleParams,
+    SequenceScores, evaluate_sequence,
 };
 
 use crate::error::EvalError;
@@ -42,9 +42,18 @@ pub fn occupancy_sequences(dataset: &Dataset) -> Result<Vec<String>, EvalError> 
     Ok(names)
 }
 
-/// The methods compared (the DGPOM paper's Table 1 and the grid baseline).
-pub fn occupancy_methods(_seed: u64) -> Vec<Box<dyn MapMethod>> {
-    vec![Box::new(OccupancyGridMethod::default())]
+/// The methods compared: GPOM in ℜ^D and ℜ^{D+1} (the DGPOM paper's Table 1) and the grid
+/// baseline; `seed` places the free-space samples along the beams.
+pub fn occupancy_methods(seed: u64) -> Vec<Box<dyn MapMethod>> {
+    let samples = SampleParams {
+        seed,
+        ..SampleParams::default()
+    };
+    vec![
+        Box::new(GpomMethod::space(samples.clone())),
+        Box::new(GpomMethod::space_time(samples)),
+        Box::new(OccupancyGridMethod::default()),
+    ]
 }
 
 /// Scores `methods` on every sequence [`occupancy_sequences`] picks; `on_map(sequence, method,

@@ -1,10 +1,13 @@
 //! Scoring map methods on a sequence (DGPOM paper, Section 3.1, Table 1): at every query scan,
 //! each method builds one map from the scan at the query time and the ones before it, predicts
 //! over the lattice of query points the sensor observes, and is scored by ROC AUC against the
-//! exact occupancy at the query time. One map (fit and prediction) is timed as a unit.
+//! exact occupancy at the query time. One map (fit and prediction) is timed as a unit; maps of
+//! different query scans run in parallel, so a map's seconds are those of one core.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
+
+use rayon::prelude::*;
 
 use crate::{
     MapMethod, MapOutput, OccupancyError, OccupancyParams, OccupancySequence, PlanarScan,
@@ -80,71 +83,109 @@ pub fn evaluate_sequence(
         name: sequence.name.clone(),
         ..SequenceScores::default()
     };
-    for &t in &params.query_scans {
-        let first = (t + 1)
-            .checked_sub(params.scans_per_map)
-            .filter(|_| t < sequence.scans.len());
-        let Some(first) = first else {
-            return Err(OccupancyError::Unsupported {
-                path: sequence.dir.clone(),
-                reason: format!(
-                    "query scan {t} needs scans {} to {t}, the sequence has {}",
-                    t as i64 + 1 - params.scans_per_map as i64,
-                    sequence.scans.len()
-                ),
-            });
-        };
-        let query = &sequence.scans[t];
-        let window = ScanWindow {
-            scans: &sequence.scans[first..=t],
-            query_secs: query.stamp_secs,
-        };
-        // The lattice the sensor observes and the exact occupancy there at the query time.
-        let grid = QueryGrid::observed_by(
-            query,
-            &sequence.sensor,
-            params.query_spacing_m,
-            &sequence.truth,
-            sequence.scan_height_m(),
-        );
-        let truth =
-            sequence
-                .truth
-                .occupancy(&grid.points_m, sequence.scan_height_m(), query.stamp_secs);
-        scores.query_secs.insert(t, query.stamp_secs);
-        scores.query_points.insert(t, grid.len());
+    // The query scans are independent: their maps run in parallel, one map per core at a time,
+    // and are gathered in query order, so the scores do not depend on the threads.
+    let per_scan = params
+        .query_scans
+        .par_iter()
+        .map(|&t| score_query_scan(sequence, methods, params, t, on_map))
+        .collect::<Result<Vec<_>>>()?;
+    for scan in per_scan {
+        let t = scan.query_scan;
+        scores.query_secs.insert(t, scan.query_secs);
+        scores.query_points.insert(t, scan.figure.grid.len());
         scores
             .occupied_points
-            .insert(t, truth.iter().filter(|&&o| o).count());
-        let mut maps = BTreeMap::new();
-        for method in methods {
-            // One map: fit and prediction over the query points, timed together.
-            let start = Instant::now();
-            let output = method.map(&window, &grid.points_m)?;
-            let seconds = start.elapsed().as_secs_f64();
-            // Score: ROC AUC of the probability of occupancy against the truth (Table 1).
-            let auc = roc_auc(&output.probability, &truth);
-            let entry = scores.methods.entry(method.name().to_owned()).or_default();
-            entry.auc_by_query_scan.insert(t, auc);
-            entry.seconds_per_map.push(seconds);
+            .insert(t, scan.figure.truth.iter().filter(|&&o| o).count());
+        for (name, (auc, seconds, output)) in &scan.maps {
+            let entry = scores.methods.entry(name.clone()).or_default();
+            entry.auc_by_query_scan.insert(t, *auc);
+            entry.seconds_per_map.push(*seconds);
             entry.training_points_per_map.push(output.training_points);
             entry.summaries.push(output.summary.clone());
-            on_map(method.name(), t);
-            if params.figure_scans.contains(&t) {
-                maps.insert(method.name().to_owned(), output);
-            }
         }
         if params.figure_scans.contains(&t) {
-            scores.figures.push(MapFigure {
-                query_scan: t,
-                grid,
-                truth,
-                scan: query.clone(),
-                maps,
-            });
+            let mut figure = scan.figure;
+            figure.maps = scan
+                .maps
+                .into_iter()
+                .map(|(name, (_, _, output))| (name, output))
+                .collect();
+            scores.figures.push(figure);
         }
     }
     Ok(scores)
+}
+
+/// Every method's map at one query scan: AUC, seconds and output by method, and the lattice,
+/// truth and scan (the figure without its maps).
+struct QueryScanScores {
+    query_scan: usize,
+    query_secs: f64,
+    maps: BTreeMap<String, (Option<f64>, f64, MapOutput)>,
+    figure: MapFigure,
+}
+
+fn score_query_scan(
+    sequence: &OccupancySequence,
+    methods: &[&dyn MapMethod],
+    params: &OccupancyParams,
+    t: usize,
+    on_map: &(dyn Fn(&str, usize) + Sync),
+) -> Result<QueryScanScores> {
+    let first = (t + 1)
+        .checked_sub(params.scans_per_map)
+        .filter(|_| t < sequence.scans.len());
+    let Some(first) = first else {
+        return Err(OccupancyError::Unsupported {
+            path: sequence.dir.clone(),
+            reason: format!(
+                "query scan {t} needs scans {} to {t}, the sequence has {}",
+                t as i64 + 1 - params.scans_per_map as i64,
+                sequence.scans.len()
+            ),
+        });
+    };
+    let query = &sequence.scans[t];
+    let window = ScanWindow {
+        scans: &sequence.scans[first..=t],
+        query_secs: query.stamp_secs,
+    };
+    // The lattice the sensor observes and the exact occupancy there at the query time.
+    let grid = QueryGrid::observed_by(
+        query,
+        &sequence.sensor,
+        params.query_spacing_m,
+        &sequence.truth,
+        sequence.scan_height_m(),
+    );
+    let truth =
+        sequence
+            .truth
+            .occupancy(&grid.points_m, sequence.scan_height_m(), query.stamp_secs);
+    let mut maps = BTreeMap::new();
+    for method in methods {
+        // One map: fit and prediction over the query points, timed together.
+        let start = Instant::now();
+        let output = method.map(&window, &grid.points_m)?;
+        let seconds = start.elapsed().as_secs_f64();
+        // Score: ROC AUC of the probability of occupancy against the truth (Table 1).
+        let auc = roc_auc(&output.probability, &truth);
+        on_map(method.name(), t);
+        maps.insert(method.name().to_owned(), (auc, seconds, output));
+    }
+    Ok(QueryScanScores {
+        query_scan: t,
+        query_secs: query.stamp_secs,
+        maps,
+        figure: MapFigure {
+            query_scan: t,
+            grid,
+            truth,
+            scan: query.clone(),
+            maps: BTreeMap::new(),
+        },
+    })
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> f64 {

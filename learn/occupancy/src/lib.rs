@@ -14,6 +14,7 @@
 mod auc;
 mod error;
 mod evaluation;
+mod gpom;
 mod ground_truth;
 mod map_method;
 mod occupancy_grid;
@@ -26,6 +27,7 @@ mod training_samples;
 pub use auc::roc_auc;
 pub use error::{OccupancyError, Result};
 pub use evaluation::{MapFigure, MethodScores, SequenceScores, evaluate_sequence};
+pub use gpom::{GpomMethod, GpomSpace};
 pub use ground_truth::{GroundTruth, OrientedBox};
 pub use map_method::{MapMethod, MapOutput, ScanWindow};
 pub use occupancy_grid::OccupancyGridMethod;

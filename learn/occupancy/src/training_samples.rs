@@ -37,7 +37,7 @@ pub struct SampleParams {
 impl Default for SampleParams {
     fn default() -> Self {
         Self {
-            free_spacing_m: 2.0,
+            free_spacing_m: 2.5,
             stop_short_m: 0.5,
             seed: 7,
         }
