@@ -156,3 +156,96 @@ fn model_input_spread(x: &DMatrix<f64>) -> Vec<f64> {
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Beam, PlanarScan, roc_auc};
+
+    /// A scan from the origin facing +y: 41 beams over 90°, a wall along y = 8 for x in [−4, 4]
+    /// and, if `car`, a box at x in [−1, 1], y in [4, 5] in front of it.
+    fn scan(index: usize, car: bool) -> PlanarScan {
+        let beams = (0..41)
+            .map(|j| {
+                let a = (45.0 + 90.0 * f64::from(j) / 40.0).to_radians();
+                let (c, s) = (a.cos(), a.sin());
+                let wall = 8.0 / s;
+                let range = if car && (c / s * 4.0).abs() <= 1.0 {
+                    4.0 / s
+                } else {
+                    wall
+                };
+                let hit = (c * range).abs() <= 4.0;
+                let r = if hit { range } else { 12.0 };
+                Beam {
+                    end_m: [c * r, s * r],
+                    hit,
+                }
+            })
+            .collect();
+        PlanarScan {
+            index,
+            stamp_secs: index as f64,
+            sensor_m: [0.0, 0.0],
+            yaw_rad: std::f64::consts::FRAC_PI_2,
+            beams,
+        }
+    }
+
+    fn method(space: GpomSpace) -> GpomMethod {
+        GpomMethod {
+            space,
+            samples: SampleParams {
+                free_spacing_m: 1.0,
+                ..SampleParams::default()
+            },
+            pseudo_inputs: 80,
+            max_iters: 40,
+        }
+    }
+
+    #[test]
+    fn a_map_of_a_wall_ranks_the_wall_above_the_free_space_before_it() {
+        let scans = [scan(0, false), scan(1, false)];
+        let window = ScanWindow {
+            scans: &scans,
+            query_secs: 1.0,
+        };
+        let points: Vec<[f64; 2]> = (-3..=3)
+            .flat_map(|x| {
+                [
+                    [f64::from(x), 8.0],
+                    [f64::from(x), 4.0],
+                    [f64::from(x), 2.0],
+                ]
+            })
+            .collect();
+        let truth: Vec<bool> = points.iter().map(|p| p[1] == 8.0).collect();
+        let out = method(GpomSpace::Space).map(&window, &points).unwrap();
+        let auc = roc_auc(&out.probability, &truth).unwrap();
+        assert!(auc > 0.95, "AUC {auc}, {:?}", out.probability);
+        assert_eq!(out.variance.as_ref().map(Vec::len), Some(points.len()));
+        assert!(out.probability.iter().all(|p| (0.0..=1.0).contains(p)));
+    }
+
+    #[test]
+    fn with_time_as_an_input_a_car_that_drove_away_weighs_less_than_without() {
+        // A car stands in front of the wall in the first two scans and is gone in the last two.
+        let scans = [scan(0, true), scan(1, true), scan(2, false), scan(3, false)];
+        let window = ScanWindow {
+            scans: &scans,
+            query_secs: 3.0,
+        };
+        // Along the car's face, where its returns were.
+        let at_car = [[-0.5, 4.0], [0.0, 4.0], [0.5, 4.0]];
+        let mean = |m: GpomSpace| {
+            let out = method(m).map(&window, &at_car).unwrap();
+            out.probability.iter().sum::<f64>() / 3.0
+        };
+        let (space, space_time) = (mean(GpomSpace::Space), mean(GpomSpace::SpaceTime));
+        assert!(
+            space_time < space - 0.1,
+            "R^D+1 {space_time} vs R^D {space}"
+        );
+    }
+}
