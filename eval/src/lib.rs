@@ -43,8 +43,8 @@ pub use metrics::{
 pub use observation::{ClusterObservation, ScanObservation, centroid_of};
 pub use occupancy::{
     OccupancyFiles, OccupancyReport, PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow,
-    evaluate_occupancy, occupancy_json, occupancy_markdown, occupancy_methods, occupancy_section,
-    occupancy_sequences, plot_occupancy_figure, write_occupancy_report,
+    evaluate_occupancy, occupancy_json, occupancy_markdown, occupancy_methods, occupancy_notes,
+    occupancy_section, occupancy_sequences, plot_occupancy_figure, write_occupancy_report,
 };
 pub use perception_timing::PerceptionTiming;
 pub use progress::{StageTimer, StageTiming, progress_bar, spinner};

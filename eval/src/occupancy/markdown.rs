@@ -34,7 +34,7 @@ pub fn occupancy_section(report: &OccupancyReport) -> String {
     let mut md = String::new();
     let _ = writeln!(
         md,
-        "## Occupancy maps (DGPOM paper, Section 3.1)\n\nROC AUC of the probability of occupancy against the exact occupancy on a {} m lattice of query points over the area the scanner observes (within range, inside its field of view), at each query time; every map is built from the scan at the query time and the {} before it. The paper's numbers come from its own simulated T-junction and its approximate ground truth, ours from exact truth: compare the pattern, not the digits.\n",
+        "## Occupancy maps (DGPOM paper, Section 3.1)\n\nROC AUC of the probability of occupancy against the exact occupancy on a {} m lattice of query points over the area the scanner observes (within range, inside its field of view, in front of static structure), at each query time; every map is built from the scan at the query time and the {} before it. The paper's numbers come from its own simulated T-junction, whose layout, traffic and scored area we could only rebuild from its text: compare the pattern, not the digits.\n",
         report.params.query_spacing_m,
         report.params.scans_per_map.saturating_sub(1)
     );
@@ -81,17 +81,16 @@ fn auc_table(md: &mut String, scores: &SequenceScores) {
     let header: Vec<String> = keys.iter().map(|k| format!("t = {k}")).collect();
     let _ = writeln!(md, "| algorithm | {} | mean |", header.join(" | "));
     let _ = writeln!(md, "|---|{}---|", "---|".repeat(keys.len()));
-    let mut rows_written = Vec::new();
-    for method in ordered(scores) {
-        let Some(m) = scores.methods.get(method) else {
-            continue;
-        };
-        let cells: Vec<Option<f64>> = scans
-            .iter()
-            .map(|t| m.auc_by_query_scan.get(t).copied().flatten())
-            .collect();
-        write_row(md, &label(method), &cells);
-        rows_written.push(method);
+    // The paper's order (DGPOM, GPOM ℜ^D, GPOM ℜ^{D+1}), each of our rows above the paper's;
+    // the paper's rows are there even for methods we did not run.
+    for method in ORDER {
+        if let Some(m) = scores.methods.get(method) {
+            let cells: Vec<Option<f64>> = scans
+                .iter()
+                .map(|t| m.auc_by_query_scan.get(t).copied().flatten())
+                .collect();
+            write_row(md, &label(method), &cells);
+        }
         if let Some(row) = PAPER_TABLE_1.iter().find(|r| r.method == method) {
             write_row(
                 md,
@@ -100,16 +99,13 @@ fn auc_table(md: &mut String, scores: &SequenceScores) {
             );
         }
     }
-    // The paper's rows for methods we did not run, so its whole table is always there.
-    for row in PAPER_TABLE_1
-        .iter()
-        .filter(|r| !rows_written.contains(&r.method))
-    {
-        write_row(
-            md,
-            &format!("{} (paper)", row.label),
-            &paper_cells(row.auc, &keys),
-        );
+    for method in ordered(scores).into_iter().filter(|m| !ORDER.contains(m)) {
+        let m = &scores.methods[method];
+        let cells: Vec<Option<f64>> = scans
+            .iter()
+            .map(|t| m.auc_by_query_scan.get(t).copied().flatten())
+            .collect();
+        write_row(md, &label(method), &cells);
     }
     let occupied: Vec<String> = scans
         .iter()

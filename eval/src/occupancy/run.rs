@@ -56,6 +56,30 @@ pub fn occupancy_methods(seed: u64) -> Vec<Box<dyn MapMethod>> {
     ]
 }
 
+/// What the report says about how the maps were made and where that differs from the paper, for
+/// the methods of [`occupancy_methods`] and the protocol `params`.
+pub fn occupancy_notes(params: &OccupancyParams) -> Vec<String> {
+    let gpom = GpomMethod::space(SampleParams::default());
+    let samples = &gpom.samples;
+    vec![
+        format!(
+            "Training samples per scan (paper, Section 2): each return occupied; free samples along every beam, one per {} m stretch at a seeded place, stopping {} m short of the return; beams without a return are free out to maximum range. Each map pools the scan at the query time and the {} before it.",
+            samples.free_spacing_m,
+            samples.stop_short_m,
+            params.scans_per_map.saturating_sub(1)
+        ),
+        format!(
+            "GPOM: GP classification by probabilistic least squares (patchflow-gp; GPML §6.5): SE-ARD regression on ±1 labels, then Φ((αμ + β)/√(1 + α²σ²)) with α, β maximising the leave-one-out probability. Hyperparameters are learned for every map (at most {} L-BFGS iterations of the marginal likelihood). A sparse GP (SPGP) with {} pseudo-inputs held at a seeded subset of the training points keeps a map at O(NM²); the paper does not say how it solved its GPs. GPOM-RD1 adds the time as a third input with its own (ARD) length-scale. The variance drawn is the latent predictive variance σ².",
+            gpom.max_iters, gpom.pseudo_inputs
+        ),
+        format!(
+            "Truth and scoring: exact occupancy at the scanner's height from the dataset's static obstacles (`static.json`) and actor boxes, at each query point of a {} m lattice over the area the scanner observes: within range, inside its field of view, and in front of static structure (a building's interior, which no scan can reach, is left out; what cars hide is kept). The grid baseline (`GRID`) uses 0.5 m cells, hits / (hits + misses), 0.5 where no beam passed.",
+            params.query_spacing_m
+        ),
+        "Timing: the maps of the query times run in parallel on the machine's cores (one map per core), so seconds per map are one core's; a Criterion bench (`cargo bench -p patchflow-eval --bench occupancy`) times one map of each method at t = 5 alone.".to_owned(),
+    ]
+}
+
 /// Scores `methods` on every sequence [`occupancy_sequences`] picks; `on_map(sequence, method,
 /// query_scan)` is called after every map.
 pub fn evaluate_occupancy(

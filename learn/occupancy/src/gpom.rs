@@ -46,7 +46,7 @@ impl GpomMethod {
             space: GpomSpace::Space,
             samples,
             pseudo_inputs: 250,
-            max_iters: 60,
+            max_iters: 50,
         }
     }
 
@@ -123,11 +123,16 @@ impl MapMethod for GpomMethod {
             .predict(&query)
             .map_err(|e| degenerate(e.to_string()))?;
         let model = classifier.regression();
+        let units = ["x", "y", "t"];
         let scales: Vec<String> = model
             .lengthscales()
             .iter()
             .zip(model_input_spread(&x))
-            .map(|(l, spread)| format!("{:.2}", l * spread))
+            .zip(units)
+            .map(|((l, spread), axis)| {
+                let unit = if axis == "t" { "s" } else { "m" };
+                format!("ℓ{axis} {:.2} {unit}", l * spread)
+            })
             .collect();
         let s = classifier.squashing();
         let report = model.fit_report();
@@ -136,7 +141,7 @@ impl MapMethod for GpomMethod {
             variance: Some(prediction.regression.var_latent.iter().copied().collect()),
             training_points: samples.len(),
             summary: format!(
-                "ℓ = ({}), σ² = {:.3}, α = {:.2}, β = {:.2}, {} evaluations",
+                "{}, σ² = {:.3}, α = {:.2}, β = {:.2}, {} evaluations",
                 scales.join(", "),
                 model.noise_variance(),
                 s.alpha,

@@ -37,7 +37,7 @@ pub struct SampleParams {
 impl Default for SampleParams {
     fn default() -> Self {
         Self {
-            free_spacing_m: 2.5,
+            free_spacing_m: 3.0,
             stop_short_m: 0.5,
             seed: 7,
         }
@@ -119,6 +119,13 @@ mod tests {
     use super::*;
     use crate::Beam;
 
+    fn two_metres() -> SampleParams {
+        SampleParams {
+            free_spacing_m: 2.0,
+            ..SampleParams::default()
+        }
+    }
+
     /// A scan from the origin: one beam hits at 10 m along +x, one sees nothing along +y (20 m).
     fn scan() -> PlanarScan {
         PlanarScan {
@@ -141,7 +148,7 @@ mod tests {
 
     #[test]
     fn free_samples_lie_on_their_beam_short_of_the_return_and_the_return_is_occupied() {
-        let params = SampleParams::default();
+        let params = two_metres();
         let samples = scan_samples(&scan(), &params);
         let (along_x, along_y): (Vec<&OccupancySample>, Vec<&OccupancySample>) =
             samples.iter().partition(|s| s.xy_m[1] == 0.0);
@@ -167,7 +174,7 @@ mod tests {
 
     #[test]
     fn free_samples_fall_one_per_stretch_at_seeded_places() {
-        let params = SampleParams::default();
+        let params = two_metres();
         let ys: Vec<f64> = scan_samples(&scan(), &params)
             .iter()
             .filter(|s| s.xy_m[0] == 0.0 && s.xy_m[1] > 0.0)
@@ -184,7 +191,7 @@ mod tests {
         let other = SampleParams { seed: 8, ..params };
         assert_ne!(
             scan_samples(&scan(), &other),
-            scan_samples(&scan(), &SampleParams::default())
+            scan_samples(&scan(), &two_metres())
         );
     }
 }

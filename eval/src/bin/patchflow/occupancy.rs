@@ -7,8 +7,8 @@ use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
 use patchflow_eval::{
-    OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_sequences, progress_bar,
-    write_occupancy_report,
+    OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
+    progress_bar, write_occupancy_report,
 };
 use patchflow_occupancy::{MapMethod, OccupancyParams};
 
@@ -50,7 +50,9 @@ pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> anyhow::Result<Occupa
     let bar = progress_bar(maps as u64, "occupancy maps");
     let report = evaluate_occupancy(dataset, &methods, &params, seed, &|_, _, _| bar.inc(1));
     bar.finish_and_clear();
-    Ok(report?)
+    let mut report = report?;
+    report.notes = occupancy_notes(&params);
+    Ok(report)
 }
 
 /// One line per scenario and method: AUC at each query time and seconds per map.
