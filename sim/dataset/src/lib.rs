@@ -18,6 +18,7 @@ mod pose;
 mod reader;
 mod semantic;
 mod sensor_info;
+mod sequence_files;
 mod static_obstacle;
 mod sweep;
 mod writer;

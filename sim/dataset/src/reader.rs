@@ -4,11 +4,8 @@ use std::path::{Path, PathBuf};
 
 use crate::manifest::read_marker;
 use crate::pose::parse_kitti_pose;
-use crate::writer::{SENSOR_JSON, STATIC_JSON, sweep_path};
-use crate::{
-    DatasetError, Manifest, ObjectTruth, PointLabel, Pose, Result, SensorInfo, SequenceInfo,
-    StaticObstacle, Sweep,
-};
+use crate::writer::sweep_path;
+use crate::{DatasetError, Manifest, ObjectTruth, PointLabel, Pose, Result, SequenceInfo, Sweep};
 
 /// An opened dataset folder.
 #[derive(Debug, Clone)]
@@ -143,32 +140,6 @@ impl SequenceReader {
         std::fs::read_to_string(&path).map_err(|e| DatasetError::io(&path, e))
     }
 
-    /// The static obstacles (`static.json`). Datasets written before it existed lack the file:
-    /// that is a [`DatasetError::Missing`] naming it.
-    pub fn static_obstacles(&self) -> Result<Vec<StaticObstacle>> {
-        let path = self.dir.join(STATIC_JSON);
-        let obstacles: Vec<StaticObstacle> = read_json_file(&path, "static-world truth")?;
-        if let Some(i) = obstacles.iter().position(|o| {
-            let numbers = o.centre_m.iter().chain(&o.size_m).chain([&o.yaw_rad]);
-            numbers.clone().any(|v| !v.is_finite()) || o.size_m.iter().any(|&v| v < 0.0)
-        }) {
-            let reason = format!("obstacle {i} has a non-finite number or a negative size");
-            return Err(DatasetError::corrupt(&path, reason));
-        }
-        Ok(obstacles)
-    }
-
-    /// The sensor's beam pattern (`sensor.json`). Datasets written before it existed lack the
-    /// file: that is a [`DatasetError::Missing`] naming it.
-    pub fn sensor(&self) -> Result<SensorInfo> {
-        let path = self.dir.join(SENSOR_JSON);
-        let sensor: SensorInfo = read_json_file(&path, "sensor description")?;
-        if let Some(reason) = sensor.problems().into_iter().next() {
-            return Err(DatasetError::corrupt(&path, reason));
-        }
-        Ok(sensor)
-    }
-
     /// Reads sweep `index` and checks that its files agree on the point count.
     pub fn read_sweep(&self, index: usize) -> Result<Sweep> {
         if index >= self.len() {
@@ -208,21 +179,6 @@ impl SequenceReader {
             objects,
         })
     }
-}
-
-/// Reads a JSON file of this format; a file that does not exist is [`DatasetError::Missing`]
-/// (`what` says what it holds; datasets of older builds lack it: regenerate them).
-fn read_json_file<T: serde::de::DeserializeOwned>(path: &Path, what: &str) -> Result<T> {
-    if !path.is_file() {
-        return Err(DatasetError::Missing {
-            path: path.to_owned(),
-            what: format!(
-                "{what} (written by `patchflow generate` since this build; regenerate the dataset)"
-            ),
-        });
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| DatasetError::io(path, e))?;
-    serde_json::from_str(&text).map_err(|e| DatasetError::corrupt(path, e.to_string()))
 }
 
 fn read_lines(path: &Path) -> Result<Vec<String>> {
@@ -276,12 +232,12 @@ fn read_f32s_n(path: &Path, per_record: usize, n: usize) -> Result<Vec<f32>> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::{ActorClass, SemanticClass, SequenceWriter};
     use nalgebra::Vector3;
 
-    fn sample_sweep(index: u32) -> Sweep {
+    pub(crate) fn sample_sweep(index: u32) -> Sweep {
         let pose = Pose::new(
             Vector3::new(index as f64, 2.0, 1.73),
             Vector3::new(0.0, 0.0, 0.3),
@@ -316,7 +272,7 @@ mod tests {
         }
     }
 
-    fn write_sequence(root: &Path, sweeps: &[Sweep]) {
+    pub(crate) fn write_sequence(root: &Path, sweeps: &[Sweep]) {
         let writer = SequenceWriter::open(root, "seq").unwrap();
         for sweep in sweeps {
             writer.write_sweep(sweep).unwrap();
@@ -351,42 +307,6 @@ mod tests {
                     < 1e-9
             );
         }
-    }
-
-    #[test]
-    fn static_truth_and_the_sensor_read_back_and_their_absence_names_the_file() {
-        let dir = tempfile::tempdir().unwrap();
-        write_sequence(dir.path(), &[sample_sweep(0)]);
-        let seq = Dataset::open(dir.path()).unwrap().sequence("seq").unwrap();
-        let err = seq.static_obstacles().unwrap_err();
-        assert!(
-            matches!(err, DatasetError::Missing { .. }) && err.to_string().contains("static.json"),
-            "{err}"
-        );
-        let writer = SequenceWriter::open(dir.path(), "seq").unwrap();
-        let wall = StaticObstacle {
-            semantic: 51,
-            centre_m: [10.0, 0.0, 1.25],
-            size_m: [0.3, 10.0, 2.5],
-            yaw_rad: 0.5,
-            exact: true,
-        };
-        writer
-            .write_static_obstacles(std::slice::from_ref(&wall))
-            .unwrap();
-        let sensor = SensorInfo {
-            kind: crate::SensorKind::Planar,
-            rate_hz: 1.0,
-            max_range_m: 20.0,
-            mount_height_m: 0.5,
-            columns: 70,
-            first_azimuth_deg: 90.0,
-            azimuth_step_deg: -180.0 / 69.0,
-            elevations_deg: vec![0.0],
-        };
-        writer.write_sensor(&sensor).unwrap();
-        assert_eq!(seq.static_obstacles().unwrap(), vec![wall]);
-        assert_eq!(seq.sensor().unwrap(), sensor);
     }
 
     #[test]
