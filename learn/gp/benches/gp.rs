@@ -27,7 +27,7 @@ fn objective_and_gradient(c: &mut Criterion) {
             let params = GpParams::new(kind)
                 .check()
                 .expect("default parameters are valid");
-            let obj = GpObjective::new(&params, &x, &y);
+            let obj = GpObjective::new(&params, &x, &y).expect("sets up");
             let theta = obj.start();
             group.bench_function(format!("{kind}/n{n}"), |b| {
                 b.iter(|| {

@@ -40,7 +40,7 @@ fn main() -> Result<(), patchflow_gp::GpError> {
         (2.0 * x[(i, 0)]).sin() + x[(i, 1)] * x[(i, 2)] + 0.1 * rng.random_range(-1.0..1.0)
     });
     let params = GpParams::new(GpKind::Spgp).pseudo_inputs(m);
-    let obj = GpObjective::new(&params.check()?, &x, &y);
+    let obj = GpObjective::new(&params.check()?, &x, &y)?;
     let theta = obj.start();
     obj.value_and_gradient(&theta)?; // warm up
     let (wall, cpu) = (Instant::now(), cpu_seconds());

@@ -163,7 +163,7 @@ fn held_pseudo_inputs_stay_at_their_seeded_subset_and_leave_the_vector() {
         .fit(&x, &y)
         .expect("fits");
     // The same seed draws the same starting subset; only the moving fit changes it.
-    let start = crate::GpObjective::new(&params.check().expect("valid"), &x, &y);
+    let start = crate::GpObjective::new(&params.check().expect("valid"), &x, &y).expect("sets up");
     let z0 = start.start.pseudo_inputs.clone();
     assert_eq!(held.pseudo_inputs(), &z0);
     assert_ne!(moving.pseudo_inputs(), &z0);
@@ -171,6 +171,7 @@ fn held_pseudo_inputs_stay_at_their_seeded_subset_and_leave_the_vector() {
         &params.optimise_pseudo_inputs(false).check().expect("valid"),
         &x,
         &y,
-    );
+    )
+    .expect("sets up");
     assert_eq!(start.dims() - fixed.dims(), 6);
 }

@@ -9,8 +9,7 @@ use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::hyper::{Hyper, HyperGrad};
-use super::kernel::{ScaledPoints, column_sqnorms, cross_covariance, inverse_squares};
-use super::kernel::{scale_points, self_covariance};
+use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
 use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse};
 use super::linalg::{mul, scale_columns, t_view};
 use super::train_data::TrainData;
@@ -32,6 +31,8 @@ pub(crate) struct Pass1 {
 
 /// The factorisation shared by the objective, its gradient and the predictive posterior.
 pub(crate) struct Factors {
+    /// The pseudo-inputs as kernel points.
+    pub z: OwnedPoints,
     /// K_M without jitter or h.
     pub k_m: DMatrix<f64>,
     /// L⁻¹ with L = chol(K_M + diag(h) + εI).
@@ -58,20 +59,20 @@ pub(crate) struct Evaluation {
     pub d_jitter: f64,
 }
 
-fn pass1(
+fn pass1<K: Kernel>(
     data: &TrainData,
-    side: &ScaledPoints,
+    z: Points<'_>,
     l_inv: &DMatrix<f64>,
-    h: &Hyper,
-    inv_sq: &DVector<f64>,
+    h: &Hyper<K>,
     (start, len): (usize, usize),
 ) -> Pass1 {
-    let s = h.signal_variance;
-    let x_sq = column_sqnorms(&data.xt_sq_block(start, len), inv_sq);
-    let k = cross_covariance(side, &data.xt_block(start, len), &x_sq, s);
+    let x = data.points().range(start, len);
+    let k = h.kernel.cross(z, x);
+    let k_diag = h.kernel.diag(x);
     let v = mul(l_inv, &k); // step 3: V = L⁻¹U
     let q = colsum_product(&v, &v);
-    let g = q.map(|qn| (s - qn).max(0.0) + h.noise_variance); // step 4: λ clamped at 0
+    // step 4: λ = diag K_NN − q clamped at 0
+    let g = DVector::from_fn(len, |n, _| (k_diag[n] - q[n]).max(0.0) + h.noise_variance);
     let g_isqrt = g.map(|x| 1.0 / x.sqrt());
     let mut vt = v.clone();
     scale_columns(&mut vt, &g_isqrt); // step 5: Ṽ = VΓ^{-1/2}
@@ -90,11 +91,10 @@ fn pass1(
 }
 
 /// Factors the model at `h` (gp.md §1 steps 1-8).
-pub(crate) fn factor(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Factors> {
-    let inv_sq = inverse_squares(&h.lengthscales);
-    let z = &h.pseudo_inputs;
-    let m = z.nrows();
-    let k_m = self_covariance(z, &inv_sq, h.signal_variance); // step 1
+pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> Result<Factors> {
+    let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+    let m = h.pseudo_inputs.nrows();
+    let k_m = self_covariance(&h.kernel, z.points()); // step 1
     let mut b_u = k_m.clone();
     if let Some(p) = &h.pseudo_noise {
         for i in 0..m {
@@ -103,11 +103,10 @@ pub(crate) fn factor(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Factors
     }
     let chol = cholesky_with_jitter(&b_u, jitter, "pseudo-input covariance K_M + diag(h)")?; // step 2
     let l_inv = lower_inverse(&chol.l, "chol(K_M + diag(h))")?;
-    let side = scale_points(z, &inv_sq);
     let blocks: Vec<Pass1> = data
         .blocks()
         .par_iter()
-        .map(|&blk| pass1(data, &side, &l_inv, h, &inv_sq, blk))
+        .map(|&blk| pass1(data, z.points(), &l_inv, h, blk))
         .collect();
     let (mut b, mut vy, mut yy, mut log_g) = (DMatrix::identity(m, m), DVector::zeros(m), 0.0, 0.0);
     for p in &blocks {
@@ -127,6 +126,7 @@ pub(crate) fn factor(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Factors
     let u = lb_inv.tr_mul(&c);
     let b_inv = mul(&t_view(&lb_inv), &lb_inv);
     Ok(Factors {
+        z,
         k_m,
         l_inv,
         b_inv,
@@ -137,17 +137,22 @@ pub(crate) fn factor(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Factors
     })
 }
 
-/// Pass 2 of one row block: the block's shares of V diag(d) Vᵀ, E X, r, Σ c'x², ΣE and Σd.
+/// Pass 2 of one row block: the block's shares of V diag(d) Vᵀ, the kernel and Z gradients
+/// through ∂𝓛/∂U and ∂𝓛/∂diag K_NN, and Σd.
 struct Pass2 {
     vdvt: DMatrix<f64>,
-    ex: DMatrix<f64>,
-    r: DVector<f64>,
-    x_sq_c: DVector<f64>,
-    sum_e: f64,
+    kernel: DVector<f64>,
+    d_z: DMatrix<f64>,
     sum_d: f64,
 }
 
-fn pass2(data: &TrainData, f: &Factors, p: &Pass1, (start, len): (usize, usize)) -> Pass2 {
+fn pass2<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    f: &Factors,
+    p: &Pass1,
+    (start, len): (usize, usize),
+) -> Pass2 {
     let g_isqrt = p.g.map(|x| 1.0 / x.sqrt());
     let mut vt = p.v.clone();
     scale_columns(&mut vt, &g_isqrt);
@@ -165,71 +170,60 @@ fn pass2(data: &TrainData, f: &Factors, p: &Pass1, (start, len): (usize, usize))
             *x = *x * g_isqrt[n] - f.u[m] * alpha[n] - 2.0 * p.v[(m, n)] * d[n];
         }
     }
-    let mut e = mul(&t_view(&f.l_inv), &r_mat); // ∂𝓛/∂U = L⁻ᵀR
-    e.component_mul_assign(&p.k); // E = ∂𝓛/∂U ∘ U
-    let ex = mul(&e, &data.x_block(start, len));
-    let c_prime = DVector::from_iterator(len, e.column_iter().map(|c| c.sum()));
+    let d_u = mul(&t_view(&f.l_inv), &r_mat); // ∂𝓛/∂U = L⁻ᵀR
+    let x = data.points().range(start, len);
+    let z = f.z.points();
+    let mut d_z = DMatrix::zeros(z.dims(), z.len());
+    // ∂𝓛/∂θ through U = k(Z, X_b) and through diag K_NN (∂𝓛/∂k_n = d_n, gp.md §2.1)
+    let kernel =
+        h.kernel.cross_gradient(z, x, &p.k, &d_u, Some(&mut d_z)) + h.kernel.diag_gradient(x, &d);
     let mut vd = p.v.clone();
     scale_columns(&mut vd, &d);
     Pass2 {
         vdvt: mul(&vd, &t_view(&p.v)),
-        ex,
-        r: e.column_sum(),
-        x_sq_c: data.xt_sq_block(start, len) * c_prime,
-        sum_e: e.sum(),
+        kernel,
+        d_z,
         sum_d: d.sum(),
     }
 }
 
 /// 𝓛 and its full gradient at `h` (gp.md §2.2-2.3, cost O(NM² + NMD + M³ + M²D)).
-pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Evaluation> {
+pub(crate) fn objective<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    jitter: f64,
+) -> Result<Evaluation> {
     let f = factor(data, h, jitter)?;
     let parts: Vec<Pass2> = data
         .blocks()
         .par_iter()
         .zip(f.blocks.par_iter())
-        .map(|(&blk, p)| pass2(data, &f, p, blk))
+        .map(|(&blk, p)| pass2(data, h, &f, p, blk))
         .collect();
-    let (m, dims) = (h.pseudo_inputs.nrows(), data.dims());
+    let z = f.z.points();
+    let m = z.len();
     let mut s_mat = (&f.b_inv - DMatrix::identity(m, m)) * 0.5 + &f.u * f.u.transpose() * 0.5;
-    let (mut ex, mut r, mut x_sq_c) = (
-        DMatrix::zeros(m, dims),
-        DVector::zeros(m),
-        DVector::zeros(dims),
-    );
-    let (mut sum_e, mut sum_d) = (0.0, 0.0);
+    let mut kernel = DVector::zeros(h.kernel.n_params());
+    let mut d_z = DMatrix::zeros(z.dims(), m);
+    let mut sum_d = 0.0;
     for p in &parts {
         s_mat += &p.vdvt;
-        ex += &p.ex;
-        r += &p.r;
-        x_sq_c += &p.x_sq_c;
-        sum_e += p.sum_e;
+        kernel += &p.kernel;
+        d_z += &p.d_z;
         sum_d += p.sum_d;
     }
     let d_bu = mul(&mul(&t_view(&f.l_inv), &s_mat), &f.l_inv);
     let d_bu = (&d_bu + d_bu.transpose()) * 0.5; // ∂𝓛/∂B_u = L⁻ᵀSL⁻¹
-    let f_mat = d_bu.component_mul(&f.k_m); // F = ∂𝓛/∂B_u ∘ K_M
-    let f_row = f_mat.column_sum();
-    let z = &h.pseudo_inputs;
-    let fz = mul(&f_mat, z);
-    let inv_sq = inverse_squares(&h.lengthscales);
-    let mut d_z = DMatrix::zeros(m, dims);
-    let mut d_log_l = DVector::zeros(dims);
-    for d in 0..dims {
-        let mut acc = x_sq_c[d];
-        for i in 0..m {
-            let zi = z[(i, d)];
-            acc += r[i] * zi * zi - 2.0 * zi * ex[(i, d)] + 2.0 * f_row[i] * zi * zi
-                - 2.0 * zi * fz[(i, d)];
-            d_z[(i, d)] = inv_sq[d] * (ex[(i, d)] - r[i] * zi + 2.0 * (fz[(i, d)] - f_row[i] * zi));
-        }
-        d_log_l[d] = inv_sq[d] * acc;
-    }
+    // K_M = k(Z, Z): Z enters both arguments, so its gradient is twice the first-argument one.
+    let mut d_z_m = DMatrix::zeros(z.dims(), m);
+    kernel += h
+        .kernel
+        .cross_gradient(z, z, &f.k_m, &d_bu, Some(&mut d_z_m));
+    d_z += d_z_m * 2.0;
     let grad = HyperGrad {
-        log_lengthscales: d_log_l,
-        log_signal_variance: sum_e + f_mat.sum() + h.signal_variance * sum_d,
+        kernel,
         log_noise_variance: h.noise_variance * sum_d,
-        pseudo_inputs: d_z,
+        pseudo_inputs: d_z.transpose(),
         log_pseudo_noise: h
             .pseudo_noise
             .as_ref()

@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use super::fitc::{Factors, Pass1, factor};
 use super::full::FullPosterior;
 use super::hyper::Hyper;
+use super::kernel::Kernel;
 use super::linalg::{colsum_product, lower_inverse, mul, scale_columns};
 use super::params::GpKind;
 use super::train_data::TrainData;
@@ -65,10 +66,10 @@ fn sparse_block(
 
 /// Leave-one-out moments of the model `kind` at `h` on standardised `data`, with the absolute
 /// jitter `jitter` (the one the posterior was conditioned with).
-pub(crate) fn loo_moments(
+pub(crate) fn loo_moments<K: Kernel>(
     data: &TrainData,
     kind: GpKind,
-    h: &Hyper,
+    h: &Hyper<K>,
     jitter: f64,
 ) -> Result<LooMoments> {
     let (c_inv_y, c_inv_diag) = match kind {
