@@ -79,6 +79,20 @@ fn check_data(x: &DMatrix<f64>, y: &DVector<f64>, names: &[String]) -> Result<()
     Ok(())
 }
 
+/// Errors if a column's standardisation is not finite (values so large that their variance
+/// overflows, e.g. a 1e300 cell): the fit would silently work on zeros.
+fn check_transform(t: &Standardiser, names: &[&str]) -> Result<()> {
+    for ((mean, scale), name) in t.mean.iter().zip(&t.scale).zip(names) {
+        if !(mean.is_finite() && scale.is_finite()) {
+            return Err(GpError::DegenerateData(format!(
+                "column '{name}' has values too large to standardise (mean {mean:e}, spread \
+                 {scale:e}); rescale it"
+            )));
+        }
+    }
+    Ok(())
+}
+
 impl<K: Kernel> GpValidParams<K> {
     /// Fits with input columns named `x0, x1, …` and target `y`.
     pub fn fit(&self, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<GpModel<K>> {
@@ -100,6 +114,9 @@ impl<K: Kernel> GpValidParams<K> {
         // Standardise inputs per column and the target (stored with the model).
         let inputs = Standardiser::for_kernel(x, self.kernel());
         let target = Standardiser::of_vector(y);
+        let names: Vec<&str> = input_names.iter().map(String::as_str).collect();
+        check_transform(&inputs, &names)?;
+        check_transform(&target, &[target_name])?;
         // Seeded initialisation: random-subset pseudo-inputs, the kernel's start (gp.md §5.3).
         let data = TrainData::new(&inputs.apply(x), &target.apply_vector(y));
         let objective = GpObjective::standardised(self, data)?;

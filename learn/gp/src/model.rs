@@ -52,7 +52,9 @@ pub struct FitReport {
     pub evals: usize,
     /// Optimiser iterations.
     pub iterations: usize,
-    /// Wall time of the fit.
+    /// Wall time of the fit. Not stored in model files, so identical fits give identical files;
+    /// 0 for a model read from a file.
+    #[serde(skip)]
     pub seconds: f64,
     /// Final negative log marginal likelihood, in the units of the original targets.
     pub nlml: f64,
