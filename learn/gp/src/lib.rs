@@ -19,6 +19,7 @@
 //! ```
 
 mod ard_distance;
+mod blocked;
 mod error;
 mod fit;
 mod fitc;

@@ -6,6 +6,7 @@ use nalgebra::{DMatrix, DVector, Dyn, Matrix, MatrixView, Storage};
 /// A dense matrix view with arbitrary strides (e.g. a transpose).
 pub(crate) type StridedView<'a> = MatrixView<'a, f64, Dyn, Dyn, Dyn, Dyn>;
 
+use super::blocked::{cholesky, lower_inverse_of};
 use crate::{GpError, Result};
 
 /// How many times the jitter is multiplied by 10 before a factorisation is declared failed.
@@ -26,7 +27,7 @@ pub(crate) fn t_view(a: &DMatrix<f64>) -> StridedView<'_> {
     transposed(a.as_slice(), a.nrows(), a.ncols())
 }
 
-/// `a * b` through matrixmultiply's gemm.
+/// `a * b` through matrixmultiply's gemm (strided views included, no copies).
 pub(crate) fn mul<S1, S2>(
     a: &Matrix<f64, Dyn, Dyn, S1>,
     b: &Matrix<f64, Dyn, Dyn, S2>,
@@ -40,9 +41,9 @@ where
     if a.nrows().min(a.ncols()).min(b.ncols()) <= SMALL_DIM {
         return a.clone_owned() * b.clone_owned();
     }
-    let mut out = DMatrix::zeros(a.nrows(), b.ncols());
-    out.gemm(1.0, a, b, 0.0);
-    out
+    // Above the threshold nalgebra hands both views' strides to matrixmultiply and writes the
+    // result without zeroing it first.
+    a * b
 }
 
 /// A lower Cholesky factor and the diagonal jitter that made the factorisation succeed.
@@ -75,11 +76,8 @@ pub(crate) fn cholesky_with_jitter(
         for i in 0..n {
             m[(i, i)] += eps;
         }
-        if let Some(chol) = nalgebra::Cholesky::new(m) {
-            return Ok(JitteredCholesky {
-                l: chol.unpack(),
-                jitter: eps,
-            });
+        if let Some(l) = cholesky(&m) {
+            return Ok(JitteredCholesky { l, jitter: eps });
         }
         if attempt < JITTER_RETRIES {
             eps = (eps * 10.0).max(1e-10 * mean_diag);
@@ -92,10 +90,12 @@ pub(crate) fn cholesky_with_jitter(
 
 /// The inverse of a lower-triangular matrix with a non-zero diagonal.
 pub(crate) fn lower_inverse(l: &DMatrix<f64>, what: &str) -> Result<DMatrix<f64>> {
-    let n = l.nrows();
-    l.solve_lower_triangular(&DMatrix::identity(n, n))
-        .filter(|inv| inv.iter().all(|v| v.is_finite()))
-        .ok_or_else(|| GpError::Numerical(format!("{what} has a zero pivot")))
+    let inv = lower_inverse_of(l);
+    if inv.iter().all(|v| v.is_finite()) {
+        Ok(inv)
+    } else {
+        Err(GpError::Numerical(format!("{what} has a zero pivot")))
+    }
 }
 
 /// Sum of the logs of the diagonal of a triangular factor (half the log-determinant).

@@ -233,8 +233,10 @@ impl Kernel for Stationary {
         let inv_sq = self.inverse_squares();
         let s = self.signal_variance;
         let groups = self.resolved();
-        let mut k = DMatrix::from_element(a.len(), b.len(), s);
-        for g in groups {
+        let mut k = sq_distances(a, b, &inv_sq, groups[0]);
+        let shape = groups[0].shape;
+        k.apply(|v| *v = s * shape.profile(*v));
+        for &g in &groups[1..] {
             let r2 = sq_distances(a, b, &inv_sq, g);
             k.zip_apply(&r2, |kv, r| *kv *= g.shape.profile(r));
         }
