@@ -6,7 +6,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::kernel::Points;
-use super::linalg::{mul, t_view};
+use super::linalg::{mul, transposed};
 use super::shape::Group;
 
 /// Σ_j v_j² w_j with four partial sums, so the loop vectorises.
@@ -67,9 +67,10 @@ pub(crate) fn group_gradient(
     d_a: Option<&mut DMatrix<f64>>,
 ) {
     let (p_len, d) = (a.len(), a.dims());
-    let b_all = b.coords();
-    // (E B)ᵀ as D_g×P, so that each point's row of it is a contiguous column.
-    let ex_t = mul(&b_all.rows(g.start, g.len), &t_view(e));
+    // E B with B's rows read as a row-major view (the fast way round for gemm), then transposed
+    // to D_g×P so that each point's row of it is a contiguous column below.
+    let b_rows = transposed(b.coord_slice(), d, b.len());
+    let ex_t = mul(e, &b_rows.columns(g.start, g.len)).transpose();
     let mut acc = vec![0.0; g.len];
     // Σ_q c_q b_qd² with c_q = Σ_p E_pq.
     for (col, bq) in e

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
 use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse};
-use super::linalg::{mul, scale_columns, t_view};
+use super::linalg::{lower_mul, mul, scale_columns, symmetric_mul_t, t_view, upper_mul};
 use super::train_data::TrainData;
 use crate::Result;
 
@@ -81,14 +81,14 @@ fn pass1<K: Kernel>(
     (start, len): (usize, usize),
     (k, k_diag): (DMatrix<f64>, DVector<f64>),
 ) -> Pass1 {
-    let mut vt = mul(l_inv, &k); // step 3: V = L⁻¹U
+    let mut vt = lower_mul(l_inv, &k); // step 3: V = L⁻¹U
     let q = colsum_product(&vt, &vt);
     // step 4: λ = diag K_NN − q clamped at 0
     let g = DVector::from_fn(len, |n, _| (k_diag[n] - q[n]).max(0.0) + h.noise_variance);
     let g_isqrt = g.map(|x| 1.0 / x.sqrt());
     scale_columns(&mut vt, &g_isqrt); // step 5: Ṽ = VΓ^{-1/2}
     let yt = data.y.rows(start, len).component_mul(&g_isqrt);
-    let vvt = mul(&vt, &t_view(&vt));
+    let vvt = symmetric_mul_t(&vt, &vt);
     let vy = &vt * &yt;
     Pass1 {
         yy: yt.dot(&yt),
@@ -207,13 +207,13 @@ fn pass2<K: Kernel>(
             *x = *x * gi - u * a - v * v2d;
         }
     }
-    let d_u = mul(&f.l_inv_t, &r_mat); // ∂𝓛/∂U = L⁻ᵀR
+    let d_u = upper_mul(&f.l_inv_t, &r_mat); // ∂𝓛/∂U = L⁻ᵀR
     // V diag(d) Vᵀ = Ṽ diag(g∘d) Ṽᵀ, reusing R's storage for Ṽ diag(g∘d).
     r_mat.copy_from(&p.vt);
     scale_columns(&mut r_mat, &p.g.component_mul(&d));
     Pass2 {
         d_u,
-        vdvt: mul(&r_mat, &t_view(&p.vt)),
+        vdvt: symmetric_mul_t(&r_mat, &p.vt),
         diag_grad: h.kernel.diag_gradient(data.points().range(start, len), &d),
         sum_d: d.sum(),
     }
