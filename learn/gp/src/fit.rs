@@ -7,6 +7,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::full::FullPosterior;
 use super::hyper::Hyper;
+use super::kernel::Kernel;
 use super::lbfgs::{LbfgsOptions, minimize};
 use super::model::{FitReport, GpModel, Posterior};
 use super::objective::GpObjective;
@@ -19,16 +20,21 @@ use crate::{GpError, Result};
 /// Correction pairs kept by L-BFGS.
 const LBFGS_MEMORY: usize = 10;
 
-impl GpParams {
+impl<K: Kernel> GpParams<K> {
     /// Checks the parameters and fits `x` (N×D, one sample per row) to `y` (N).
-    pub fn fit(&self, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<GpModel> {
+    pub fn fit(&self, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<GpModel<K>> {
         self.check()?.fit(x, y)
     }
 }
 
 /// Caches what prediction needs (thesis eqs. 3.32-3.33, or 3.20-3.21 for the full GP).
-fn condition(data: &TrainData, kind: GpKind, h: &Hyper, jitter: f64) -> Result<(Posterior, f64)> {
-    let eps = jitter * h.signal_variance;
+fn condition<K: Kernel>(
+    data: &TrainData,
+    kind: GpKind,
+    h: &Hyper<K>,
+    jitter: f64,
+) -> Result<(Posterior, f64)> {
+    let eps = jitter * h.kernel.signal_variance();
     Ok(match kind {
         GpKind::Full => {
             let (p, used) = FullPosterior::new(data, h, eps)?;
@@ -73,9 +79,23 @@ fn check_data(x: &DMatrix<f64>, y: &DVector<f64>, names: &[String]) -> Result<()
     Ok(())
 }
 
-impl GpValidParams {
+/// Errors if a column's standardisation is not finite (values so large that their variance
+/// overflows, e.g. a 1e300 cell): the fit would silently work on zeros.
+fn check_transform(t: &Standardiser, names: &[&str]) -> Result<()> {
+    for ((mean, scale), name) in t.mean.iter().zip(&t.scale).zip(names) {
+        if !(mean.is_finite() && scale.is_finite()) {
+            return Err(GpError::DegenerateData(format!(
+                "column '{name}' has values too large to standardise (mean {mean:e}, spread \
+                 {scale:e}); rescale it"
+            )));
+        }
+    }
+    Ok(())
+}
+
+impl<K: Kernel> GpValidParams<K> {
     /// Fits with input columns named `x0, x1, …` and target `y`.
-    pub fn fit(&self, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<GpModel> {
+    pub fn fit(&self, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<GpModel<K>> {
         let names: Vec<String> = (0..x.ncols()).map(|d| format!("x{d}")).collect();
         self.fit_named(x, y, &names, "y")
     }
@@ -87,16 +107,19 @@ impl GpValidParams {
         y: &DVector<f64>,
         input_names: &[String],
         target_name: &str,
-    ) -> Result<GpModel> {
+    ) -> Result<GpModel<K>> {
         let clock = Instant::now();
         check_data(x, y, input_names)?;
         let kind = self.kind();
         // Standardise inputs per column and the target (stored with the model).
-        let inputs = Standardiser::of_columns(x);
+        let inputs = Standardiser::for_kernel(x, self.kernel());
         let target = Standardiser::of_vector(y);
-        // Seeded initialisation: random-subset pseudo-inputs, spread-based ℓ, s = var(y) (gp.md §5.3).
+        let names: Vec<&str> = input_names.iter().map(String::as_str).collect();
+        check_transform(&inputs, &names)?;
+        check_transform(&target, &[target_name])?;
+        // Seeded initialisation: random-subset pseudo-inputs, the kernel's start (gp.md §5.3).
         let data = TrainData::new(&inputs.apply(x), &target.apply_vector(y));
-        let objective = GpObjective::standardised(self, data);
+        let objective = GpObjective::standardised(self, data)?;
         // Maximise the marginal likelihood p(y | X, X̄, Θ) (eq. 3.30) jointly in Θ, the
         // pseudo-inputs X̄ and, for SPGP-HET, the pseudo-input noise h (eq. 3.34).
         let (grad_tol, rel_tol) = self.tolerances();

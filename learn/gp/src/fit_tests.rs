@@ -163,7 +163,7 @@ fn held_pseudo_inputs_stay_at_their_seeded_subset_and_leave_the_vector() {
         .fit(&x, &y)
         .expect("fits");
     // The same seed draws the same starting subset; only the moving fit changes it.
-    let start = crate::GpObjective::new(&params.check().expect("valid"), &x, &y);
+    let start = crate::GpObjective::new(&params.check().expect("valid"), &x, &y).expect("sets up");
     let z0 = start.start.pseudo_inputs.clone();
     assert_eq!(held.pseudo_inputs(), &z0);
     assert_ne!(moving.pseudo_inputs(), &z0);
@@ -171,6 +171,27 @@ fn held_pseudo_inputs_stay_at_their_seeded_subset_and_leave_the_vector() {
         &params.optimise_pseudo_inputs(false).check().expect("valid"),
         &x,
         &y,
-    );
+    )
+    .expect("sets up");
     assert_eq!(start.dims() - fixed.dims(), 6);
+}
+
+#[test]
+fn values_too_large_to_standardise_are_an_error_naming_the_column() {
+    let (mut x, mut y) = toy(20, 0.1, 0.1, 9);
+    x[(4, 0)] = 1e300;
+    let err = GpParams::new(GpKind::Spgp)
+        .pseudo_inputs(4)
+        .fit(&x, &y)
+        .expect_err("overflowing input");
+    assert!(
+        matches!(err, GpError::DegenerateData(_)) && err.to_string().contains("'x0'"),
+        "{err}"
+    );
+    x[(4, 0)] = 1.0;
+    y[2] = -1e300;
+    let err = GpParams::new(GpKind::Full)
+        .fit(&x, &y)
+        .expect_err("overflowing target");
+    assert!(err.to_string().contains("'y'"), "{err}");
 }

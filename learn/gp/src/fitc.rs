@@ -9,19 +9,19 @@ use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::hyper::{Hyper, HyperGrad};
-use super::kernel::{ScaledPoints, column_sqnorms, cross_covariance, inverse_squares};
-use super::kernel::{scale_points, self_covariance};
+use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
 use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse};
-use super::linalg::{mul, scale_columns, t_view};
+use super::linalg::{lower_mul, mul, scale_columns, symmetric_mul_t, t_view, upper_mul};
 use super::train_data::TrainData;
 use crate::Result;
 
-/// Pass 1 of one row block: U_b = K_MB, V_b = L⁻¹U_b, g_b and the block's share of B and Ṽỹ.
+/// Pass 1 of one row block: U_b = K_MB, Ṽ_b = L⁻¹U_bΓ_b^{-1/2}, g_b and the block's share of B and
+/// Ṽỹ.
 pub(crate) struct Pass1 {
     /// U_b = K_MB.
     pub k: DMatrix<f64>,
-    /// V_b = L⁻¹U_b.
-    pub v: DMatrix<f64>,
+    /// Ṽ_b = V_bΓ_b^{-1/2} with V_b = L⁻¹U_b.
+    pub vt: DMatrix<f64>,
     /// g_b = λ_b + σ², the diagonal of Γ.
     pub g: DVector<f64>,
     vvt: DMatrix<f64>,
@@ -32,10 +32,14 @@ pub(crate) struct Pass1 {
 
 /// The factorisation shared by the objective, its gradient and the predictive posterior.
 pub(crate) struct Factors {
+    /// The pseudo-inputs as kernel points.
+    pub z: OwnedPoints,
     /// K_M without jitter or h.
     pub k_m: DMatrix<f64>,
     /// L⁻¹ with L = chol(K_M + diag(h) + εI).
     pub l_inv: DMatrix<f64>,
+    /// L⁻ᵀ, stored so the products with it read contiguous memory.
+    pub l_inv_t: DMatrix<f64>,
     /// B⁻¹ with B = I + ṼṼᵀ.
     pub b_inv: DMatrix<f64>,
     /// u = L_B⁻ᵀ c (gp.md §2.2).
@@ -58,56 +62,82 @@ pub(crate) struct Evaluation {
     pub d_jitter: f64,
 }
 
-fn pass1(
+/// U_b = k(Z, X_b) and diag K_bb of one row block: the O(NMD) part of pass 1, which needs only
+/// the pseudo-inputs and so runs while K_M is factored.
+fn covariances<K: Kernel>(
     data: &TrainData,
-    side: &ScaledPoints,
-    l_inv: &DMatrix<f64>,
-    h: &Hyper,
-    inv_sq: &DVector<f64>,
+    z: Points<'_>,
+    h: &Hyper<K>,
     (start, len): (usize, usize),
+) -> (DMatrix<f64>, DVector<f64>) {
+    let x = data.points().range(start, len);
+    (h.kernel.cross(z, x), h.kernel.diag(x))
+}
+
+fn pass1<K: Kernel>(
+    data: &TrainData,
+    l_inv: &DMatrix<f64>,
+    h: &Hyper<K>,
+    (start, len): (usize, usize),
+    (k, k_diag): (DMatrix<f64>, DVector<f64>),
 ) -> Pass1 {
-    let s = h.signal_variance;
-    let x_sq = column_sqnorms(&data.xt_sq_block(start, len), inv_sq);
-    let k = cross_covariance(side, &data.xt_block(start, len), &x_sq, s);
-    let v = mul(l_inv, &k); // step 3: V = L⁻¹U
-    let q = colsum_product(&v, &v);
-    let g = q.map(|qn| (s - qn).max(0.0) + h.noise_variance); // step 4: λ clamped at 0
+    let mut vt = lower_mul(l_inv, &k); // step 3: V = L⁻¹U
+    let q = colsum_product(&vt, &vt);
+    // step 4: λ = diag K_NN − q clamped at 0
+    let g = DVector::from_fn(len, |n, _| (k_diag[n] - q[n]).max(0.0) + h.noise_variance);
     let g_isqrt = g.map(|x| 1.0 / x.sqrt());
-    let mut vt = v.clone();
     scale_columns(&mut vt, &g_isqrt); // step 5: Ṽ = VΓ^{-1/2}
     let yt = data.y.rows(start, len).component_mul(&g_isqrt);
-    let vvt = mul(&vt, &t_view(&vt));
+    let vvt = symmetric_mul_t(&vt, &vt);
     let vy = &vt * &yt;
     Pass1 {
         yy: yt.dot(&yt),
         log_g: g.iter().map(|x| x.ln()).sum(),
         k,
-        v,
+        vt,
         g,
         vvt,
         vy,
     }
 }
 
-/// Factors the model at `h` (gp.md §1 steps 1-8).
-pub(crate) fn factor(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Factors> {
-    let inv_sq = inverse_squares(&h.lengthscales);
-    let z = &h.pseudo_inputs;
-    let m = z.nrows();
-    let k_m = self_covariance(z, &inv_sq, h.signal_variance); // step 1
+/// K_M, L⁻¹ with L = chol(K_M + diag(h) + εI), and the jitter used (steps 1-2).
+fn pseudo_factor<K: Kernel>(
+    h: &Hyper<K>,
+    z: Points<'_>,
+    jitter: f64,
+) -> Result<(DMatrix<f64>, DMatrix<f64>, f64)> {
+    let k_m = self_covariance(&h.kernel, z); // step 1
     let mut b_u = k_m.clone();
     if let Some(p) = &h.pseudo_noise {
-        for i in 0..m {
-            b_u[(i, i)] += p[i];
+        for (i, hi) in p.iter().enumerate() {
+            b_u[(i, i)] += hi;
         }
     }
     let chol = cholesky_with_jitter(&b_u, jitter, "pseudo-input covariance K_M + diag(h)")?; // step 2
     let l_inv = lower_inverse(&chol.l, "chol(K_M + diag(h))")?;
-    let side = scale_points(z, &inv_sq);
-    let blocks: Vec<Pass1> = data
-        .blocks()
+    Ok((k_m, l_inv, chol.jitter))
+}
+
+/// Factors the model at `h` (gp.md §1 steps 1-8).
+pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> Result<Factors> {
+    let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+    let m = h.pseudo_inputs.nrows();
+    let blocks = data.blocks();
+    let (pseudo, covs) = rayon::join(
+        || pseudo_factor(h, z.points(), jitter),
+        || {
+            blocks
+                .par_iter()
+                .map(|&blk| covariances(data, z.points(), h, blk))
+                .collect::<Vec<_>>()
+        },
+    );
+    let (k_m, l_inv, used_jitter) = pseudo?;
+    let blocks: Vec<Pass1> = blocks
         .par_iter()
-        .map(|&blk| pass1(data, &side, &l_inv, h, &inv_sq, blk))
+        .zip(covs.into_par_iter())
+        .map(|(&blk, cov)| pass1(data, &l_inv, h, blk, cov))
         .collect();
     let (mut b, mut vy, mut yy, mut log_g) = (DMatrix::identity(m, m), DVector::zeros(m), 0.0, 0.0);
     for p in &blocks {
@@ -127,109 +157,130 @@ pub(crate) fn factor(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Factors
     let u = lb_inv.tr_mul(&c);
     let b_inv = mul(&t_view(&lb_inv), &lb_inv);
     Ok(Factors {
+        z,
         k_m,
+        l_inv_t: l_inv.transpose(),
         l_inv,
         b_inv,
         u,
-        jitter: chol.jitter,
+        jitter: used_jitter,
         nlml,
         blocks,
     })
 }
 
-/// Pass 2 of one row block: the block's shares of V diag(d) Vᵀ, E X, r, Σ c'x², ΣE and Σd.
+/// Pass 2 of one row block: ∂𝓛/∂U_b, the block's share of V diag(d) Vᵀ, the gradient through
+/// diag K_NN (∂𝓛/∂k_n = d_n, gp.md §2.1) and Σd.
 struct Pass2 {
+    d_u: DMatrix<f64>,
     vdvt: DMatrix<f64>,
-    ex: DMatrix<f64>,
-    r: DVector<f64>,
-    x_sq_c: DVector<f64>,
-    sum_e: f64,
+    diag_grad: DVector<f64>,
     sum_d: f64,
 }
 
-fn pass2(data: &TrainData, f: &Factors, p: &Pass1, (start, len): (usize, usize)) -> Pass2 {
-    let g_isqrt = p.g.map(|x| 1.0 / x.sqrt());
-    let mut vt = p.v.clone();
-    scale_columns(&mut vt, &g_isqrt);
-    let mut r_mat = mul(&f.b_inv, &vt); // B⁻¹Ṽ = L_B⁻ᵀW1
-    let w1_sq = colsum_product(&vt, &r_mat); // ‖W1_{:,n}‖²
-    let vu = p.v.tr_mul(&f.u);
+fn pass2<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    f: &Factors,
+    p: &Pass1,
+    (start, len): (usize, usize),
+) -> Pass2 {
+    let g_sqrt = p.g.map(f64::sqrt);
+    let mut r_mat = mul(&f.b_inv, &p.vt); // B⁻¹Ṽ = L_B⁻ᵀW1
+    let w1_sq = colsum_product(&p.vt, &r_mat); // ‖W1_{:,n}‖²
+    let vtu = p.vt.tr_mul(&f.u); // Ṽᵀu = Γ^{-1/2}Vᵀu
     let y = data.y.rows(start, len);
-    let alpha = DVector::from_fn(len, |n, _| (y[n] - vu[n]) / p.g[n]); // α = C⁻¹y
+    let alpha = DVector::from_fn(len, |n, _| (y[n] - g_sqrt[n] * vtu[n]) / p.g[n]); // α = C⁻¹y
     let d = DVector::from_fn(len, |n, _| {
         0.5 * ((1.0 - w1_sq[n]) / p.g[n] - alpha[n] * alpha[n])
     });
-    for (n, mut col) in r_mat.column_iter_mut().enumerate() {
-        // R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d)
-        for (m, x) in col.iter_mut().enumerate() {
-            *x = *x * g_isqrt[n] - f.u[m] * alpha[n] - 2.0 * p.v[(m, n)] * d[n];
+    let m = f.u.len();
+    for (n, (col, vt_col)) in r_mat
+        .as_mut_slice()
+        .chunks_exact_mut(m)
+        .zip(p.vt.as_slice().chunks_exact(m))
+        .enumerate()
+    {
+        // R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d), with V = ṼΓ^{1/2}
+        let (gi, a, v2d) = (1.0 / g_sqrt[n], alpha[n], 2.0 * g_sqrt[n] * d[n]);
+        for ((x, u), v) in col.iter_mut().zip(f.u.iter()).zip(vt_col) {
+            *x = *x * gi - u * a - v * v2d;
         }
     }
-    let mut e = mul(&t_view(&f.l_inv), &r_mat); // ∂𝓛/∂U = L⁻ᵀR
-    e.component_mul_assign(&p.k); // E = ∂𝓛/∂U ∘ U
-    let ex = mul(&e, &data.x_block(start, len));
-    let c_prime = DVector::from_iterator(len, e.column_iter().map(|c| c.sum()));
-    let mut vd = p.v.clone();
-    scale_columns(&mut vd, &d);
+    let d_u = upper_mul(&f.l_inv_t, &r_mat); // ∂𝓛/∂U = L⁻ᵀR
+    // V diag(d) Vᵀ = Ṽ diag(g∘d) Ṽᵀ, reusing R's storage for Ṽ diag(g∘d).
+    r_mat.copy_from(&p.vt);
+    scale_columns(&mut r_mat, &p.g.component_mul(&d));
     Pass2 {
-        vdvt: mul(&vd, &t_view(&p.v)),
-        ex,
-        r: e.column_sum(),
-        x_sq_c: data.xt_sq_block(start, len) * c_prime,
-        sum_e: e.sum(),
+        d_u,
+        vdvt: symmetric_mul_t(&r_mat, &p.vt),
+        diag_grad: h.kernel.diag_gradient(data.points().range(start, len), &d),
         sum_d: d.sum(),
     }
 }
 
+/// ∂𝓛/∂B_u = L⁻ᵀSL⁻¹ (gp.md §2.2) and the kernel and Z gradients through K_M = k(Z, Z), in
+/// which Z enters both arguments (so its gradient is twice the first-argument one).
+fn pseudo_gradient<K: Kernel>(
+    h: &Hyper<K>,
+    f: &Factors,
+    parts: &[Pass2],
+) -> (DMatrix<f64>, DVector<f64>, DMatrix<f64>) {
+    let z = f.z.points();
+    let m = z.len();
+    let mut s_mat = (&f.b_inv - DMatrix::identity(m, m)) * 0.5 + &f.u * f.u.transpose() * 0.5;
+    for p in parts {
+        s_mat += &p.vdvt;
+    }
+    let d_bu = mul(&mul(&f.l_inv_t, &s_mat), &f.l_inv);
+    let d_bu = (&d_bu + d_bu.transpose()) * 0.5;
+    let mut d_z = DMatrix::zeros(z.dims(), m);
+    let grad = h.kernel.cross_gradient(z, z, &f.k_m, &d_bu, Some(&mut d_z));
+    (d_bu, grad, d_z * 2.0)
+}
+
 /// 𝓛 and its full gradient at `h` (gp.md §2.2-2.3, cost O(NM² + NMD + M³ + M²D)).
-pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Evaluation> {
+pub(crate) fn objective<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    jitter: f64,
+) -> Result<Evaluation> {
     let f = factor(data, h, jitter)?;
-    let parts: Vec<Pass2> = data
-        .blocks()
+    let blocks = data.blocks();
+    let parts: Vec<Pass2> = blocks
         .par_iter()
         .zip(f.blocks.par_iter())
-        .map(|(&blk, p)| pass2(data, &f, p, blk))
+        .map(|(&blk, p)| pass2(data, h, &f, p, blk))
         .collect();
-    let (m, dims) = (h.pseudo_inputs.nrows(), data.dims());
-    let mut s_mat = (&f.b_inv - DMatrix::identity(m, m)) * 0.5 + &f.u * f.u.transpose() * 0.5;
-    let (mut ex, mut r, mut x_sq_c) = (
-        DMatrix::zeros(m, dims),
-        DVector::zeros(m),
-        DVector::zeros(dims),
+    let z = f.z.points();
+    // The O(NMD) gradient through U = k(Z, X) needs only ∂𝓛/∂U: it runs beside ∂𝓛/∂B_u.
+    let ((d_bu, mut kernel, mut d_z), through_u) = rayon::join(
+        || pseudo_gradient(h, &f, &parts),
+        || {
+            blocks
+                .par_iter()
+                .zip(parts.par_iter().zip(f.blocks.par_iter()))
+                .map(|(&(start, len), (p2, p1))| {
+                    let x = data.points().range(start, len);
+                    let mut d_z = DMatrix::zeros(z.dims(), z.len());
+                    let g = h
+                        .kernel
+                        .cross_gradient(z, x, &p1.k, &p2.d_u, Some(&mut d_z));
+                    (g, d_z)
+                })
+                .collect::<Vec<_>>()
+        },
     );
-    let (mut sum_e, mut sum_d) = (0.0, 0.0);
-    for p in &parts {
-        s_mat += &p.vdvt;
-        ex += &p.ex;
-        r += &p.r;
-        x_sq_c += &p.x_sq_c;
-        sum_e += p.sum_e;
+    let mut sum_d = 0.0;
+    for (p, (g, dz)) in parts.iter().zip(&through_u) {
+        kernel += g + &p.diag_grad;
+        d_z += dz;
         sum_d += p.sum_d;
     }
-    let d_bu = mul(&mul(&t_view(&f.l_inv), &s_mat), &f.l_inv);
-    let d_bu = (&d_bu + d_bu.transpose()) * 0.5; // ∂𝓛/∂B_u = L⁻ᵀSL⁻¹
-    let f_mat = d_bu.component_mul(&f.k_m); // F = ∂𝓛/∂B_u ∘ K_M
-    let f_row = f_mat.column_sum();
-    let z = &h.pseudo_inputs;
-    let fz = mul(&f_mat, z);
-    let inv_sq = inverse_squares(&h.lengthscales);
-    let mut d_z = DMatrix::zeros(m, dims);
-    let mut d_log_l = DVector::zeros(dims);
-    for d in 0..dims {
-        let mut acc = x_sq_c[d];
-        for i in 0..m {
-            let zi = z[(i, d)];
-            acc += r[i] * zi * zi - 2.0 * zi * ex[(i, d)] + 2.0 * f_row[i] * zi * zi
-                - 2.0 * zi * fz[(i, d)];
-            d_z[(i, d)] = inv_sq[d] * (ex[(i, d)] - r[i] * zi + 2.0 * (fz[(i, d)] - f_row[i] * zi));
-        }
-        d_log_l[d] = inv_sq[d] * acc;
-    }
     let grad = HyperGrad {
-        log_lengthscales: d_log_l,
-        log_signal_variance: sum_e + f_mat.sum() + h.signal_variance * sum_d,
+        kernel,
         log_noise_variance: h.noise_variance * sum_d,
-        pseudo_inputs: d_z,
+        pseudo_inputs: d_z.transpose(),
         log_pseudo_noise: h
             .pseudo_noise
             .as_ref()

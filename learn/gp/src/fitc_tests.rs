@@ -5,13 +5,14 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::super::hyper::{Hyper, Layout};
-use super::super::kernel::{covariance_rows, inverse_squares};
+use super::super::kernel::{Kernel, OwnedPoints};
 use super::super::sparse_posterior::SparsePosterior;
+use super::super::stationary::Stationary;
 use super::super::train_data::TrainData;
 use super::objective;
 
 /// The N = 8, D = 2, M = 3 problem of gp.md §6.4.
-fn reference_problem(het: bool) -> (TrainData, Hyper) {
+fn reference_problem(het: bool) -> (TrainData, Hyper<Stationary>) {
     let x = DMatrix::from_fn(8, 2, |n, d| {
         if d == 0 {
             2.0 * n as f64 / 7.0 - 1.0
@@ -21,8 +22,7 @@ fn reference_problem(het: bool) -> (TrainData, Hyper) {
     });
     let y = DVector::from_fn(8, |n, _| (3.0 * x[(n, 0)]).cos() + 0.1 * x[(n, 1)]);
     let h = Hyper {
-        lengthscales: DVector::from_vec(vec![0.6, 1.5]),
-        signal_variance: 1.3,
+        kernel: Stationary::se(&[0.6, 1.5], 1.3),
         noise_variance: 0.02,
         pseudo_inputs: DMatrix::from_row_slice(3, 2, &[-0.8, 0.1, 0.0, -0.5, 0.7, 0.6]),
         pseudo_noise: het.then(|| DVector::from_vec(vec![0.05, 0.2, 0.01])),
@@ -51,12 +51,12 @@ fn fitc_objective_and_gradient_match_the_gp_md_reference_vectors() {
     let rel = 1e-8;
     assert!(close(e.nlml, 8.196028616783465, rel), "nlml {}", e.nlml);
     assert_all_close(
-        e.grad.log_lengthscales.as_slice(),
+        &e.grad.kernel.as_slice()[..2],
         &[3.604387926454, -3.477760952753],
         rel,
         "dℓ",
     );
-    assert!(close(e.grad.log_signal_variance, 1.521041978253, rel));
+    assert!(close(e.grad.kernel[2], 1.521041978253, rel));
     assert!(close(e.grad.log_noise_variance, 0.083979925757, rel));
     let dz = e.grad.pseudo_inputs.transpose(); // row-major order below
     let want = [
@@ -96,12 +96,12 @@ fn het_objective_gradient_and_predictions_match_the_gp_md_reference_vectors() {
     let rel = 1e-8;
     assert!(close(e.nlml, 8.573182153511636, rel), "nlml {}", e.nlml);
     assert_all_close(
-        e.grad.log_lengthscales.as_slice(),
+        &e.grad.kernel.as_slice()[..2],
         &[3.055207396048, -2.689013980586],
         rel,
         "dℓ",
     );
-    assert!(close(e.grad.log_signal_variance, 1.335131496405, rel));
+    assert!(close(e.grad.kernel[2], 1.335131496405, rel));
     assert!(close(e.grad.log_noise_variance, 0.074762013190, rel));
     let dh = e.grad.log_pseudo_noise.clone().expect("het gradient");
     assert_all_close(
@@ -137,15 +137,21 @@ fn het_objective_gradient_and_predictions_match_the_gp_md_reference_vectors() {
 }
 
 /// A random problem with `n` samples, 3 inputs and `m` pseudo-inputs.
-fn random_problem(n: usize, m: usize, het: bool, seed: u64) -> (TrainData, Hyper) {
+fn random_problem(n: usize, m: usize, het: bool, seed: u64) -> (TrainData, Hyper<Stationary>) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let x: DMatrix<f64> = DMatrix::from_fn(n, 3, |_, _| rng.random_range(-2.0..2.0));
     let y = DVector::from_fn(n, |i, _| {
         x[(i, 0)].sin() + 0.3 * x[(i, 1)] + rng.random_range(-0.2..0.2)
     });
     let h = Hyper {
-        lengthscales: DVector::from_fn(3, |_, _| rng.random_range(0.5..2.0)),
-        signal_variance: rng.random_range(0.5..1.5),
+        kernel: Stationary::se(
+            &[
+                rng.random_range(0.5..2.0),
+                rng.random_range(0.5..2.0),
+                rng.random_range(0.5..2.0),
+            ],
+            rng.random_range(0.5..1.5),
+        ),
         noise_variance: rng.random_range(0.01..0.1),
         pseudo_inputs: DMatrix::from_fn(m, 3, |_, _| rng.random_range(-2.0..2.0)),
         pseudo_noise: het.then(|| DVector::from_fn(m, |_, _| rng.random_range(0.01..0.3))),
@@ -157,6 +163,7 @@ fn random_problem(n: usize, m: usize, het: bool, seed: u64) -> (TrainData, Hyper
 fn check_gradient(het: bool, seed: u64) {
     let (data, h) = random_problem(23, 5, het, seed);
     let layout = Layout {
+        kernel: h.kernel.clone(),
         dims: 3,
         pseudo: 5,
         het,
@@ -203,24 +210,19 @@ fn every_het_gradient_including_h_matches_central_differences() {
 }
 
 /// 𝓛 from the explicit N×N covariance C = Q + diag(K − Q) + σ²I.
-fn dense_nlml(data: &TrainData, h: &Hyper, jitter: f64) -> f64 {
+fn dense_nlml(data: &TrainData, h: &Hyper<Stationary>, jitter: f64) -> f64 {
     let x = data.x_rows();
-    let inv_sq = inverse_squares(&h.lengthscales);
     let m = h.pseudo_inputs.nrows();
-    let mut b_u = covariance_rows(
-        &h.pseudo_inputs,
-        &h.pseudo_inputs,
-        &inv_sq,
-        h.signal_variance,
-    );
+    let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+    let mut b_u = h.kernel.cross(z.points(), z.points());
     for i in 0..m {
         b_u[(i, i)] += jitter + h.pseudo_noise.as_ref().map_or(0.0, |p| p[i]);
     }
-    let u = covariance_rows(&h.pseudo_inputs, &x, &inv_sq, h.signal_variance);
+    let u = h.kernel.cross(z.points(), data.points());
     let q = u.transpose() * b_u.try_inverse().expect("invertible") * &u;
     let mut c = q.clone();
     for i in 0..x.nrows() {
-        c[(i, i)] = h.signal_variance + h.noise_variance;
+        c[(i, i)] = h.kernel.signal_variance() + h.noise_variance;
     }
     let chol = nalgebra::Cholesky::new(c).expect("C is positive definite");
     let alpha = chol.solve(&data.y);
@@ -279,5 +281,5 @@ fn the_objective_is_bit_identical_on_one_and_two_threads() {
     let (one, two) = (run(1), run(2));
     assert_eq!(one.nlml.to_bits(), two.nlml.to_bits());
     assert_eq!(one.grad.pseudo_inputs, two.grad.pseudo_inputs);
-    assert_eq!(one.grad.log_lengthscales, two.grad.log_lengthscales);
+    assert_eq!(one.grad.kernel, two.grad.kernel);
 }

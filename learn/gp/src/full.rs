@@ -6,7 +6,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::fitc::Evaluation;
 use super::hyper::{Hyper, HyperGrad};
-use super::kernel::{covariance_rows, inverse_squares};
+use super::kernel::{Kernel, OwnedPoints, self_covariance};
 use super::linalg::{
     cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse, mul, t_view,
 };
@@ -16,27 +16,34 @@ use crate::{GpError, Result};
 /// The largest training set the exact GP accepts (its cost is O(N³) time and O(N²) memory).
 pub const FULL_GP_MAX_SAMPLES: usize = 4000;
 
-/// K + σ²I factored with jitter; returns (L, jitter).
-fn factor(x: &DMatrix<f64>, h: &Hyper, jitter: f64) -> Result<(DMatrix<f64>, DMatrix<f64>, f64)> {
-    if x.nrows() > FULL_GP_MAX_SAMPLES {
+/// K (noise-free, exact diagonal) and the lower factor of K + σ²I with the jitter used.
+fn factor<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    jitter: f64,
+) -> Result<(DMatrix<f64>, DMatrix<f64>, f64)> {
+    if data.len() > FULL_GP_MAX_SAMPLES {
         return Err(GpError::InvalidParams(format!(
             "the full GP takes at most {FULL_GP_MAX_SAMPLES} samples, got {}; use SPGP",
-            x.nrows()
+            data.len()
         )));
     }
-    let k = covariance_rows(x, x, &inverse_squares(&h.lengthscales), h.signal_variance);
-    let mut c = (&k + k.transpose()) * 0.5;
+    let k = self_covariance(&h.kernel, data.points());
+    let mut c = k.clone();
     for i in 0..c.nrows() {
-        c[(i, i)] = h.signal_variance + h.noise_variance;
+        c[(i, i)] += h.noise_variance;
     }
     let chol = cholesky_with_jitter(&c, jitter, "training covariance K + σ²I")?;
     Ok((k, chol.l, chol.jitter))
 }
 
 /// 𝓛 = ½yᵀC⁻¹y + ½log|C| + (N/2)log 2π (eq. 3.18 negated) and its gradient.
-pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Evaluation> {
-    let x = data.x_rows();
-    let (k, l, _) = factor(&x, h, jitter)?;
+pub(crate) fn objective<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    jitter: f64,
+) -> Result<Evaluation> {
+    let (k, l, _) = factor(data, h, jitter)?;
     let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
     let c_inv = mul(&t_view(&l_inv), &l_inv);
     let alpha = &c_inv * &data.y;
@@ -44,20 +51,10 @@ pub(crate) fn objective(data: &TrainData, h: &Hyper, jitter: f64) -> Result<Eval
     let nlml =
         0.5 * data.y.dot(&alpha) + log_diag_sum(&l) + 0.5 * n * (2.0 * std::f64::consts::PI).ln();
     let g = (c_inv - &alpha * alpha.transpose()) * 0.5; // ∂𝓛/∂C
-    let gk = g.component_mul(&k);
-    let row = gk.column_sum();
-    let gkx = mul(&gk, &x);
-    let x_sq = x.map(|v| v * v);
-    let inv_sq = inverse_squares(&h.lengthscales);
-    let d_log_l = DVector::from_fn(data.dims(), |d, _| {
-        // Σ_{nn'} GK_nn' (x_nd − x_n'd)²/ℓ_d², expanded (GK is symmetric).
-        let spread = 2.0 * x_sq.column(d).dot(&row) - 2.0 * x.column(d).dot(&gkx.column(d));
-        inv_sq[d] * spread
-    });
+    let x = data.points();
     let trace = g.trace();
     let grad = HyperGrad {
-        log_lengthscales: d_log_l,
-        log_signal_variance: gk.sum(),
+        kernel: h.kernel.cross_gradient(x, x, &k, &g, None),
         log_noise_variance: h.noise_variance * trace,
         pseudo_inputs: DMatrix::zeros(0, data.dims()),
         log_pseudo_noise: None,
@@ -84,14 +81,13 @@ pub(crate) struct FullPosterior {
 
 impl FullPosterior {
     /// Conditions the GP at `h` on `data`; returns the posterior and the jitter used.
-    pub fn new(data: &TrainData, h: &Hyper, jitter: f64) -> Result<(Self, f64)> {
-        let x = data.x_rows();
-        let (_, l, used) = factor(&x, h, jitter)?;
+    pub fn new<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> Result<(Self, f64)> {
+        let (_, l, used) = factor(data, h, jitter)?;
         let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
         let alpha = l_inv.tr_mul(&(&l_inv * &data.y));
         Ok((
             Self {
-                x,
+                x: data.x_rows(),
                 y: data.y.clone(),
                 alpha,
                 l,
@@ -101,23 +97,27 @@ impl FullPosterior {
     }
 
     /// Mean (eq. 3.20) and latent variance (eq. 3.21) at the rows of `x_test` (standardised).
-    pub fn predict(
+    pub fn predict<K: Kernel>(
         &self,
-        h: &Hyper,
+        h: &Hyper<K>,
         x_test: &DMatrix<f64>,
     ) -> Result<(DVector<f64>, DVector<f64>)> {
-        let k_star = covariance_rows(
-            &self.x,
-            x_test,
-            &inverse_squares(&h.lengthscales),
-            h.signal_variance,
-        );
+        let train = OwnedPoints::of_rows(&self.x, &h.kernel);
+        let test = OwnedPoints::of_rows(x_test, &h.kernel);
+        let k_star = h.kernel.cross(train.points(), test.points());
         let mean = k_star.tr_mul(&self.alpha);
         let v = self
             .l
             .solve_lower_triangular(&k_star)
             .ok_or_else(|| GpError::Numerical("chol(K + σ²I) has a zero pivot".into()))?;
-        let var = colsum_product(&v, &v).map(|q| (h.signal_variance - q).max(0.0));
+        let prior = h.kernel.diag(test.points());
+        let var = DVector::from_iterator(
+            prior.len(),
+            colsum_product(&v, &v)
+                .iter()
+                .zip(prior.iter())
+                .map(|(q, k)| (k - q).max(0.0)),
+        );
         Ok((mean, var))
     }
 }
@@ -128,13 +128,13 @@ mod tests {
     use crate::fitc;
     use crate::hyper::Layout;
     use crate::sparse_posterior::SparsePosterior;
+    use crate::stationary::Stationary;
 
-    fn problem() -> (TrainData, Hyper) {
+    fn problem() -> (TrainData, Hyper<Stationary>) {
         let x = DMatrix::from_fn(15, 2, |n, d| ((n * (3 + d) + d) % 11) as f64 / 5.0 - 1.0);
         let y = DVector::from_fn(15, |n, _| (2.0 * x[(n, 0)]).sin() - 0.4 * x[(n, 1)]);
         let h = Hyper {
-            lengthscales: DVector::from_vec(vec![0.8, 1.4]),
-            signal_variance: 1.1,
+            kernel: Stationary::se(&[0.8, 1.4], 1.1),
             noise_variance: 0.05,
             pseudo_inputs: x.clone(),
             pseudo_noise: None,
@@ -147,6 +147,7 @@ mod tests {
         let (data, mut h) = problem();
         h.pseudo_inputs = DMatrix::zeros(0, 2);
         let layout = Layout {
+            kernel: h.kernel.clone(),
             dims: 2,
             pseudo: 0,
             het: false,

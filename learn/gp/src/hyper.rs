@@ -1,5 +1,6 @@
-//! The hyperparameters of the SE-ARD sparse GP and the optimiser's parameter vector (gp.md §5.2):
-//! log ℓ, log s, log(σ² − floor), raw pseudo-inputs Z and, for SPGP-HET, logit(h / h_max).
+//! The hyperparameters of a GP and the optimiser's parameter vector (gp.md §5.2): the kernel's θ
+//! (for SE-ARD: log ℓ, log s), log(σ² − floor), raw pseudo-inputs Z (unless held fixed) and, for
+//! SPGP-HET, logit(h / h_max).
 //!
 //! h is bounded by h_max = 10 × the (standardised, hence unit) target variance, gp.md §5.5 item 6:
 //! an unbounded h_m silently deletes its pseudo-input and all-large h is the trivial all-noise fit.
@@ -7,19 +8,19 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::kernel::Kernel;
+
 /// Largest magnitude of a log-parameter; keeps exp() finite when the optimiser strays.
 const LOG_LIMIT: f64 = 40.0;
 
 /// Upper bound of each pseudo-input noise h_m, in units of the standardised target variance.
 pub(crate) const PSEUDO_NOISE_MAX: f64 = 10.0;
 
-/// Kernel, noise and pseudo-input parameters in the standardised space of a fit.
+/// Kernel, noise and pseudo-input parameters in the (standardised) space of a fit.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Hyper {
-    /// ARD lengthscales ℓ_d (not squared).
-    pub lengthscales: DVector<f64>,
-    /// Signal variance s.
-    pub signal_variance: f64,
+pub(crate) struct Hyper<K> {
+    /// The kernel with its hyperparameters.
+    pub kernel: K,
     /// Observation noise variance σ².
     pub noise_variance: f64,
     /// Pseudo-inputs Z, one row each (M×D); empty for the full GP.
@@ -31,10 +32,8 @@ pub(crate) struct Hyper {
 /// Gradient of the NLML in the natural coordinates of each group.
 #[derive(Debug, Clone)]
 pub(crate) struct HyperGrad {
-    /// ∂𝓛/∂log ℓ_d.
-    pub log_lengthscales: DVector<f64>,
-    /// ∂𝓛/∂log s.
-    pub log_signal_variance: f64,
+    /// ∂𝓛/∂θ of the kernel.
+    pub kernel: DVector<f64>,
     /// ∂𝓛/∂log σ².
     pub log_noise_variance: f64,
     /// ∂𝓛/∂Z (M×D).
@@ -43,10 +42,12 @@ pub(crate) struct HyperGrad {
     pub log_pseudo_noise: Option<DVector<f64>>,
 }
 
-/// How a [`Hyper`] maps to a flat vector: [log ℓ (D), log s, log(σ² − floor), Z (column-major,
-/// unless held fixed), logit(h/h_max)].
+/// How a [`Hyper`] maps to a flat vector: [kernel θ, log(σ² − floor), Z (column-major, unless
+/// held fixed), logit(h/h_max)].
 #[derive(Debug, Clone)]
-pub(crate) struct Layout {
+pub(crate) struct Layout<K> {
+    /// The kernel whose θ leads the vector (its values are replaced on unpacking).
+    pub kernel: K,
     /// Input dimension D.
     pub dims: usize,
     /// Number of pseudo-inputs M (0 for the full GP).
@@ -59,10 +60,15 @@ pub(crate) struct Layout {
     pub fixed_pseudo_inputs: Option<DMatrix<f64>>,
 }
 
-impl Layout {
+impl<K: Kernel> Layout<K> {
+    /// Number of kernel hyperparameters (the offset of log σ²).
+    pub fn kernel_len(&self) -> usize {
+        self.kernel.n_params()
+    }
+
     /// Length of the flat vector.
     pub fn len(&self) -> usize {
-        self.dims + 2 + self.free_pseudo_len() + if self.het { self.pseudo } else { 0 }
+        self.kernel_len() + 1 + self.free_pseudo_len() + if self.het { self.pseudo } else { 0 }
     }
 
     /// Number of pseudo-input coordinates in the vector (M·D, or 0 when they are held fixed).
@@ -75,10 +81,9 @@ impl Layout {
     }
 
     /// The flat vector of `h`.
-    pub fn pack(&self, h: &Hyper) -> DVector<f64> {
+    pub fn pack(&self, h: &Hyper<K>) -> DVector<f64> {
         let mut v = Vec::with_capacity(self.len());
-        v.extend(h.lengthscales.iter().map(|l| l.ln()));
-        v.push(h.signal_variance.ln());
+        v.extend(h.kernel.params());
         v.push((h.noise_variance - self.noise_floor).max(1e-300).ln());
         if self.fixed_pseudo_inputs.is_none() {
             v.extend(h.pseudo_inputs.iter().copied());
@@ -94,11 +99,11 @@ impl Layout {
     }
 
     /// The hyperparameters of a flat vector.
-    pub fn unpack(&self, v: &DVector<f64>) -> Hyper {
-        let (d, m) = (self.dims, self.pseudo);
-        let ex = |x: f64| x.clamp(-LOG_LIMIT, LOG_LIMIT).exp();
-        let lengthscales = DVector::from_iterator(d, v.rows(0, d).iter().map(|x| ex(*x)));
-        let z0 = d + 2;
+    pub fn unpack(&self, v: &DVector<f64>) -> Hyper<K> {
+        let (d, m, nk) = (self.dims, self.pseudo, self.kernel_len());
+        let mut kernel = self.kernel.clone();
+        kernel.set_params(&v.as_slice()[..nk]);
+        let z0 = nk + 1;
         let pseudo_inputs = match &self.fixed_pseudo_inputs {
             Some(z) => z.clone(),
             None => DMatrix::from_column_slice(m, d, &v.as_slice()[z0..z0 + m * d]),
@@ -112,19 +117,17 @@ impl Layout {
             )
         });
         Hyper {
-            lengthscales,
-            signal_variance: ex(v[d]),
-            noise_variance: self.noise_floor + ex(v[d + 1]),
+            kernel,
+            noise_variance: self.noise_floor + v[nk].clamp(-LOG_LIMIT, LOG_LIMIT).exp(),
             pseudo_inputs,
             pseudo_noise,
         }
     }
 
     /// The flat gradient for the point `h`, chaining ∂/∂log σ² through the floor.
-    pub fn pack_grad(&self, h: &Hyper, g: &HyperGrad) -> DVector<f64> {
+    pub fn pack_grad(&self, h: &Hyper<K>, g: &HyperGrad) -> DVector<f64> {
         let mut v = Vec::with_capacity(self.len());
-        v.extend(g.log_lengthscales.iter().copied());
-        v.push(g.log_signal_variance);
+        v.extend(g.kernel.iter().copied());
         // σ² = floor + e^θ, so ∂/∂θ = ∂/∂log σ² · (σ² − floor)/σ².
         v.push(g.log_noise_variance * (h.noise_variance - self.noise_floor) / h.noise_variance);
         if self.fixed_pseudo_inputs.is_none() {
@@ -149,10 +152,13 @@ impl Layout {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Stationary;
 
     #[test]
     fn packing_and_unpacking_round_trips() {
+        let kernel = Stationary::se(&[0.5, 2.0], 1.3);
         let layout = Layout {
+            kernel: kernel.clone(),
             dims: 2,
             pseudo: 3,
             het: true,
@@ -160,8 +166,7 @@ mod tests {
             fixed_pseudo_inputs: None,
         };
         let h = Hyper {
-            lengthscales: DVector::from_vec(vec![0.5, 2.0]),
-            signal_variance: 1.3,
+            kernel,
             noise_variance: 0.02,
             pseudo_inputs: DMatrix::from_fn(3, 2, |i, j| i as f64 - j as f64 * 0.5),
             pseudo_noise: Some(DVector::from_vec(vec![0.1, 0.2, 0.3])),
@@ -169,7 +174,7 @@ mod tests {
         let back = layout.unpack(&layout.pack(&h));
         assert_eq!(layout.pack(&h).len(), layout.len());
         assert!((back.noise_variance - 0.02).abs() < 1e-15);
-        assert!((back.lengthscales - h.lengthscales).amax() < 1e-14);
+        assert!((back.kernel.lengthscales() - h.kernel.lengthscales()).amax() < 1e-14);
         assert_eq!(back.pseudo_inputs, h.pseudo_inputs);
         let pn = back.pseudo_noise.expect("het layout keeps h");
         assert!((pn - DVector::from_vec(vec![0.1, 0.2, 0.3])).amax() < 1e-15);

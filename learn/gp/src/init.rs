@@ -1,17 +1,17 @@
 //! Seeded starting point of the evidence maximisation (gp.md §5.3, Snelson's demo recipe adapted to
-//! high D): pseudo-inputs a random subset of the inputs, lengthscales from the input spread,
-//! s = var(y), σ² = var(y)/4 and, for SPGP-HET, h = σ²/10 (gp.md §5.2).
+//! high D): pseudo-inputs a random subset of the inputs, the kernel's own start (for the stationary
+//! kernels: length-scales from the input spread, s = var(y)), σ² = s/4 and, for SPGP-HET,
+//! h = σ²/10 (gp.md §5.2).
 
 use nalgebra::{DMatrix, DVector};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::hyper::Hyper;
+use super::kernel::Kernel;
 use super::params::GpKind;
 use super::train_data::TrainData;
-
-/// Smallest starting signal variance (a constant target still gets a usable kernel).
-const MIN_SIGNAL_VARIANCE: f64 = 1e-2;
+use crate::Result;
 
 /// `m` distinct row indices out of `n`, by a seeded partial Fisher-Yates shuffle.
 pub(crate) fn random_subset(n: usize, m: usize, seed: u64) -> Vec<usize> {
@@ -26,28 +26,20 @@ pub(crate) fn random_subset(n: usize, m: usize, seed: u64) -> Vec<usize> {
     idx
 }
 
-/// The starting hyperparameters for a fit of `kind` with `m` pseudo-inputs (capped at N).
-pub(crate) fn initial_hyper(data: &TrainData, kind: GpKind, m: usize, seed: u64) -> Hyper {
+/// The starting hyperparameters for a fit of `kind` with `m` pseudo-inputs (capped at N), with
+/// `kernel` initialised from the inputs' spread and the target variance.
+pub(crate) fn initial_hyper<K: Kernel>(
+    data: &TrainData,
+    kind: GpKind,
+    m: usize,
+    seed: u64,
+    mut kernel: K,
+) -> Result<Hyper<K>> {
     let (n, dims) = (data.len(), data.dims());
-    // With D inputs of unit spread the squared scaled distance between two samples is about
-    // 2·Σ_d 1/ℓ_d²; ℓ_d = spread_d·√D keeps it near 2 whatever D is (Snelson's range/2 suits D = 1).
-    let root_d = (dims as f64).sqrt();
-    let lengthscales = DVector::from_iterator(
-        dims,
-        data.xt.row_iter().map(|row| {
-            let mean = row.mean();
-            let spread = (row.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
-            if spread > 1e-12 {
-                spread * root_d
-            } else {
-                root_d
-            }
-        }),
-    );
     let mean_y = data.y.mean();
     let var_y = data.y.iter().map(|v| (v - mean_y).powi(2)).sum::<f64>() / n as f64;
-    let signal_variance = var_y.max(MIN_SIGNAL_VARIANCE);
-    let noise_variance = signal_variance / 4.0;
+    kernel.initialise(&data.xt, var_y)?;
+    let noise_variance = kernel.signal_variance() / 4.0;
     let (pseudo_inputs, pseudo_noise) = match kind {
         GpKind::Full => (DMatrix::zeros(0, dims), None),
         GpKind::Spgp | GpKind::SpgpHet => {
@@ -58,13 +50,12 @@ pub(crate) fn initial_hyper(data: &TrainData, kind: GpKind, m: usize, seed: u64)
             (z, h)
         }
     };
-    Hyper {
-        lengthscales,
-        signal_variance,
+    Ok(Hyper {
+        kernel,
         noise_variance,
         pseudo_inputs,
         pseudo_noise,
-    }
+    })
 }
 
 #[cfg(test)]

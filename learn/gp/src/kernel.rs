@@ -1,113 +1,173 @@
-//! The squared-exponential ARD kernel k(x,x') = s·exp(−½ Σ_d (x_d − x'_d)²/ℓ_d²) (thesis eq. 3.11,
-//! with lengthscales not squared as in gp.md §0), evaluated through gemm: the squared distance is
-//! ‖x‖²_ℓ + ‖z‖²_ℓ − 2 (Z diag(ℓ⁻²)) Xᵀ, so the O(NMD) part is one matrix-matrix product.
+//! The kernel abstraction: a covariance function k(x, x') with hyperparameters θ in log
+//! coordinates, evaluated and differentiated on sets of points. The GPs (full, SPGP, SPGP-HET,
+//! classification) only talk to kernels through [`Kernel`], so a new covariance function is one
+//! new type.
+//!
+//! Everything the fits need is a kernel-level adjoint (gp.md §2.1): given the matrix K = k(A, B)
+//! and ∂𝓛/∂K, the kernel returns ∂𝓛/∂θ and, for pseudo-inputs, ∂𝓛/∂A. Kernels that depend on
+//! more than the coordinates, such as DGPOM's motion-adapted kernel (a velocity field Υ(x) and an
+//! error field ε(x) at each point, paper eq. 2-6), derive that data once per point set in
+//! [`Kernel::point_data`] and read it from [`Points::extra`]; they keep the pseudo-inputs fixed,
+//! since the derived data is not differentiated.
 
-use nalgebra::{DMatrix, DVector, Dyn, Matrix, Storage};
+use std::fmt;
 
-use super::linalg::{mul, t_view};
+use nalgebra::{DMatrix, DMatrixView, DVector};
 
-/// One side of a covariance evaluation: points as rows, pre-scaled by ℓ⁻², with scaled norms.
-pub(crate) struct ScaledPoints {
-    /// The points times diag(ℓ⁻²), one row per point.
-    pub scaled: DMatrix<f64>,
-    /// Σ_d p_d²/ℓ_d² per point.
-    pub sqnorm: DVector<f64>,
+use crate::Result;
+
+/// A set of P points stored as the columns of a D×P matrix (contiguous, column-major), with the
+/// optional E×P per-point data of [`Kernel::point_data`].
+#[derive(Debug, Clone, Copy)]
+pub struct Points<'a> {
+    coords: &'a [f64],
+    dims: usize,
+    extra: Option<(&'a [f64], usize)>,
 }
 
-/// ℓ⁻² for each input dimension.
-pub(crate) fn inverse_squares(lengthscales: &DVector<f64>) -> DVector<f64> {
-    lengthscales.map(|l| 1.0 / (l * l))
-}
-
-/// Prepares the rows of `points` (P×D) for covariance evaluations.
-pub(crate) fn scale_points(points: &DMatrix<f64>, inv_sq: &DVector<f64>) -> ScaledPoints {
-    let mut scaled = points.clone();
-    for (mut col, w) in scaled.column_iter_mut().zip(inv_sq.iter()) {
-        col *= *w;
-    }
-    let sqnorm = DVector::from_iterator(
-        points.nrows(),
-        points
-            .row_iter()
-            .zip(scaled.row_iter())
-            .map(|(p, q)| p.dot(&q)),
-    );
-    ScaledPoints { scaled, sqnorm }
-}
-
-/// Scaled squared norms of samples stored as columns: `xt_sq` holds x² (D×B).
-pub(crate) fn column_sqnorms<S: Storage<f64, Dyn, Dyn>>(
-    xt_sq: &Matrix<f64, Dyn, Dyn, S>,
-    inv_sq: &DVector<f64>,
-) -> DVector<f64> {
-    DVector::from_iterator(xt_sq.ncols(), xt_sq.column_iter().map(|c| c.dot(inv_sq)))
-}
-
-/// Covariance P×B between prepared points and samples stored as the columns of `xt` (D×B).
-pub(crate) fn cross_covariance<S: Storage<f64, Dyn, Dyn>>(
-    side: &ScaledPoints,
-    xt: &Matrix<f64, Dyn, Dyn, S>,
-    x_sqnorm: &DVector<f64>,
-    signal_variance: f64,
-) -> DMatrix<f64> {
-    let mut k = mul(&side.scaled, xt);
-    for (j, mut col) in k.column_iter_mut().enumerate() {
-        let xn = x_sqnorm[j];
-        for (i, v) in col.iter_mut().enumerate() {
-            let r2 = (side.sqnorm[i] + xn - 2.0 * *v).max(0.0);
-            *v = signal_variance * (-0.5 * r2).exp();
+impl<'a> Points<'a> {
+    /// Points as the columns of `coords` (D×P), with per-point data `extra` (E×P) if any.
+    pub fn new(coords: &'a DMatrix<f64>, extra: Option<&'a DMatrix<f64>>) -> Self {
+        Self {
+            coords: coords.as_slice(),
+            dims: coords.nrows(),
+            extra: extra.map(|e| (e.as_slice(), e.nrows())),
         }
     }
-    k
-}
 
-/// Covariance K_M among the rows of `points` (P×P, exact diagonal `signal_variance`).
-pub(crate) fn self_covariance(
-    points: &DMatrix<f64>,
-    inv_sq: &DVector<f64>,
-    signal_variance: f64,
-) -> DMatrix<f64> {
-    let side = scale_points(points, inv_sq);
-    let mut k = cross_covariance(&side, &t_view(points), &side.sqnorm, signal_variance);
-    for i in 0..k.nrows() {
-        k[(i, i)] = signal_variance;
+    /// Number of points P.
+    pub fn len(&self) -> usize {
+        self.coords.len().checked_div(self.dims).unwrap_or(0)
     }
-    // Symmetrise so the Cholesky sees an exactly symmetric matrix.
-    let kt = k.transpose();
-    (k + kt) * 0.5
+
+    /// Whether there are no points.
+    pub fn is_empty(&self) -> bool {
+        self.coords.is_empty()
+    }
+
+    /// Input dimension D.
+    pub fn dims(&self) -> usize {
+        self.dims
+    }
+
+    /// The coordinates, one point per column (D×P).
+    pub fn coords(&self) -> DMatrixView<'a, f64> {
+        DMatrixView::from_slice(self.coords, self.dims, self.len())
+    }
+
+    /// The coordinates as a contiguous column-major slice (point p at `p·D .. (p+1)·D`).
+    pub fn coord_slice(&self) -> &'a [f64] {
+        self.coords
+    }
+
+    /// The per-point data of [`Kernel::point_data`], one point per column (E×P).
+    pub fn extra(&self) -> Option<DMatrixView<'a, f64>> {
+        let p = self.len();
+        self.extra
+            .map(|(data, rows)| DMatrixView::from_slice(data, rows, p))
+    }
+
+    /// The points `start .. start + len`.
+    pub fn range(&self, start: usize, len: usize) -> Self {
+        let d = self.dims;
+        Self {
+            coords: &self.coords[start * d..(start + len) * d],
+            dims: d,
+            extra: self
+                .extra
+                .map(|(data, rows)| (&data[start * rows..(start + len) * rows], rows)),
+        }
+    }
 }
 
-/// Covariance between the rows of `a` (P×D) and the rows of `b` (Q×D): P×Q.
-pub(crate) fn covariance_rows(
-    a: &DMatrix<f64>,
-    b: &DMatrix<f64>,
-    inv_sq: &DVector<f64>,
-    signal_variance: f64,
-) -> DMatrix<f64> {
-    let side = scale_points(a, inv_sq);
-    let bt = b.transpose();
-    let b_norm = column_sqnorms(&bt.map(|v| v * v), inv_sq);
-    cross_covariance(&side, &bt, &b_norm, signal_variance)
+/// A covariance function with hyperparameters θ (logs of positive quantities).
+///
+/// Implementations must be symmetric (k(a, b) = k(b, a)) and consistent (`diag` is k(x, x)).
+pub trait Kernel: Clone + fmt::Debug + Send + Sync {
+    /// Number of hyperparameters.
+    fn n_params(&self) -> usize;
+
+    /// θ, in the optimiser's coordinates.
+    fn params(&self) -> Vec<f64>;
+
+    /// Sets θ (of length [`Kernel::n_params`]).
+    fn set_params(&mut self, theta: &[f64]);
+
+    /// Sets the starting point of the evidence maximisation for inputs `xt` (D×N, one sample per
+    /// column, standardised unless [`Kernel::standardise_inputs`] says otherwise) and targets of
+    /// variance `target_variance`. Errors if the kernel cannot take D inputs.
+    fn initialise(&mut self, xt: &DMatrix<f64>, target_variance: f64) -> Result<()>;
+
+    /// The overall scale s of the kernel: the jitter on K_M is relative to it.
+    fn signal_variance(&self) -> f64;
+
+    /// Index of log s in θ (the jitter's gradient is added there).
+    fn log_signal_variance_index(&self) -> usize;
+
+    /// K = k(a_i, b_j), P×Q.
+    fn cross(&self, a: Points<'_>, b: Points<'_>) -> DMatrix<f64>;
+
+    /// k(x, x) for each point.
+    fn diag(&self, a: Points<'_>) -> DVector<f64>;
+
+    /// Given K = [`Kernel::cross`]`(a, b)` and the adjoint G = ∂𝓛/∂K (P×Q), returns
+    /// Σ_ij G_ij ∂k(a_i, b_j)/∂θ and, if `d_a` (D×P) is given, adds Σ_j G_ij ∂k(a_i, b_j)/∂a_i to
+    /// its column i (the derivative in the first argument only).
+    fn cross_gradient(
+        &self,
+        a: Points<'_>,
+        b: Points<'_>,
+        k: &DMatrix<f64>,
+        adjoint: &DMatrix<f64>,
+        d_a: Option<&mut DMatrix<f64>>,
+    ) -> DVector<f64>;
+
+    /// Σ_i g_i ∂k(x_i, x_i)/∂θ for the adjoint g of [`Kernel::diag`].
+    fn diag_gradient(&self, a: Points<'_>, adjoint: &DVector<f64>) -> DVector<f64>;
+
+    /// Per-point data derived once from the coordinates `xt` (D×P), passed back in
+    /// [`Points::extra`]; `None` (the default) for kernels of the coordinates alone.
+    fn point_data(&self, xt: &DMatrix<f64>) -> Option<DMatrix<f64>> {
+        let _ = xt;
+        None
+    }
+
+    /// Whether the fit standardises each input column first (the default). Kernels whose
+    /// structure is tied to physical units, e.g. a motion map in metres, return false.
+    fn standardise_inputs(&self) -> bool {
+        true
+    }
+}
+
+/// Points owned in the kernel's layout: coordinates as columns and the kernel's per-point data.
+#[derive(Debug, Clone)]
+pub(crate) struct OwnedPoints {
+    coords: DMatrix<f64>,
+    extra: Option<DMatrix<f64>>,
+}
+
+impl OwnedPoints {
+    /// The rows of `x` (P×D) as points of `kernel`.
+    pub fn of_rows<K: Kernel>(x: &DMatrix<f64>, kernel: &K) -> Self {
+        let coords = x.transpose();
+        let extra = kernel.point_data(&coords);
+        Self { coords, extra }
+    }
+
+    /// A view for the kernel.
+    pub fn points(&self) -> Points<'_> {
+        Points::new(&self.coords, self.extra.as_ref())
+    }
+}
+
+/// k(p, p) among a set of points, exactly symmetric with the exact diagonal (for Cholesky).
+pub(crate) fn self_covariance<K: Kernel>(kernel: &K, p: Points<'_>) -> DMatrix<f64> {
+    let k = kernel.cross(p, p);
+    let mut sym = (&k + k.transpose()) * 0.5;
+    sym.set_diagonal(&kernel.diag(p));
+    sym
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_gemm_kernel_matches_the_direct_formula() {
-        let a = DMatrix::from_fn(7, 3, |i, j| ((i * 5 + j * 3) % 7) as f64 * 0.3 - 1.0);
-        let b = DMatrix::from_fn(9, 3, |i, j| ((i * 2 + j) % 5) as f64 * 0.4 - 0.8);
-        let ls = DVector::from_vec(vec![0.7, 1.3, 2.0]);
-        let k = covariance_rows(&a, &b, &inverse_squares(&ls), 1.7);
-        for p in 0..7 {
-            for q in 0..9 {
-                let r2: f64 = (0..3)
-                    .map(|d| ((a[(p, d)] - b[(q, d)]) / ls[d]).powi(2))
-                    .sum();
-                let want = 1.7 * (-0.5 * r2).exp();
-                assert!((k[(p, q)] - want).abs() < 1e-13, "{p},{q}");
-            }
-        }
-    }
-}
+#[path = "kernel_tests.rs"]
+mod tests;

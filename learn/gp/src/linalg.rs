@@ -6,6 +6,7 @@ use nalgebra::{DMatrix, DVector, Dyn, Matrix, MatrixView, Storage};
 /// A dense matrix view with arbitrary strides (e.g. a transpose).
 pub(crate) type StridedView<'a> = MatrixView<'a, f64, Dyn, Dyn, Dyn, Dyn>;
 
+use super::blocked::{cholesky, lower_inverse_of};
 use crate::{GpError, Result};
 
 /// How many times the jitter is multiplied by 10 before a factorisation is declared failed.
@@ -26,7 +27,7 @@ pub(crate) fn t_view(a: &DMatrix<f64>) -> StridedView<'_> {
     transposed(a.as_slice(), a.nrows(), a.ncols())
 }
 
-/// `a * b` through matrixmultiply's gemm.
+/// `a * b` through matrixmultiply's gemm (strided views included, no copies).
 pub(crate) fn mul<S1, S2>(
     a: &Matrix<f64, Dyn, Dyn, S1>,
     b: &Matrix<f64, Dyn, Dyn, S2>,
@@ -40,8 +41,53 @@ where
     if a.nrows().min(a.ncols()).min(b.ncols()) <= SMALL_DIM {
         return a.clone_owned() * b.clone_owned();
     }
-    let mut out = DMatrix::zeros(a.nrows(), b.ncols());
-    out.gemm(1.0, a, b, 0.0);
+    // Above the threshold nalgebra hands both views' strides to matrixmultiply and writes the
+    // result without zeroing it first.
+    a * b
+}
+
+/// `l * b` for a lower-triangular `l`, skipping the zero upper-right quarter (¾ of the work).
+pub(crate) fn lower_mul(l: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = l.nrows();
+    if n < 4 * SMALL_DIM {
+        return mul(l, b);
+    }
+    let h = n / 2;
+    let mut out = mul(&l.view((0, 0), (n, h)), &b.rows(0, h)); // [L11; L21] B_top
+    out.rows_mut(h, n - h)
+        .gemm(1.0, &l.view((h, h), (n - h, n - h)), &b.rows(h, n - h), 1.0);
+    out
+}
+
+/// `u * b` for an upper-triangular `u`, skipping the zero lower-left quarter.
+pub(crate) fn upper_mul(u: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = u.nrows();
+    if n < 4 * SMALL_DIM {
+        return mul(u, b);
+    }
+    let h = n / 2;
+    let mut out = mul(&u.view((0, h), (n, n - h)), &b.rows(h, n - h)); // [U12; U22] B_bot
+    out.rows_mut(0, h)
+        .gemm(1.0, &u.view((0, 0), (h, h)), &b.rows(0, h), 1.0);
+    out
+}
+
+/// `a * bᵀ` when the product is known to be symmetric: three of its four quarter blocks.
+pub(crate) fn symmetric_mul_t(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = a.nrows();
+    if n < 4 * SMALL_DIM {
+        return mul(a, &t_view(b));
+    }
+    let h = n / 2;
+    let bt = t_view(b);
+    // [C11; C21] = A [B1]ᵀ, C22 = A2 B2ᵀ, C12 = C21ᵀ.
+    let left = mul(a, &bt.columns(0, h));
+    let c22 = mul(&a.rows(h, n - h), &bt.columns(h, n - h));
+    let mut out = DMatrix::zeros(n, n);
+    out.columns_mut(0, h).copy_from(&left);
+    out.view_mut((h, h), (n - h, n - h)).copy_from(&c22);
+    let c21 = left.rows(h, n - h).transpose();
+    out.view_mut((0, h), (h, n - h)).copy_from(&c21);
     out
 }
 
@@ -75,11 +121,8 @@ pub(crate) fn cholesky_with_jitter(
         for i in 0..n {
             m[(i, i)] += eps;
         }
-        if let Some(chol) = nalgebra::Cholesky::new(m) {
-            return Ok(JitteredCholesky {
-                l: chol.unpack(),
-                jitter: eps,
-            });
+        if let Some(l) = cholesky(&m) {
+            return Ok(JitteredCholesky { l, jitter: eps });
         }
         if attempt < JITTER_RETRIES {
             eps = (eps * 10.0).max(1e-10 * mean_diag);
@@ -92,10 +135,12 @@ pub(crate) fn cholesky_with_jitter(
 
 /// The inverse of a lower-triangular matrix with a non-zero diagonal.
 pub(crate) fn lower_inverse(l: &DMatrix<f64>, what: &str) -> Result<DMatrix<f64>> {
-    let n = l.nrows();
-    l.solve_lower_triangular(&DMatrix::identity(n, n))
-        .filter(|inv| inv.iter().all(|v| v.is_finite()))
-        .ok_or_else(|| GpError::Numerical(format!("{what} has a zero pivot")))
+    let inv = lower_inverse_of(l);
+    if inv.iter().all(|v| v.is_finite()) {
+        Ok(inv)
+    } else {
+        Err(GpError::Numerical(format!("{what} has a zero pivot")))
+    }
 }
 
 /// Sum of the logs of the diagonal of a triangular factor (half the log-determinant).
@@ -131,6 +176,27 @@ mod tests {
         let got = mul(&t_view(&a), &b);
         let want = a.transpose() * &b;
         assert!((got - want).amax() < 1e-12);
+    }
+
+    #[test]
+    fn triangular_and_symmetric_products_equal_the_full_ones() {
+        for n in [7, 30, 41] {
+            let l = DMatrix::from_fn(n, n, |i, j| {
+                if i >= j {
+                    ((i * 3 + j) % 5) as f64 * 0.2 + 1.0
+                } else {
+                    0.0
+                }
+            });
+            let b = DMatrix::from_fn(n, 13, |i, j| ((i + 2 * j) % 7) as f64 * 0.3 - 1.0);
+            assert!((lower_mul(&l, &b) - &l * &b).amax() < 1e-12, "lower n={n}");
+            let u = l.transpose();
+            assert!((upper_mul(&u, &b) - &u * &b).amax() < 1e-12, "upper n={n}");
+            // B diag(w) Bᵀ is symmetric.
+            let scaled = DMatrix::from_fn(n, 13, |i, j| b[(i, j)] * (1.0 + (j % 3) as f64));
+            let want = &scaled * b.transpose();
+            assert!((symmetric_mul_t(&scaled, &b) - want).amax() < 1e-12, "sym n={n}");
+        }
     }
 
     #[test]

@@ -13,7 +13,8 @@ use rayon::prelude::*;
 use super::fitc::{Factors, Pass1, factor};
 use super::full::FullPosterior;
 use super::hyper::Hyper;
-use super::linalg::{colsum_product, lower_inverse, mul, scale_columns};
+use super::kernel::Kernel;
+use super::linalg::{colsum_product, lower_inverse, mul};
 use super::params::GpKind;
 use super::train_data::TrainData;
 use crate::Result;
@@ -52,23 +53,20 @@ fn sparse_block(
     p: &Pass1,
     (start, len): (usize, usize),
 ) -> (DVector<f64>, DVector<f64>) {
-    let g_isqrt = p.g.map(|x| 1.0 / x.sqrt());
-    let mut vt = p.v.clone();
-    scale_columns(&mut vt, &g_isqrt); // Ṽ = VΓ^{-1/2}
-    let w1_sq = colsum_product(&vt, &mul(&f.b_inv, &vt)); // ‖L_B⁻¹Ṽ_{:,n}‖²
-    let vu = p.v.tr_mul(&f.u);
+    let w1_sq = colsum_product(&p.vt, &mul(&f.b_inv, &p.vt)); // ‖L_B⁻¹Ṽ_{:,n}‖²
+    let vtu = p.vt.tr_mul(&f.u); // Ṽᵀu = Γ^{-1/2}Vᵀu
     let y = data.y.rows(start, len);
-    let alpha = DVector::from_fn(len, |n, _| (y[n] - vu[n]) / p.g[n]);
+    let alpha = DVector::from_fn(len, |n, _| (y[n] - p.g[n].sqrt() * vtu[n]) / p.g[n]);
     let diag = DVector::from_fn(len, |n, _| (1.0 - w1_sq[n]) / p.g[n]);
     (alpha, diag)
 }
 
 /// Leave-one-out moments of the model `kind` at `h` on standardised `data`, with the absolute
 /// jitter `jitter` (the one the posterior was conditioned with).
-pub(crate) fn loo_moments(
+pub(crate) fn loo_moments<K: Kernel>(
     data: &TrainData,
     kind: GpKind,
-    h: &Hyper,
+    h: &Hyper<K>,
     jitter: f64,
 ) -> Result<LooMoments> {
     let (c_inv_y, c_inv_diag) = match kind {

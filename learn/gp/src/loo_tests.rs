@@ -7,8 +7,9 @@ use rand_chacha::ChaCha8Rng;
 
 use super::*;
 use crate::sparse_posterior::SparsePosterior;
+use crate::stationary::Stationary;
 
-fn problem(kind: GpKind, seed: u64) -> (TrainData, Hyper) {
+fn problem(kind: GpKind, seed: u64) -> (TrainData, Hyper<Stationary>) {
     let (n, m) = (23, 6);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let x: DMatrix<f64> = DMatrix::from_fn(n, 2, |_, _| rng.random_range(-2.0..2.0));
@@ -16,8 +17,7 @@ fn problem(kind: GpKind, seed: u64) -> (TrainData, Hyper) {
         (1.5 * x[(i, 0)]).sin() - 0.5 * x[(i, 1)] + rng.random_range(-0.3..0.3)
     });
     let h = Hyper {
-        lengthscales: DVector::from_vec(vec![0.9, 1.6]),
-        signal_variance: 1.2,
+        kernel: Stationary::se(&[0.9, 1.6], 1.2),
         noise_variance: 0.07,
         pseudo_inputs: match kind {
             GpKind::Full => DMatrix::zeros(0, 2),
@@ -30,7 +30,13 @@ fn problem(kind: GpKind, seed: u64) -> (TrainData, Hyper) {
 }
 
 /// Mean and latent variance at x_i of the model conditioned on every sample but i.
-fn refit_without(data: &TrainData, kind: GpKind, h: &Hyper, jitter: f64, i: usize) -> (f64, f64) {
+fn refit_without(
+    data: &TrainData,
+    kind: GpKind,
+    h: &Hyper<Stationary>,
+    jitter: f64,
+    i: usize,
+) -> (f64, f64) {
     let x = data.x_rows();
     let keep: Vec<usize> = (0..data.len()).filter(|&j| j != i).collect();
     let rest = TrainData::new(&x.select_rows(&keep), &data.y.select_rows(&keep));

@@ -5,8 +5,10 @@ use serde::{Deserialize, Serialize};
 
 use super::full::FullPosterior;
 use super::hyper::Hyper;
+use super::kernel::Kernel;
 use super::params::GpKind;
 use super::sparse_posterior::SparsePosterior;
+use super::stationary::Stationary;
 use super::transform::Standardiser;
 use crate::{GpError, Result};
 
@@ -50,7 +52,9 @@ pub struct FitReport {
     pub evals: usize,
     /// Optimiser iterations.
     pub iterations: usize,
-    /// Wall time of the fit.
+    /// Wall time of the fit. Not stored in model files, so identical fits give identical files;
+    /// 0 for a model read from a file.
+    #[serde(skip)]
     pub seconds: f64,
     /// Final negative log marginal likelihood, in the units of the original targets.
     pub nlml: f64,
@@ -69,19 +73,26 @@ pub(crate) enum Posterior {
 
 /// A fitted Gaussian process (see [`GpParams`](super::GpParams) for how to get one).
 #[derive(Debug, Clone, PartialEq)]
-pub struct GpModel {
+pub struct GpModel<K = Stationary> {
     pub(crate) kind: GpKind,
     pub(crate) input_names: Vec<String>,
     pub(crate) target_name: String,
     pub(crate) inputs: Standardiser,
     pub(crate) target: Standardiser,
-    pub(crate) hyper: Hyper,
+    pub(crate) hyper: Hyper<K>,
     pub(crate) jitter: f64,
     pub(crate) posterior: Posterior,
     pub(crate) report: FitReport,
 }
 
-impl GpModel {
+impl GpModel<Stationary> {
+    /// Lengthscales ℓ_d (not squared), in standardised input units.
+    pub fn lengthscales(&self) -> &DVector<f64> {
+        self.hyper.kernel.lengthscales()
+    }
+}
+
+impl<K: Kernel> GpModel<K> {
     /// The model kind.
     pub fn kind(&self) -> GpKind {
         self.kind
@@ -98,9 +109,9 @@ impl GpModel {
     pub fn fit_report(&self) -> &FitReport {
         &self.report
     }
-    /// Lengthscales ℓ_d (not squared), in standardised input units.
-    pub fn lengthscales(&self) -> &DVector<f64> {
-        &self.hyper.lengthscales
+    /// The fitted kernel, in the standardised units of the fit.
+    pub fn kernel(&self) -> &K {
+        &self.hyper.kernel
     }
     /// Noise variance σ² in target units².
     pub fn noise_variance(&self) -> f64 {
@@ -117,7 +128,7 @@ impl GpModel {
 
     /// Predicts at the rows of `x` (T×D, the model's input columns in order).
     ///
-    /// The latent variance is s − k_*ᵀ(B_u⁻¹ − A⁻¹)k_* (thesis eq. 3.33 without σ²); for SPGP-HET,
+    /// The latent variance is k_** − k_*ᵀ(B_u⁻¹ − A⁻¹)k_* (thesis eq. 3.33 without σ²); for SPGP-HET,
     /// B_u = K_M + diag(h), so it grows near pseudo-inputs with a large noise term h_m.
     /// `var_y` adds the global noise σ².
     pub fn predict(&self, x: &DMatrix<f64>) -> Result<GpPrediction> {

@@ -1,4 +1,5 @@
-//! Versioned GP model files (SPEC §7): JSON with `format`/`version`, the kind, lengthscales (not
+//! Versioned GP model files (SPEC §7): JSON with `format`/`version`, the kind, the kernel's factors
+//! (version 2, for kernels other than SE-ARD), lengthscales (not
 //! squared), signal and noise variance, pseudo-inputs, pseudo-noise (SPGP-HET), jitter, the input
 //! and target transforms, column names, the fit report and the cached posterior (for the full GP,
 //! its standardised training data). All parameters are in the standardised space of the fit.
@@ -10,17 +11,24 @@ use serde::{Deserialize, Serialize};
 
 use super::full::FullPosterior;
 use super::hyper::Hyper;
+use super::kernel::Kernel;
 use super::model::{FitReport, GpModel, Posterior};
 use super::params::GpKind;
+use super::shape::Factor;
 use super::sparse_posterior::SparsePosterior;
+use super::stationary::Stationary;
 use super::train_data::TrainData;
 use super::transform::Standardiser;
 use crate::{GpError, Result};
 
 /// The `format` tag of a GP model file.
 pub const GP_MODEL_FORMAT: &str = "patchflow-gp-model";
-/// The model-file version this build writes and reads.
-pub const GP_MODEL_VERSION: u32 = 1;
+/// The newest model-file version this build writes and reads. Version 2 adds the `kernel` field
+/// for kernels other than SE-ARD; SE-ARD models are still written as version 1, unchanged, so
+/// earlier builds read them and refuse the kernels they do not know.
+pub const GP_MODEL_VERSION: u32 = 2;
+/// The version of SE-ARD model files (no `kernel` field).
+const SE_ARD_VERSION: u32 = 1;
 
 #[derive(Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "kebab-case")]
@@ -42,6 +50,8 @@ struct ModelFile {
     kind: GpKind,
     input_names: Vec<String>,
     target_name: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    kernel: Option<Vec<Factor>>,
     lengthscales: Vec<f64>,
     signal_variance: f64,
     noise_variance: f64,
@@ -84,11 +94,16 @@ impl ModelFile {
             &format!("not a patchflow GP model (format '{}')", self.format),
         )?;
         check(
-            self.version == GP_MODEL_VERSION,
+            self.version == SE_ARD_VERSION || self.version == GP_MODEL_VERSION,
             &format!(
-                "model file version {}; this build reads version {GP_MODEL_VERSION}",
+                "model file version {}; this build reads versions {SE_ARD_VERSION} and \
+                 {GP_MODEL_VERSION}",
                 self.version
             ),
+        )?;
+        check(
+            self.kernel.is_some() == (self.version == GP_MODEL_VERSION),
+            "a kernel field belongs to version 2 files, and only there",
         )?;
         let d = self.input_names.len();
         check(
@@ -135,9 +150,17 @@ impl ModelFile {
                 "pseudo_noise is invalid",
             )?;
         }
+        let factors = self
+            .kernel
+            .unwrap_or_else(|| Stationary::se_ard().factors().to_vec());
+        let kernel = Stationary::with_values(
+            factors,
+            DVector::from_vec(self.lengthscales),
+            self.signal_variance,
+        )
+        .map_err(|e| e.to_string())?;
         let hyper = Hyper {
-            lengthscales: DVector::from_vec(self.lengthscales),
-            signal_variance: self.signal_variance,
+            kernel,
             noise_variance: self.noise_variance,
             pseudo_inputs: z,
             pseudo_noise,
@@ -198,14 +221,20 @@ impl ModelFile {
 impl GpModel {
     fn to_file(&self) -> ModelFile {
         let h = &self.hyper;
+        let se_ard = h.kernel.is_se_ard();
         ModelFile {
             format: GP_MODEL_FORMAT.into(),
-            version: GP_MODEL_VERSION,
+            version: if se_ard {
+                SE_ARD_VERSION
+            } else {
+                GP_MODEL_VERSION
+            },
             kind: self.kind,
             input_names: self.input_names.clone(),
             target_name: self.target_name.clone(),
-            lengthscales: h.lengthscales.iter().copied().collect(),
-            signal_variance: h.signal_variance,
+            kernel: (!se_ard).then(|| h.kernel.factors().to_vec()),
+            lengthscales: h.kernel.lengthscales().iter().copied().collect(),
+            signal_variance: h.kernel.signal_variance(),
             noise_variance: h.noise_variance,
             pseudo_inputs: rows(&h.pseudo_inputs),
             pseudo_noise: h.pseudo_noise.as_ref().map(|v| v.iter().copied().collect()),

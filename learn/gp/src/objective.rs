@@ -9,25 +9,27 @@ use super::fitc;
 use super::full;
 use super::hyper::{Hyper, Layout};
 use super::init::initial_hyper;
+use super::kernel::Kernel;
 use super::params::{GpKind, GpValidParams};
+use super::stationary::Stationary;
 use super::train_data::TrainData;
 use super::transform::Standardiser;
-use crate::Result;
+use crate::{GpError, Result};
 
 /// The negative log marginal likelihood of a GP on standardised data, as a function of θ.
 #[derive(Debug, Clone)]
-pub struct GpObjective {
+pub struct GpObjective<K = Stationary> {
     pub(crate) data: TrainData,
     pub(crate) kind: GpKind,
-    pub(crate) layout: Layout,
+    pub(crate) layout: Layout<K>,
     pub(crate) jitter: f64,
-    pub(crate) start: Hyper,
+    pub(crate) start: Hyper<K>,
 }
 
-impl GpObjective {
+impl<K: Kernel> GpObjective<K> {
     /// Standardises `x` (N×D) and `y` like a fit and sets up the seeded starting point.
-    pub fn new(params: &GpValidParams, x: &DMatrix<f64>, y: &DVector<f64>) -> Self {
-        let inputs = Standardiser::of_columns(x);
+    pub fn new(params: &GpValidParams<K>, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<Self> {
+        let inputs = Standardiser::for_kernel(x, params.kernel());
         let target = Standardiser::of_vector(y);
         Self::standardised(
             params,
@@ -36,11 +38,27 @@ impl GpObjective {
     }
 
     /// The objective on already standardised data.
-    pub(crate) fn standardised(params: &GpValidParams, data: TrainData) -> Self {
+    pub(crate) fn standardised(params: &GpValidParams<K>, data: TrainData) -> Result<Self> {
         let kind = params.kind();
-        // Seeded initialisation: random-subset pseudo-inputs, spread-based ℓ, s = var(y) (gp.md §5.3).
-        let start = initial_hyper(&data, kind, params.pseudo_inputs(), params.seed());
+        let data = data.with_point_data(params.kernel());
+        // Seeded initialisation: random-subset pseudo-inputs, the kernel's start (gp.md §5.3).
+        let start = initial_hyper(
+            &data,
+            kind,
+            params.pseudo_inputs(),
+            params.seed(),
+            params.kernel().clone(),
+        )?;
+        let moving = params.optimise_pseudo_inputs() && kind != GpKind::Full;
+        if moving && data.extra.is_some() {
+            return Err(GpError::InvalidParams(
+                "a kernel with per-point data needs fixed pseudo-inputs \
+                 (GpParams::optimise_pseudo_inputs(false))"
+                    .into(),
+            ));
+        }
         let layout = Layout {
+            kernel: start.kernel.clone(),
             dims: data.dims(),
             pseudo: start.pseudo_inputs.nrows(),
             het: kind == GpKind::SpgpHet,
@@ -48,13 +66,13 @@ impl GpObjective {
             fixed_pseudo_inputs: (!params.optimise_pseudo_inputs())
                 .then(|| start.pseudo_inputs.clone()),
         };
-        Self {
+        Ok(Self {
             data,
             kind,
             layout,
             jitter: params.jitter(),
             start,
-        }
+        })
     }
 
     /// Length of θ.
@@ -70,13 +88,14 @@ impl GpObjective {
     /// 𝓛(θ) and ∂𝓛/∂θ (gp.md §1-2; the full GP: thesis eq. 3.18). Errors if a factorisation fails.
     pub fn value_and_gradient(&self, theta: &DVector<f64>) -> Result<(f64, DVector<f64>)> {
         let h = self.layout.unpack(theta);
-        let eps = self.jitter * h.signal_variance;
+        let eps = self.jitter * h.kernel.signal_variance();
         let e = match self.kind {
             GpKind::Full => full::objective(&self.data, &h, eps)?,
             GpKind::Spgp | GpKind::SpgpHet => fitc::objective(&self.data, &h, eps)?,
         };
         let mut grad = self.layout.pack_grad(&h, &e.grad);
-        grad[self.layout.dims] += eps * e.d_jitter; // ε = jitter·s, so ∂ε/∂log s = ε (gp.md §2.3)
+        // ε = jitter·s, so ∂ε/∂log s = ε (gp.md §2.3)
+        grad[h.kernel.log_signal_variance_index()] += eps * e.d_jitter;
         Ok((e.nlml, grad))
     }
 }
@@ -95,7 +114,7 @@ mod tests {
             .jitter(1e-3)
             .check()
             .expect("valid");
-        let obj = GpObjective::new(&params, &x, &y);
+        let obj = GpObjective::new(&params, &x, &y).expect("sets up");
         let theta = obj.start();
         let (_, g) = obj.value_and_gradient(&theta).expect("evaluates");
         let i = obj.layout.dims; // log s

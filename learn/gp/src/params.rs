@@ -1,11 +1,14 @@
 //! Fit parameters in the linfa/egobox shape: [`GpParams`] (builder with thesis defaults) →
-//! [`GpValidParams`] (checked) → [`GpModel`](super::GpModel) (fitted).
+//! [`GpValidParams`] (checked) → [`GpModel`](super::GpModel) (fitted). The kernel is a type
+//! parameter, SE-ARD ([`Stationary::se_ard`]) unless [`GpParams::kernel`] picks another.
 
 use std::fmt;
 use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
+use super::kernel::Kernel;
+use super::stationary::Stationary;
 use crate::{GpError, Result};
 
 /// Which Gaussian process to fit (thesis 3.1.3).
@@ -53,8 +56,9 @@ impl FromStr for GpKind {
 
 /// Parameters of a GP fit. Defaults follow the thesis (M = 100, §4.3) and gp.md §5.
 #[derive(Debug, Clone, PartialEq)]
-pub struct GpParams {
+pub struct GpParams<K = Stationary> {
     kind: GpKind,
+    kernel: K,
     pseudo_inputs: usize,
     max_iters: usize,
     max_evals: Option<usize>,
@@ -73,11 +77,12 @@ impl Default for GpParams {
 }
 
 impl GpParams {
-    /// Defaults for `kind`: 100 pseudo-inputs, 200 L-BFGS iterations, seed 0, jitter 1e-6·s,
-    /// noise floor 1e-6·var(y).
+    /// Defaults for `kind`: SE-ARD, 100 pseudo-inputs, 200 L-BFGS iterations, seed 0, jitter
+    /// 1e-6·s, noise floor 1e-6·var(y).
     pub fn new(kind: GpKind) -> Self {
         Self {
             kind,
+            kernel: Stationary::se_ard(),
             pseudo_inputs: 100,
             max_iters: 200,
             max_evals: None,
@@ -87,6 +92,25 @@ impl GpParams {
             grad_tol: 1e-5,
             rel_tol: 1e-9,
             optimise_pseudo_inputs: true,
+        }
+    }
+}
+
+impl<K: Kernel> GpParams<K> {
+    /// The covariance function (its starting values come from the data at fit time).
+    pub fn kernel<K2: Kernel>(self, kernel: K2) -> GpParams<K2> {
+        GpParams {
+            kind: self.kind,
+            kernel,
+            pseudo_inputs: self.pseudo_inputs,
+            max_iters: self.max_iters,
+            max_evals: self.max_evals,
+            seed: self.seed,
+            jitter: self.jitter,
+            noise_floor: self.noise_floor,
+            grad_tol: self.grad_tol,
+            rel_tol: self.rel_tol,
+            optimise_pseudo_inputs: self.optimise_pseudo_inputs,
         }
     }
     /// Number of pseudo-inputs M (sparse kinds; capped at N during the fit).
@@ -136,7 +160,7 @@ impl GpParams {
     }
 
     /// Validates the parameters.
-    pub fn check(&self) -> Result<GpValidParams> {
+    pub fn check(&self) -> Result<GpValidParams<K>> {
         let bad = |what: &str| Err(GpError::InvalidParams(what.to_string()));
         if self.kind != GpKind::Full && self.pseudo_inputs == 0 {
             return bad("a sparse GP needs at least one pseudo-input");
@@ -156,12 +180,16 @@ impl GpParams {
 
 /// Checked [`GpParams`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct GpValidParams(GpParams);
+pub struct GpValidParams<K = Stationary>(GpParams<K>);
 
-impl GpValidParams {
+impl<K: Kernel> GpValidParams<K> {
     /// The GP kind.
     pub fn kind(&self) -> GpKind {
         self.0.kind
+    }
+    /// The kernel (before its values are fitted).
+    pub fn kernel(&self) -> &K {
+        &self.0.kernel
     }
     /// Requested number of pseudo-inputs.
     pub fn pseudo_inputs(&self) -> usize {

@@ -30,18 +30,20 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::kernel::Kernel;
 use super::loo::{LooMoments, loo_moments};
 use super::model::{GpModel, GpPrediction};
 use super::params::{GpKind, GpParams, GpValidParams};
 use super::squashing::Squashing;
+use super::stationary::Stationary;
 use super::train_data::TrainData;
 use crate::{GpError, Result};
 
 /// Parameters of a probabilistic least-squares classifier: the GP regression to fit on the ±1
 /// labels (kind, pseudo-inputs, iterations, seed); α and β are always fitted.
 #[derive(Debug, Clone, PartialEq)]
-pub struct PlsParams {
-    gp: GpParams,
+pub struct PlsParams<K = Stationary> {
+    gp: GpParams<K>,
 }
 
 impl Default for PlsParams {
@@ -51,14 +53,14 @@ impl Default for PlsParams {
     }
 }
 
-impl PlsParams {
+impl<K: Kernel> PlsParams<K> {
     /// Classification on top of the regression `gp`.
-    pub fn new(gp: GpParams) -> Self {
+    pub fn new(gp: GpParams<K>) -> Self {
         Self { gp }
     }
 
     /// Validates the parameters.
-    pub fn check(&self) -> Result<PlsValidParams> {
+    pub fn check(&self) -> Result<PlsValidParams<K>> {
         Ok(PlsValidParams {
             gp: self.gp.check()?,
         })
@@ -66,25 +68,25 @@ impl PlsParams {
 
     /// Checks the parameters and fits `x` (N×D, one sample per row) to `labels` (true = class +1,
     /// e.g. occupied).
-    pub fn fit(&self, x: &DMatrix<f64>, labels: &[bool]) -> Result<PlsClassifier> {
+    pub fn fit(&self, x: &DMatrix<f64>, labels: &[bool]) -> Result<PlsClassifier<K>> {
         self.check()?.fit(x, labels)
     }
 }
 
 /// Checked [`PlsParams`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct PlsValidParams {
-    gp: GpValidParams,
+pub struct PlsValidParams<K = Stationary> {
+    gp: GpValidParams<K>,
 }
 
-impl PlsValidParams {
+impl<K: Kernel> PlsValidParams<K> {
     /// The regression's parameters.
-    pub fn gp(&self) -> &GpValidParams {
+    pub fn gp(&self) -> &GpValidParams<K> {
         &self.gp
     }
 
     /// Fits the classifier: GP regression on ±1, leave-one-out moments, then α and β.
-    pub fn fit(&self, x: &DMatrix<f64>, labels: &[bool]) -> Result<PlsClassifier> {
+    pub fn fit(&self, x: &DMatrix<f64>, labels: &[bool]) -> Result<PlsClassifier<K>> {
         if labels.len() != x.nrows() {
             return Err(GpError::DegenerateData(format!(
                 "{} input rows but {} labels",
@@ -102,7 +104,8 @@ impl PlsValidParams {
         let names: Vec<String> = (0..x.ncols()).map(|d| format!("x{d}")).collect();
         let gp = self.gp.fit_named(x, &y, &names, "label")?;
         // GPML eq. 5.12: leave-one-out moments at the fitted hyperparameters.
-        let data = TrainData::new(&gp.inputs.apply(x), &gp.target.apply_vector(&y));
+        let data = TrainData::new(&gp.inputs.apply(x), &gp.target.apply_vector(&y))
+            .with_point_data(&gp.hyper.kernel);
         let standard = loo_moments(&data, gp.kind, &gp.hyper, gp.jitter)?;
         let loo = LooMoments {
             mean: gp.target.invert_vector(&standard.mean),
@@ -136,14 +139,14 @@ pub struct PlsPrediction {
 
 /// A fitted probabilistic least-squares classifier.
 #[derive(Debug, Clone, PartialEq)]
-pub struct PlsClassifier {
-    gp: GpModel,
+pub struct PlsClassifier<K = Stationary> {
+    gp: GpModel<K>,
     squashing: Squashing,
     loo: LooMoments,
     loo_log_probability: f64,
 }
 
-impl PlsClassifier {
+impl<K: Kernel> PlsClassifier<K> {
     /// Class probabilities at the rows of `x` (T×D). The squashing reads the latent variance, as its
     /// leave-one-out fit did (GPML eq. 5.12, 6.42).
     pub fn predict(&self, x: &DMatrix<f64>) -> Result<PlsPrediction> {
@@ -164,7 +167,7 @@ impl PlsClassifier {
     }
 
     /// The GP regression on the ±1 labels.
-    pub fn regression(&self) -> &GpModel {
+    pub fn regression(&self) -> &GpModel<K> {
         &self.gp
     }
 

@@ -5,6 +5,8 @@
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
+use super::kernel::Kernel;
+
 /// Relative spread below which a column counts as constant.
 const CONSTANT_SPREAD: f64 = 1e-12;
 
@@ -37,6 +39,19 @@ impl Standardiser {
             .map(|c| mean_and_scale(c.iter().copied(), c.len()))
             .unzip();
         Self { mean, scale }
+    }
+
+    /// The input transform a fit with `kernel` uses: per-column standardisation, or the identity
+    /// for kernels that work in the inputs' own units.
+    pub(crate) fn for_kernel<K: Kernel>(x: &DMatrix<f64>, kernel: &K) -> Self {
+        if kernel.standardise_inputs() {
+            Self::of_columns(x)
+        } else {
+            Self {
+                mean: vec![0.0; x.ncols()],
+                scale: vec![1.0; x.ncols()],
+            }
+        }
     }
 
     /// Fits the transform of a target vector (N ≥ 1).

@@ -3,6 +3,7 @@
 
 mod bench;
 mod common;
+mod csv_table;
 mod cv;
 mod evaluate;
 mod features;

@@ -1,11 +1,11 @@
 //! A small, strict CSV reader for `patchflow gp`: one header line, comma-separated numeric cells,
-//! no quoting. Every problem is an error naming the file and the 1-based line.
+//! no quoting. Every problem is an error naming the file and the 1-based line; a first line of
+//! numbers is refused as a header, so a file without one never loses its first row silently.
 
 use std::path::{Path, PathBuf};
 
+use anyhow::{Result, anyhow};
 use nalgebra::{DMatrix, DVector};
-
-use crate::{LearnError, Result};
 
 /// Which header columns to read.
 #[derive(Debug, Clone, Copy)]
@@ -43,15 +43,10 @@ pub struct Table {
 impl Table {
     /// Reads the selected columns of `path`.
     pub fn read(path: &Path, select: Columns<'_>) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| LearnError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let err = |line: usize, reason: String| LearnError::Parse {
-            path: path.to_path_buf(),
-            line,
-            reason,
-        };
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
+        let err =
+            |line: usize, reason: String| anyhow!("{}: line {line}: {reason}", path.display());
         let mut lines = text
             .lines()
             .enumerate()
@@ -60,6 +55,16 @@ impl Table {
             return Err(err(1, "empty file: expected a header line".into()));
         };
         let header: Vec<String> = split(header.trim_start_matches('\u{feff}'), 1, &err)?;
+        if header.iter().all(|name| name.parse::<f64>().is_ok()) {
+            return Err(err(
+                1,
+                format!(
+                    "'{}' is a row of numbers, not a header; the first line must name the columns \
+                     (e.g. x1,x2,y)",
+                    header.join(",")
+                ),
+            ));
+        }
         for (i, name) in header.iter().enumerate() {
             if name.is_empty() {
                 return Err(err(1, format!("column {} has an empty name", i + 1)));
@@ -110,37 +115,28 @@ impl Table {
 
     /// Index of the column `name`.
     pub fn column_index(&self, name: &str) -> Result<usize> {
-        self.columns
-            .iter()
-            .position(|c| c == name)
-            .ok_or_else(|| LearnError::Parse {
-                path: self.path.clone(),
-                line: 1,
-                reason: format!("column '{name}' is not among the numeric columns read"),
-            })
+        self.columns.iter().position(|c| c == name).ok_or_else(|| {
+            anyhow!(
+                "{}: line 1: column '{name}' is not among the numeric columns read",
+                self.path.display()
+            )
+        })
     }
 
     /// Splits into inputs (every other column) and the target (`target`, or the last column).
     pub fn inputs_and_target(&self, target: Option<&str>) -> Result<TrainingColumns> {
         let t = match target {
             Some(name) => self.column_index(name)?,
-            None => self
-                .columns
-                .len()
-                .checked_sub(1)
-                .ok_or_else(|| LearnError::Parse {
-                    path: self.path.clone(),
-                    line: 1,
-                    reason: "no numeric columns left".into(),
-                })?,
+            None => self.columns.len().checked_sub(1).ok_or_else(|| {
+                anyhow!("{}: line 1: no numeric columns left", self.path.display())
+            })?,
         };
         let inputs: Vec<usize> = (0..self.columns.len()).filter(|&c| c != t).collect();
         if inputs.is_empty() {
-            return Err(LearnError::Parse {
-                path: self.path.clone(),
-                line: 1,
-                reason: "no input columns besides the target".into(),
-            });
+            return Err(anyhow!(
+                "{}: line 1: no input columns besides the target",
+                self.path.display()
+            ));
         }
         Ok(TrainingColumns {
             x: self.select_indices(&inputs),
@@ -166,11 +162,11 @@ impl Table {
     }
 }
 
-fn split<E>(
+fn split(
     line: &str,
     line_no: usize,
-    err: &impl Fn(usize, String) -> E,
-) -> std::result::Result<Vec<String>, E> {
+    err: &impl Fn(usize, String) -> anyhow::Error,
+) -> Result<Vec<String>> {
     if line.contains('"') {
         return Err(err(line_no, "quoted fields are not supported".into()));
     }
@@ -221,7 +217,6 @@ mod tests {
     fn error_of(text: &str, ignore: &[String]) -> String {
         let (_dir, path) = write(text);
         let err = Table::read(&path, Columns::AllExcept(ignore)).expect_err("must fail");
-        assert!(matches!(err, LearnError::Parse { .. }));
         let msg = err.to_string();
         assert!(msg.contains("data.csv"), "no file name in: {msg}");
         msg
@@ -237,6 +232,18 @@ mod tests {
         assert!(error_of("a,y\n", &[]).contains("no data rows"));
         assert!(error_of("", &[]).contains("empty file"));
         assert!(error_of("a,y\n1,2\n", &["zz".to_string()]).contains("'zz'"));
+    }
+
+    #[test]
+    fn a_csv_without_a_header_is_an_error_instead_of_losing_its_first_row() {
+        let msg = error_of("1.5,2\n3,4\n5,6\n", &[]);
+        assert!(
+            msg.contains("line 1") && msg.contains("not a header"),
+            "{msg}"
+        );
+        // A header may still have some numeric-looking names.
+        let (_dir, path) = write("x,2019,y\n1,2,3\n");
+        assert!(Table::read(&path, Columns::AllExcept(&[])).is_ok());
     }
 
     #[test]
