@@ -195,7 +195,10 @@ mod tests {
             // B diag(w) Bᵀ is symmetric.
             let scaled = DMatrix::from_fn(n, 13, |i, j| b[(i, j)] * (1.0 + (j % 3) as f64));
             let want = &scaled * b.transpose();
-            assert!((symmetric_mul_t(&scaled, &b) - want).amax() < 1e-12, "sym n={n}");
+            assert!(
+                (symmetric_mul_t(&scaled, &b) - want).amax() < 1e-12,
+                "sym n={n}"
+            );
         }
     }
 

@@ -7,7 +7,7 @@
 //! query points at the query time.
 
 use nalgebra::DMatrix;
-use patchflow_gp::{GpKind, GpParams, PlsParams};
+use patchflow_gp::{GpKind, GpParams, PlsParams, Shape, Stationary};
 use serde::{Deserialize, Serialize};
 
 use crate::{
@@ -113,7 +113,15 @@ impl MapMethod for GpomMethod {
                 .optimise_pseudo_inputs(false)
                 .seed(self.samples.seed ^ scan as u64),
         }
-        .max_iters(self.max_iters);
+        .max_iters(self.max_iters)
+        // Squared exponential over (x, y) with ARD length-scales; in ℜ^{D+1} times a squared
+        // exponential over t with its own, learned temporal length-scale.
+        .kernel(match self.space {
+            GpomSpace::Space => Stationary::se_ard(),
+            GpomSpace::SpaceTime => {
+                Stationary::space_time(2, Shape::SquaredExponential, Shape::SquaredExponential)
+            }
+        });
         let classifier = PlsParams::new(gp)
             .fit(&x, &labels)
             .map_err(|e| degenerate(e.to_string()))?;
