@@ -1,6 +1,6 @@
-//! Occupancy maps end to end on the shipped T-junction: generate it (a planar scanner, 12 scans),
-//! map it with the grid and both GPOMs (small settings), score against exact truth and write the
-//! report. Checks that `occupancy.json` has the SPEC §7 shape, that every map beats chance, that
+//! Occupancy maps end to end on the shipped T-junction: generate it (a planar scanner, 12 scans)
+//! and its training run, map it with the grid and both GPOMs (small settings), score against
+//! exact truth and write the report. Checks that `occupancy.json` has the SPEC §7 shape, that every map beats chance, that
 //! the plots are PNGs, and that a dataset of an older build (no `static.json`) is refused with
 //! the file's name.
 
@@ -8,18 +8,21 @@
 
 use patchflow_eval::{OccupancyReport, evaluate_occupancy, write_occupancy_report};
 use patchflow_occupancy::{
-    GpomMethod, MapMethod, OccupancyGridMethod, OccupancyParams, SampleParams,
+    GpomMethod, MapMethod, OccupancyGridMethod, OccupancyParams, OccupancySequence, SampleParams,
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
-fn tjunction(dir: &std::path::Path) -> patchflow_dataset::Dataset {
-    let source = ScenarioSource::from_argument(std::path::Path::new("dgpom_tjunction")).unwrap();
+fn generate(dir: &std::path::Path, names: &[&str]) -> patchflow_dataset::Dataset {
+    let sources: Vec<ScenarioSource> = names
+        .iter()
+        .map(|name| ScenarioSource::from_argument(std::path::Path::new(name)).unwrap())
+        .collect();
     let options = GenerateOptions {
         out: dir.to_owned(),
         seed: 3,
         shard: Shard::ALL,
     };
-    generate_dataset(&[source], &options, &|_| {}).unwrap();
+    generate_dataset(&sources, &options, &|_| {}).unwrap();
     patchflow_dataset::Dataset::open(dir).unwrap()
 }
 
@@ -33,10 +36,17 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
         max_iters: 25,
         ..m
     };
-    let rd = small(GpomMethod::space(samples.clone()));
-    let rd1 = small(GpomMethod::space_time(samples));
-    let grid = OccupancyGridMethod::default();
-    let methods: Vec<&dyn MapMethod> = vec![&rd, &rd1, &grid];
+    let methods = |sequence: &OccupancySequence, training: Option<&OccupancySequence>| {
+        // The training run is handed over for methods that learn beforehand, and not scored.
+        assert_eq!(sequence.name, "dgpom_tjunction");
+        assert_eq!(training.map(|t| t.scans.len()), Some(100));
+        let methods: Vec<Box<dyn MapMethod>> = vec![
+            Box::new(small(GpomMethod::space(samples.clone()))),
+            Box::new(small(GpomMethod::space_time(samples.clone()))),
+            Box::new(OccupancyGridMethod::default()),
+        ];
+        Ok(methods)
+    };
     let params = OccupancyParams {
         query_scans: vec![3, 5],
         ..OccupancyParams::default()
@@ -47,7 +57,10 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
 #[test]
 fn the_tjunction_is_mapped_scored_and_reported_in_the_spec_shape() {
     let dir = tempfile::tempdir().unwrap();
-    let dataset = tjunction(&dir.path().join("data"));
+    let dataset = generate(
+        &dir.path().join("data"),
+        &["dgpom_tjunction", "dgpom_tjunction_train"],
+    );
     let report = small_run(&dataset);
     let files = write_occupancy_report(&report, &dir.path().join("report")).unwrap();
 
@@ -82,17 +95,14 @@ fn the_tjunction_is_mapped_scored_and_reported_in_the_spec_shape() {
 fn a_dataset_without_static_truth_is_refused_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let data = dir.path().join("data");
-    let dataset = tjunction(&data);
+    let dataset = generate(&data, &["dgpom_tjunction"]);
     let static_json = data.join("sequences/dgpom_tjunction/static.json");
     std::fs::remove_file(&static_json).unwrap();
-    let grid = OccupancyGridMethod::default();
-    let err = evaluate_occupancy(
-        &dataset,
-        &[&grid],
-        &OccupancyParams::default(),
-        7,
-        &|_, _, _| {},
-    )
-    .unwrap_err();
+    let grid = |_: &OccupancySequence, _: Option<&OccupancySequence>| {
+        let methods: Vec<Box<dyn MapMethod>> = vec![Box::new(OccupancyGridMethod::default())];
+        Ok(methods)
+    };
+    let params = OccupancyParams::default();
+    let err = evaluate_occupancy(&dataset, &grid, &params, 7, &|_, _, _| {}).unwrap_err();
     assert!(err.to_string().contains("static.json"), "{err}");
 }

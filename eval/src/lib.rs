@@ -42,7 +42,7 @@ pub use metrics::{
 };
 pub use observation::{ClusterObservation, ScanObservation, centroid_of};
 pub use occupancy::{
-    OccupancyFiles, OccupancyReport, PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow,
+    MethodsFor, OccupancyFiles, OccupancyReport, PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow,
     evaluate_occupancy, occupancy_json, occupancy_markdown, occupancy_methods, occupancy_notes,
     occupancy_section, occupancy_sequences, plot_occupancy_figure, write_occupancy_report,
 };

@@ -14,6 +14,7 @@ pub use markdown::{occupancy_markdown, occupancy_section};
 pub use paper_table::{PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow};
 pub use plot::plot_occupancy_figure;
 pub use run::{
-    OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
+    MethodsFor, OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes,
+    occupancy_sequences,
 };
 pub use writer::{OccupancyFiles, write_occupancy_report};

@@ -80,11 +80,17 @@ pub fn occupancy_notes(params: &OccupancyParams) -> Vec<String> {
     ]
 }
 
-/// Scores `methods` on every sequence [`occupancy_sequences`] picks; `on_map(sequence, method,
-/// query_scan)` is called after every map.
+/// Builds the methods for one scenario from the sequence and its training run (`<name>_train` in
+/// the same dataset, if there is one): methods that learn beforehand (DGPOM's motion map) learn
+/// from the training run.
+pub type MethodsFor<'a> = dyn Fn(&OccupancySequence, Option<&OccupancySequence>) -> Result<Vec<Box<dyn MapMethod>>, EvalError>
+    + 'a;
+
+/// Scores the methods `methods_for` builds on every sequence [`occupancy_sequences`] picks;
+/// `on_map(sequence, method, query_scan)` is called after every map.
 pub fn evaluate_occupancy(
     dataset: &Dataset,
-    methods: &[&dyn MapMethod],
+    methods_for: &MethodsFor<'_>,
     params: &OccupancyParams,
     seed: u64,
     on_map: &(dyn Fn(&str, &str, usize) + Sync),
@@ -96,7 +102,14 @@ pub fn evaluate_occupancy(
     };
     for name in occupancy_sequences(dataset)? {
         let sequence = OccupancySequence::load(&dataset.sequence(&name)?)?;
-        let scores = evaluate_sequence(&sequence, methods, params, &|method, t| {
+        let training_name = format!("{name}_train");
+        let training = match dataset.sequences().iter().any(|s| s.name == training_name) {
+            true => Some(OccupancySequence::load(&dataset.sequence(&training_name)?)?),
+            false => None,
+        };
+        let methods = methods_for(&sequence, training.as_ref())?;
+        let methods: Vec<&dyn MapMethod> = methods.iter().map(|m| m.as_ref()).collect();
+        let scores = evaluate_sequence(&sequence, &methods, params, &|method, t| {
             on_map(&name, method, t)
         })?;
         report.scenarios.push(scores);

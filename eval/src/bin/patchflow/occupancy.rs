@@ -10,7 +10,7 @@ use patchflow_eval::{
     OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
     progress_bar, write_occupancy_report,
 };
-use patchflow_occupancy::{MapMethod, OccupancyParams};
+use patchflow_occupancy::{OccupancyParams, OccupancySequence};
 
 /// Arguments of `patchflow occupancy`.
 #[derive(Debug, clap::Args)]
@@ -44,11 +44,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// `bench` uses it too.
 pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> anyhow::Result<OccupancyReport> {
     let params = OccupancyParams::default();
-    let methods = occupancy_methods(seed);
-    let methods: Vec<&dyn MapMethod> = methods.iter().map(|m| m.as_ref()).collect();
-    let maps = occupancy_sequences(dataset)?.len() * params.query_scans.len() * methods.len();
+    let methods_per_scenario = occupancy_methods(seed).len();
+    let maps =
+        occupancy_sequences(dataset)?.len() * params.query_scans.len() * methods_per_scenario;
     let bar = progress_bar(maps as u64, "occupancy maps");
-    let report = evaluate_occupancy(dataset, &methods, &params, seed, &|_, _, _| bar.inc(1));
+    let methods_for =
+        |_: &OccupancySequence, _: Option<&OccupancySequence>| Ok(occupancy_methods(seed));
+    let report = evaluate_occupancy(dataset, &methods_for, &params, seed, &|_, _, _| bar.inc(1));
     bar.finish_and_clear();
     let mut report = report?;
     report.notes = occupancy_notes(&params);
