@@ -76,7 +76,7 @@ pub fn occupancy_notes(params: &OccupancyParams) -> Vec<String> {
             "Truth and scoring: exact occupancy at the scanner's height from the dataset's static obstacles (`static.json`) and actor boxes, at each query point of a {} m lattice over the area the scanner observes: within range, inside its field of view, and in front of static structure (a building's interior, which no scan can reach, is left out; what cars hide is kept). The grid baseline (`GRID`) uses 0.5 m cells, hits / (hits + misses), 0.5 where no beam passed.",
             params.query_spacing_m
         ),
-        "Timing: the maps of the query times run in parallel on the machine's cores (one map per core), so seconds per map are one core's; a Criterion bench (`cargo bench -p patchflow-eval --bench occupancy`) times one map of each method at t = 5 alone.".to_owned(),
+        "Timing: one map is fit and prediction over the query points, wall-clock, maps one after the other (the GP uses the cores inside a map); a Criterion bench (`cargo bench -p patchflow-eval --bench occupancy`) times one map of each method at t = 5.".to_owned(),
     ]
 }
 

@@ -1,13 +1,11 @@
 //! Scoring map methods on a sequence (DGPOM paper, Section 3.1, Table 1): at every query scan,
 //! each method builds one map from the scan at the query time and the ones before it, predicts
 //! over the lattice of query points the sensor observes, and is scored by ROC AUC against the
-//! exact occupancy at the query time. One map (fit and prediction) is timed as a unit; maps of
-//! different query scans run in parallel, so a map's seconds are those of one core.
+//! exact occupancy at the query time. One map (fit and prediction) is timed as a unit, alone on
+//! the machine (maps run one after the other).
 
 use std::collections::BTreeMap;
 use std::time::Instant;
-
-use rayon::prelude::*;
 
 use crate::{
     MapMethod, MapOutput, OccupancyError, OccupancyParams, OccupancySequence, PlanarScan,
@@ -83,11 +81,10 @@ pub fn evaluate_sequence(
         name: sequence.name.clone(),
         ..SequenceScores::default()
     };
-    // The query scans are independent: their maps run in parallel, one map per core at a time,
-    // and are gathered in query order, so the scores do not depend on the threads.
+    // One query scan after the other, so a map's seconds are its own (the GP parallelises inside).
     let per_scan = params
         .query_scans
-        .par_iter()
+        .iter()
         .map(|&t| score_query_scan(sequence, methods, params, t, on_map))
         .collect::<Result<Vec<_>>>()?;
     for scan in per_scan {
