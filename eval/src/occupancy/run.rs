@@ -76,6 +76,7 @@ pub fn occupancy_notes(params: &OccupancyParams) -> Vec<String> {
             "Truth and scoring: exact occupancy at the scanner's height from the dataset's static obstacles (`static.json`) and actor boxes, at each query point of a {} m lattice over the area the scanner observes: within range, inside its field of view, and in front of static structure (a building's interior, which no scan can reach, is left out; what cars hide is kept). The grid baseline (`GRID`) uses 0.5 m cells, hits / (hits + misses), 0.5 where no beam passed.",
             params.query_spacing_m
         ),
+        "Reading the maps: pooling the scans of moving cars, GPOM-RD finds its best marginal likelihood with a long length-scale along the lanes and a very short one across them (see the fit column above; the exact GP chooses the same on the T-junction), so the cars become stripes along their lanes while the building's face stays sharp: the paper's 'inability to reconstruct the vehicles' of GPOM ℜ^D. GPOM-RD1 weighs the older scans by its learned temporal length-scale and keeps the cars as blobs where they were last seen; both see only the faces the scanner hit, not the cars' whole boxes, and fall back towards their prior where cars are hidden.".to_owned(),
         "Timing: one map is fit and prediction over the query points, wall-clock, maps one after the other (the GP uses the cores inside a map); a Criterion bench (`cargo bench -p patchflow-eval --bench occupancy`) times one map of each method at t = 5.".to_owned(),
     ]
 }
