@@ -11,6 +11,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::ard_distance::{group_gradient, sq_distances};
 use super::kernel::{Kernel, Points};
+use super::linalg::sum;
 use super::shape::{Factor, Group, Shape};
 use crate::{GpError, Result};
 
@@ -259,7 +260,7 @@ impl Kernel for Stationary {
         let d = self.lengthscales.len();
         let mut grad = vec![0.0; d + 1];
         let gk = adjoint.component_mul(k); // ∂𝓛/∂log s = Σ G ∘ K
-        grad[d] = gk.sum();
+        grad[d] = sum(gk.as_slice());
         for g in self.resolved() {
             let e = match g.shape {
                 Shape::SquaredExponential => None, // E = G ∘ K
