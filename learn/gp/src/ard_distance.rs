@@ -6,7 +6,7 @@
 use nalgebra::{DMatrix, DVector};
 
 use super::kernel::Points;
-use super::linalg::{mul, transposed};
+use super::linalg::{mul, sum, transposed};
 use super::shape::Group;
 
 /// Σ_j v_j² w_j with four partial sums, so the loop vectorises.
@@ -78,7 +78,7 @@ pub(crate) fn group_gradient(
         .chunks_exact(p_len)
         .zip(b.coord_slice().chunks_exact(d))
     {
-        let c: f64 = col.iter().sum();
+        let c = sum(col);
         for (a, v) in acc.iter_mut().zip(&bq[g.start..g.start + g.len]) {
             *a += c * v * v;
         }

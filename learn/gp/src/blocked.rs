@@ -88,8 +88,11 @@ pub(crate) fn lower_inverse_of(l: &DMatrix<f64>) -> DMatrix<f64> {
     // [L11 0; L21 L22]⁻¹ = [X11 0; −X22 L21 X11  X22].
     let n1 = n / 2;
     let n2 = n - n1;
-    let x11 = lower_inverse_of(&l.view((0, 0), (n1, n1)).into_owned());
-    let x22 = lower_inverse_of(&l.view((n1, n1), (n2, n2)).into_owned());
+    // The two diagonal blocks are independent: invert them side by side.
+    let (x11, x22) = rayon::join(
+        || lower_inverse_of(&l.view((0, 0), (n1, n1)).into_owned()),
+        || lower_inverse_of(&l.view((n1, n1), (n2, n2)).into_owned()),
+    );
     let x21 = -mul(&x22, &mul(&l.view((n1, 0), (n2, n1)), &x11));
     x.view_mut((0, 0), (n1, n1)).copy_from(&x11);
     x.view_mut((n1, 0), (n2, n1)).copy_from(&x21);

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
 use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse};
-use super::linalg::{lower_mul, mul, scale_columns, symmetric_mul_t, t_view, upper_mul};
+use super::linalg::{lower_mul, mul, scale_columns, symmetric_mul_t, upper_mul};
 use super::train_data::TrainData;
 use crate::Result;
 
@@ -155,7 +155,8 @@ pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> 
         + 0.5 * (yy - c.dot(&c))
         + 0.5 * n * (2.0 * std::f64::consts::PI).ln(); // step 8
     let u = lb_inv.tr_mul(&c);
-    let b_inv = mul(&t_view(&lb_inv), &lb_inv);
+    let lb_inv_t = lb_inv.transpose();
+    let b_inv = symmetric_mul_t(&lb_inv_t, &lb_inv_t); // B⁻¹ = L_B⁻ᵀL_B⁻¹
     Ok(Factors {
         z,
         k_m,
@@ -232,7 +233,8 @@ fn pseudo_gradient<K: Kernel>(
     for p in parts {
         s_mat += &p.vdvt;
     }
-    let d_bu = mul(&mul(&f.l_inv_t, &s_mat), &f.l_inv);
+    // L⁻ᵀSL⁻¹ = L⁻ᵀ(L⁻ᵀS)ᵀ for symmetric S: two products with a triangular factor.
+    let d_bu = upper_mul(&f.l_inv_t, &upper_mul(&f.l_inv_t, &s_mat).transpose());
     let d_bu = (&d_bu + d_bu.transpose()) * 0.5;
     let mut d_z = DMatrix::zeros(z.dims(), m);
     let grad = h.kernel.cross_gradient(z, z, &f.k_m, &d_bu, Some(&mut d_z));

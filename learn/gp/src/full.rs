@@ -8,7 +8,7 @@ use super::fitc::Evaluation;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, self_covariance};
 use super::linalg::{
-    cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse, mul, t_view,
+    cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse, symmetric_mul_t,
 };
 use super::train_data::TrainData;
 use crate::{GpError, Result};
@@ -45,7 +45,8 @@ pub(crate) fn objective<K: Kernel>(
 ) -> Result<Evaluation> {
     let (k, l, _) = factor(data, h, jitter)?;
     let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
-    let c_inv = mul(&t_view(&l_inv), &l_inv);
+    let l_inv_t = l_inv.transpose();
+    let c_inv = symmetric_mul_t(&l_inv_t, &l_inv_t); // C⁻¹ = L⁻ᵀL⁻¹
     let alpha = &c_inv * &data.y;
     let n = data.len() as f64;
     let nlml =

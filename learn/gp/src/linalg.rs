@@ -148,6 +148,20 @@ pub(crate) fn log_diag_sum(l: &DMatrix<f64>) -> f64 {
     l.diagonal().iter().map(|v| v.ln()).sum()
 }
 
+/// Σ values in four interleaved partial sums: vectorised and, for a given length, always added in
+/// the same order.
+pub(crate) fn sum(values: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let chunks = values.chunks_exact(4);
+    let tail: f64 = chunks.remainder().iter().sum();
+    for c in chunks {
+        for (a, v) in acc.iter_mut().zip(c) {
+            *a += v;
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
 /// Scales column `j` of `a` by `s[j]` in place.
 pub(crate) fn scale_columns(a: &mut DMatrix<f64>, s: &DVector<f64>) {
     for (mut col, f) in a.column_iter_mut().zip(s.iter()) {

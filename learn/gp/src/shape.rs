@@ -48,7 +48,7 @@ pub struct Factor {
 }
 
 /// A resolved group: columns `start .. start + len`.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Group {
     /// First column.
     pub start: usize,

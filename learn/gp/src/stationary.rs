@@ -11,6 +11,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::ard_distance::{group_gradient, sq_distances};
 use super::kernel::{Kernel, Points};
+use super::linalg::sum;
 use super::shape::{Factor, Group, Shape};
 use crate::{GpError, Result};
 
@@ -25,6 +26,8 @@ pub struct Stationary {
     factors: Vec<Factor>,
     lengthscales: DVector<f64>,
     signal_variance: f64,
+    /// The factors resolved to column ranges for the length-scales' D (empty before sizing).
+    groups: Vec<Group>,
 }
 
 impl Default for Stationary {
@@ -40,6 +43,7 @@ impl Stationary {
             factors,
             lengthscales: DVector::zeros(0),
             signal_variance: 1.0,
+            groups: Vec::new(),
         }
     }
 
@@ -80,12 +84,13 @@ impl Stationary {
         lengthscales: DVector<f64>,
         signal_variance: f64,
     ) -> Result<Self> {
-        let k = Self {
+        let mut k = Self {
             factors,
             lengthscales,
             signal_variance,
+            groups: Vec::new(),
         };
-        k.groups(k.lengthscales.len())?;
+        k.groups = k.resolve(k.lengthscales.len())?;
         if !(k.lengthscales.iter().all(|l| l.is_finite() && *l > 0.0)
             && signal_variance.is_finite()
             && signal_variance > 0.0)
@@ -100,11 +105,11 @@ impl Stationary {
     /// SE-ARD with the given length-scales and signal variance (tests).
     #[cfg(test)]
     pub(crate) fn se(lengthscales: &[f64], signal_variance: f64) -> Self {
-        Self {
-            factors: Self::se_ard().factors,
-            lengthscales: DVector::from_column_slice(lengthscales),
-            signal_variance,
-        }
+        let mut k = Self::se_ard();
+        k.groups = k.resolve(lengthscales.len()).unwrap_or_default();
+        k.lengthscales = DVector::from_column_slice(lengthscales);
+        k.signal_variance = signal_variance;
+        k
     }
 
     /// The column groups and their profiles.
@@ -127,7 +132,7 @@ impl Stationary {
     }
 
     /// The groups for `d` input columns; errors if the factors do not cover exactly `d`.
-    fn groups(&self, d: usize) -> Result<Vec<Group>> {
+    fn resolve(&self, d: usize) -> Result<Vec<Group>> {
         let mut out = Vec::with_capacity(self.factors.len());
         let mut start = 0;
         for (i, f) in self.factors.iter().enumerate() {
@@ -162,17 +167,6 @@ impl Stationary {
         Ok(out)
     }
 
-    /// The resolved groups (the kernel is initialised, so they cover its length-scales).
-    fn resolved(&self) -> Vec<Group> {
-        self.groups(self.lengthscales.len()).unwrap_or_else(|_| {
-            vec![Group {
-                start: 0,
-                len: self.lengthscales.len(),
-                shape: Shape::SquaredExponential,
-            }]
-        })
-    }
-
     /// ℓ⁻² per column.
     fn inverse_squares(&self) -> DVector<f64> {
         self.lengthscales.map(|l| 1.0 / (l * l))
@@ -199,7 +193,7 @@ impl Kernel for Stationary {
 
     fn initialise(&mut self, xt: &DMatrix<f64>, target_variance: f64) -> Result<()> {
         let (dims, n) = (xt.nrows(), xt.ncols());
-        self.groups(dims)?;
+        self.groups = self.resolve(dims)?;
         // With D inputs of unit spread the squared scaled distance between two samples is about
         // 2·Σ_d 1/ℓ_d²; ℓ_d = spread_d·√D keeps it near 2 whatever D is (Snelson's range/2 suits
         // D = 1; gp.md §5.3).
@@ -232,11 +226,12 @@ impl Kernel for Stationary {
     fn cross(&self, a: Points<'_>, b: Points<'_>) -> DMatrix<f64> {
         let inv_sq = self.inverse_squares();
         let s = self.signal_variance;
-        let groups = self.resolved();
-        let mut k = sq_distances(a, b, &inv_sq, groups[0]);
-        let shape = groups[0].shape;
-        k.apply(|v| *v = s * shape.profile(*v));
-        for &g in &groups[1..] {
+        let Some((&first, rest)) = self.groups.split_first() else {
+            return DMatrix::from_element(a.len(), b.len(), s); // no input columns
+        };
+        let mut k = sq_distances(a, b, &inv_sq, first);
+        k.apply(|v| *v = s * first.shape.profile(*v));
+        for &g in rest {
             let r2 = sq_distances(a, b, &inv_sq, g);
             k.zip_apply(&r2, |kv, r| *kv *= g.shape.profile(r));
         }
@@ -259,8 +254,8 @@ impl Kernel for Stationary {
         let d = self.lengthscales.len();
         let mut grad = vec![0.0; d + 1];
         let gk = adjoint.component_mul(k); // ∂𝓛/∂log s = Σ G ∘ K
-        grad[d] = gk.sum();
-        for g in self.resolved() {
+        grad[d] = sum(gk.as_slice());
+        for &g in &self.groups {
             let e = match g.shape {
                 Shape::SquaredExponential => None, // E = G ∘ K
                 Shape::Matern32 => {

@@ -13,10 +13,8 @@ fn points(p: usize, d: usize, seed: usize) -> DMatrix<f64> {
 
 fn kernels() -> Vec<(&'static str, Stationary)> {
     let with = |k: Stationary| {
-        let mut k = k;
-        k.lengthscales = DVector::from_vec(vec![0.7, 1.3, 0.9]);
-        k.signal_variance = 1.7;
-        k
+        Stationary::with_values(k.factors, DVector::from_vec(vec![0.7, 1.3, 0.9]), 1.7)
+            .expect("valid")
     };
     vec![
         ("se-ard", with(Stationary::se_ard())),
@@ -35,7 +33,7 @@ fn kernels() -> Vec<(&'static str, Stationary)> {
 /// k(a, b) from the definition, one pair at a time.
 fn direct(k: &Stationary, a: &[f64], b: &[f64]) -> f64 {
     let mut v = k.signal_variance;
-    for g in k.resolved() {
+    for g in &k.groups {
         let r2: f64 = (g.start..g.start + g.len)
             .map(|d| ((a[d] - b[d]) / k.lengthscales[d]).powi(2))
             .sum();
@@ -139,9 +137,12 @@ fn a_space_time_product_of_two_squared_exponentials_is_se_ard() {
     let (a, b) = (points(4, 3, 6), points(5, 3, 7));
     let all = kernels();
     let se = &all[0].1;
-    let mut st = Stationary::space_time(2, Shape::SquaredExponential, Shape::SquaredExponential);
-    st.lengthscales = se.lengthscales.clone();
-    st.signal_variance = se.signal_variance;
+    let st = Stationary::with_values(
+        Stationary::space_time(2, Shape::SquaredExponential, Shape::SquaredExponential).factors,
+        se.lengthscales.clone(),
+        se.signal_variance,
+    )
+    .expect("valid");
     let (pa, pb) = (Points::new(&a, None), Points::new(&b, None));
     assert!((se.cross(pa, pb) - st.cross(pa, pb)).amax() < 1e-14);
 }
