@@ -1,5 +1,6 @@
 //! patchflow's evaluation: ICP and constant-velocity Kalman baselines (thesis 3.2), metrics, the
-//! five-situation benchmark (thesis 4.4), cross-validation tables (thesis 4.3), reports and plots.
+//! five-situation benchmark (thesis 4.4), cross-validation tables (thesis 4.3), reports and plots;
+//! and the occupancy-map evaluation (the DGPOM paper's Table 1 and Figure 6).
 
 mod baselines;
 mod benchmark;
@@ -12,6 +13,7 @@ mod kalman;
 mod method;
 mod metrics;
 mod observation;
+mod occupancy;
 mod perception_timing;
 mod progress;
 mod report;
@@ -39,6 +41,11 @@ pub use metrics::{
     wrap_angle_rad,
 };
 pub use observation::{ClusterObservation, ScanObservation, centroid_of};
+pub use occupancy::{
+    MethodsFor, OccupancyFiles, OccupancyReport, PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow,
+    evaluate_occupancy, occupancy_json, occupancy_markdown, occupancy_methods, occupancy_notes,
+    occupancy_section, occupancy_sequences, plot_occupancy_figure, write_occupancy_report,
+};
 pub use perception_timing::PerceptionTiming;
 pub use progress::{StageTimer, StageTiming, progress_bar, spinner};
 pub use report::{

@@ -18,7 +18,7 @@ use crate::result::SituationResult;
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVu-LICENSE.txt`).
 const FONT_TTF: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 const SIZE_PX: (u32, u32) = (1000, 560);
 
 /// Colour per canonical method slot (tab10), then a few spares.
@@ -37,7 +37,8 @@ const PALETTE: [RGBColor; 12] = [
     RGBColor(160, 100, 100),
 ];
 
-fn ensure_font(path: &Path) -> Result<(), EvalError> {
+/// Registers the bundled font once; an error names the PNG that needed it.
+pub(crate) fn ensure_font(path: &Path) -> Result<(), EvalError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| register_font(FONT, FontStyle::Normal, FONT_TTF).is_ok());
     if ok {

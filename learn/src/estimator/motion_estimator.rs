@@ -138,9 +138,15 @@ impl MotionEstimator {
                 .seed(params.seed.wrapping_add(seed_offset))
         };
         // 3.1.1: one GP for each of sin and cos of (heading − bearing), one for the speed.
-        let heading_sin = named(gp(1).fit(&heading_x, &sin_y)?, &names, "sin_rel");
-        let heading_cos = named(gp(2).fit(&heading_x, &cos_y)?, &names, "cos_rel");
-        let speed = named(gp(3).fit(&speed_x, &speed_y)?, &names, "speed");
+        let heading_sin = gp(1)
+            .check()?
+            .fit_named(&heading_x, &sin_y, &names, "sin_rel")?;
+        let heading_cos = gp(2)
+            .check()?
+            .fit_named(&heading_x, &cos_y, &names, "cos_rel")?;
+        let speed = gp(3)
+            .check()?
+            .fit_named(&speed_x, &speed_y, &names, "speed")?;
         let training = TrainingRecord {
             sequences: Vec::new(),
             pool_size: drawn.pool_size,
@@ -276,13 +282,6 @@ impl MotionEstimator {
         let d = self.feature.names().len();
         rows_to_matrix(rows.iter().map(Vec::as_slice), d)
     }
-}
-
-/// Records the feature and target names in a fitted GP, so its model file is self-describing.
-fn named(mut model: GpModel, inputs: &[String], target: &str) -> GpModel {
-    model.input_names = inputs.to_vec();
-    model.target_name = target.to_owned();
-    model
 }
 
 /// Stacks feature rows into an N × D matrix, checking every row's length.

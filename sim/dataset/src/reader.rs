@@ -261,4 +261,4 @@ impl SequenceReader {
 
 #[cfg(test)]
 #[path = "reader_tests.rs"]
-mod tests;
+pub(crate) mod tests;

@@ -1,12 +1,14 @@
-//! The spinning lidar: beam pattern, intensity model, rolling-shutter ray casting.
+//! The range sensor: a spinning lidar or a planar scanner; beam pattern, intensity model,
+//! rolling-shutter ray casting.
 
 mod beams;
 mod block_caster;
 mod firing_table;
 mod intensity;
+mod planar_scanner;
 mod scan;
 mod spinning_lidar;
 
-pub use beams::elevations_deg;
+pub use beams::{elevations_deg, sensor_info};
 pub use scan::Scan;
 pub use spinning_lidar::Lidar;

@@ -173,3 +173,21 @@ fn a_scenario_built_in_code_is_checked_too() {
         "{err}"
     );
 }
+
+#[test]
+fn a_spinner_only_field_in_a_planar_table_points_at_its_line() {
+    let (line, reason) = error_of(&format!(
+        "{BASE}[lidar]\nkind = \"planar\"\nbeams = 70\nblocks = 10\n"
+    ));
+    assert_eq!(line, 8);
+    assert!(reason.contains("blocks"), "{reason}");
+}
+
+#[test]
+fn a_resolved_planar_scenario_reads_back_equal() {
+    let text = format!("{BASE}[lidar]\nkind = \"planar\"\nbeams = 70\nmax_range_m = 20.0\n");
+    let s = Scenario::from_toml(&text, "ok.toml", "ok").unwrap();
+    assert_eq!((s.lidar.channels, s.lidar.azimuth_steps), (1, 70));
+    let back = Scenario::from_toml(&s.to_toml(), "resolved.toml", "x").unwrap();
+    assert_eq!(back, s);
+}

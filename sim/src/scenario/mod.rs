@@ -7,14 +7,16 @@ mod derived_limits;
 mod embedded;
 mod lidar_config;
 mod load;
+mod planar_config;
 mod schema;
 mod structure_config;
 mod traffic;
 
 pub use actor_config::{ActorConfig, CarModel};
 pub(crate) use derived_limits::{GROUND_HALF_M, gigabytes, sweep_memory_bytes};
-pub use embedded::EMBEDDED_SCENARIOS;
-pub use lidar_config::{ElevationSpacing, LidarConfig};
+pub use embedded::{EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS};
+pub use lidar_config::{ElevationSpacing, LidarConfig, SensorKind};
+pub use planar_config::{PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M};
 pub use schema::{Scenario, TrafficConfig};
 pub use structure_config::{StructureConfig, StructureKind};
 pub use traffic::random_traffic;

@@ -1,18 +1,23 @@
 //! `patchflow bench`: the main job on embedded defaults. Generates the nine training tracks and the
 //! five situations, draws the training samples, trains SPGP and SPGP-HET estimators, runs the
-//! cross-validation of thesis 4.3, evaluates every method on the situations (thesis 4.4), and
-//! writes `report.md`, `metrics.json`, `tables.csv`, `cv.json`, `cv.md` and `plots/*.png`.
+//! cross-validation of thesis 4.3, evaluates every method on the situations (thesis 4.4), maps the
+//! DGPOM paper's T-junction (its Table 1 and Figure 6), and writes `report.md`, `metrics.json`,
+//! `tables.csv`, `cv.json`, `cv.md`, `occupancy.json`, `occupancy.md` and `plots/*.png`.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::{CvParams, StageTimer, method_prefix, write_cv_report, write_report};
+use patchflow_eval::{
+    CvParams, StageTimer, method_prefix, occupancy_section, write_cv_report,
+    write_occupancy_report, write_report,
+};
 use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 use crate::cv::{collect_samples, cv_with_samples};
 use crate::evaluate::{evaluate_with_bar, gp_methods};
+use crate::occupancy::occupancy_with_bar;
 
 /// Arguments of `patchflow bench`.
 #[derive(Debug, clap::Args)]
@@ -127,14 +132,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         evaluate_with_bar(&situations, &methods)
     })?;
 
-    // 6. The report.
+    // 6. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
+    //    training run is generated beside it for methods that learn beforehand.
+    let tjunction = stage(&mut timer, "generate T-junction", || {
+        generate_occupancy(&data.join("occupancy"))
+    })?;
+    let occupancy = stage(&mut timer, "occupancy maps", || {
+        occupancy_with_bar(&tjunction, SEED)
+    })?;
+
+    // 7. The report.
     report.seed = Some(SEED);
     report.notes = notes(&plan, &estimators, &perception, args.quick);
     report.cv = Some(cv.clone());
     report.timings = timer.timings().to_vec();
     let files = write_report(&report, &args.out)?;
     write_cv_report(&cv, &args.out)?;
+    write_occupancy_report(&occupancy, &args.out)?;
+    append(&files.report_md, &occupancy_section(&occupancy))?;
     print_headline(&report)?;
+    crate::occupancy::print_table(&occupancy);
     println!("\nperception: {}", perception.summary());
     println!("report: {}", files.report_md.display());
     Ok(())
@@ -168,6 +185,31 @@ fn generate(names: &[&'static str], out: &Path) -> anyhow::Result<Dataset> {
     };
     crate::generate::generate_with_progress(&sources, &options)?;
     Ok(Dataset::open(out)?)
+}
+
+/// Generates the embedded occupancy scenarios (the T-junction and its training run) into `out`.
+fn generate_occupancy(out: &Path) -> anyhow::Result<Dataset> {
+    let sources: Vec<ScenarioSource> = patchflow_sim::EMBEDDED_OCCUPANCY_SCENARIOS
+        .iter()
+        .map(|&(name, text)| ScenarioSource::Embedded(name, text))
+        .collect();
+    let options = GenerateOptions {
+        out: out.to_owned(),
+        seed: SEED,
+        shard: Shard::ALL,
+        overwrite: false,
+    };
+    crate::generate::generate_with_progress(&sources, &options)?;
+    Ok(Dataset::open(out)?)
+}
+
+/// Appends `text` to the file at `path`.
+fn append(path: &Path, text: &str) -> anyhow::Result<()> {
+    let mut content =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    content.push('\n');
+    content.push_str(text);
+    std::fs::write(path, content).with_context(|| format!("writing {}", path.display()))
 }
 
 fn train_estimator(

@@ -12,7 +12,8 @@ use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, Shard, generate_d
 /// Arguments of `patchflow generate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Scenario files; with none, every embedded scenario is run.
+    /// Scenario files, or names of embedded scenarios (e.g. `dgpom_tjunction`); with none, every
+    /// embedded scenario of the motion benchmark (situations and training tracks) is run.
     pub scenarios: Vec<PathBuf>,
     /// Dataset folder to write (created; an interrupted run is resumed).
     #[arg(long)]
@@ -36,9 +37,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         args.scenarios
             .iter()
-            .cloned()
-            .map(ScenarioSource::File)
-            .collect()
+            .map(|path| ScenarioSource::from_argument(path))
+            .collect::<Result<Vec<_>, _>>()?
     };
     let shard = match &args.shard {
         Some(text) => Shard::parse(text)?,

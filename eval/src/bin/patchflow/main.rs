@@ -3,11 +3,13 @@
 
 mod bench;
 mod common;
+mod csv_table;
 mod cv;
 mod evaluate;
 mod features;
 mod generate;
 mod gp;
+mod occupancy;
 mod show;
 mod train;
 
@@ -37,6 +39,8 @@ enum Command {
     Cv(cv::Args),
     /// The main job: generate, train, cross-validate and evaluate on embedded defaults.
     Bench(bench::Args),
+    /// Occupancy maps (grid, GPOM) of planar-scanner sequences, scored by ROC AUC against exact truth.
+    Occupancy(occupancy::Args),
     /// Gaussian-process regression on any CSV.
     Gp(gp::Args),
 }
@@ -51,6 +55,7 @@ fn main() -> std::process::ExitCode {
         Command::Evaluate(args) => evaluate::run(args),
         Command::Cv(args) => cv::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Occupancy(args) => occupancy::run(args),
         Command::Gp(args) => gp::run(args),
     };
     match result {
