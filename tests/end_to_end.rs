@@ -60,7 +60,7 @@ fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
     let methods = situation["methods"].as_object().unwrap();
     let names: Vec<&str> = methods.keys().map(String::as_str).collect();
     // The eight methods of SPEC §6.
-    for name in patchflow_eval::CANONICAL_METHODS {
+    for name in patchflow_eval::CANONICAL_METHODS.map(|m| m.name()) {
         assert!(names.contains(&name), "{name} missing from {names:?}");
         let m = &methods[name];
         for key in [

@@ -18,6 +18,7 @@ use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::icp::{IcpParams, icp_motion_estimate};
 use crate::kalman::{ConstantVelocityKalman, KalmanParams};
+use crate::method::Method;
 use crate::observation::ScanObservation;
 use crate::tracker::{MultiTargetTracker, TrackStatus, TrackerParams};
 
@@ -38,13 +39,13 @@ impl BaselineMethod {
     /// All four, in report order.
     pub const ALL: [Self; 4] = [Self::Kf, Self::Icp, Self::KfAuto, Self::IcpAuto];
 
-    /// The method name used in reports (`ICP`, `KF`, `ICP-AUTO`, `KF-AUTO`).
-    pub fn name(self) -> &'static str {
+    /// The benchmark method this baseline reports as (`ICP`, `KF`, `ICP-AUTO`, `KF-AUTO`).
+    pub fn method(self) -> Method {
         match self {
-            Self::Icp => "ICP",
-            Self::Kf => "KF",
-            Self::IcpAuto => "ICP-AUTO",
-            Self::KfAuto => "KF-AUTO",
+            Self::Icp => Method::Icp,
+            Self::Kf => Method::Kf,
+            Self::IcpAuto => Method::IcpAuto,
+            Self::KfAuto => Method::KfAuto,
         }
     }
 }
@@ -86,20 +87,15 @@ pub fn run_baseline(
     }
 }
 
-/// Runs all four baselines; method name → per-scan estimates.
+/// Runs all four baselines; method → per-scan estimates.
 pub fn run_all_baselines(
     situation: &str,
     scans: &[ScanObservation],
     params: &BaselineParams,
-) -> Result<BTreeMap<String, Vec<Option<MotionEstimate>>>, EvalError> {
+) -> Result<BTreeMap<Method, Vec<Option<MotionEstimate>>>, EvalError> {
     BaselineMethod::ALL
         .iter()
-        .map(|m| {
-            Ok((
-                m.name().to_owned(),
-                run_baseline(*m, situation, scans, params)?,
-            ))
-        })
+        .map(|m| Ok((m.method(), run_baseline(*m, situation, scans, params)?)))
         .collect()
 }
 
@@ -304,8 +300,8 @@ mod tests {
     #[test]
     fn all_baselines_are_run_under_their_report_names() {
         let all = run_all_baselines("s", &situation(4), &BaselineParams::default()).unwrap();
-        let names: Vec<&str> = all.keys().map(String::as_str).collect();
-        assert_eq!(names, ["ICP", "ICP-AUTO", "KF", "KF-AUTO"]);
+        let names: Vec<&str> = all.keys().map(|m| m.name()).collect();
+        assert_eq!(names, ["KF", "ICP", "KF-AUTO", "ICP-AUTO"]);
         assert!(all.values().all(|v| v.len() == 4));
     }
 
@@ -340,11 +336,11 @@ mod tests {
             methods: run_all_baselines("clean", &scans, &BaselineParams::default()).unwrap(),
         };
         let metrics = situation.metrics().unwrap();
-        let icp = &metrics["ICP"];
+        let icp = &metrics[&Method::Icp];
         assert!(icp.heading_rmse_deg.unwrap() < 1e-6 && icp.speed_rmse_mps.unwrap() < 1e-6);
         assert!((icp.coverage - 29.0 / 30.0).abs() < 1e-12);
         // The Kalman filters start at rest, so their early scans carry the start-up error.
-        assert!(metrics["KF"].heading_me_deg.unwrap() < 10.0);
-        assert!((metrics["KF-AUTO"].coverage - 28.0 / 30.0).abs() < 1e-12);
+        assert!(metrics[&Method::Kf].heading_me_deg.unwrap() < 10.0);
+        assert!((metrics[&Method::KfAuto].coverage - 28.0 / 30.0).abs() < 1e-12);
     }
 }

@@ -5,12 +5,15 @@
 use std::collections::BTreeMap;
 
 use patchflow_dataset::{SequenceReader, Sweep};
-use patchflow_learn::{ClusterEstimate, ClusterMotion, GpKind, MotionEstimator, SweepFeatures};
+use patchflow_learn::{
+    ClusterEstimate, ClusterMotion, GpKind, MergeRule, MotionEstimator, SweepFeatures,
+};
 use rayon::prelude::*;
 
 use crate::baselines::{BaselineParams, run_all_baselines};
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
+use crate::method::{GpReadout, Method};
 use crate::observation::{ClusterObservation, ScanObservation};
 use crate::perception_timing::PerceptionTiming;
 use crate::result::{SituationResult, TruthAtScan};
@@ -87,8 +90,9 @@ pub fn evaluate_situation(
             .iter()
             .map(|o| o.gp[m].best.map(to_estimate))
             .collect();
-        estimates.insert(format!("{}-ALL", method.prefix), all);
-        estimates.insert(format!("{}-BEST", method.prefix), best);
+        let kind = method.estimator.gp_kind();
+        estimates.insert(Method::gp(kind, GpReadout::Merged(MergeRule::All)), all);
+        estimates.insert(Method::gp(kind, GpReadout::Merged(MergeRule::Best)), best);
     }
     let scans = outcomes.len();
     let perception = outcomes.iter().map(|o| o.perception).collect();

@@ -33,7 +33,7 @@ pub use error::EvalError;
 pub use estimate::MotionEstimate;
 pub use icp::{IcpAlignment, IcpParams, align_icp, icp_motion_estimate};
 pub use kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
-pub use method::{CANONICAL_METHODS, ordered_methods};
+pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{
     MIN_SCORED_SPEED_MPS, MethodMetrics, heading_error_deg, mean_abs, rmse, score_method,
     wrap_angle_rad,

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
+use crate::method::Method;
 use crate::metrics::{MethodMetrics, score_method};
 use crate::progress::StageTiming;
 
@@ -54,8 +55,8 @@ pub struct SituationResult {
     pub scans: usize,
     /// Truth per scan (`scans` entries).
     pub truth: Vec<TruthAtScan>,
-    /// Method name → one optional estimate per scan, aligned with `truth`.
-    pub methods: BTreeMap<String, Vec<Option<MotionEstimate>>>,
+    /// Method → one optional estimate per scan, aligned with `truth`.
+    pub methods: BTreeMap<Method, Vec<Option<MotionEstimate>>>,
 }
 
 impl SituationResult {
@@ -84,8 +85,8 @@ impl SituationResult {
         Ok(())
     }
 
-    /// Scores every method against the truth (SPEC §6); method name → metrics.
-    pub fn metrics(&self) -> Result<BTreeMap<String, MethodMetrics>, EvalError> {
+    /// Scores every method against the truth (SPEC §6); method → metrics.
+    pub fn metrics(&self) -> Result<BTreeMap<Method, MethodMetrics>, EvalError> {
         self.validate()?;
         self.methods
             .iter()
@@ -95,7 +96,7 @@ impl SituationResult {
                         situation: self.name.clone(),
                         reason: format!("method {method}: {err}"),
                     })?;
-                Ok((method.clone(), metrics))
+                Ok((*method, metrics))
             })
             .collect()
     }

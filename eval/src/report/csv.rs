@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use crate::method::ordered_methods;
+use crate::method::Method;
 use crate::metrics::MethodMetrics;
 
 /// Header of `tables.csv`.
@@ -12,7 +12,7 @@ heading_rmse_deg,heading_me_deg,speed_rmse_mps,speed_me_mps,coverage,epe_mps";
 
 /// The text of `tables.csv` for situations in report order (name, scans, method → metrics).
 pub(crate) fn tables_csv(
-    situations: &[(String, usize, BTreeMap<String, MethodMetrics>)],
+    situations: &[(String, usize, BTreeMap<Method, MethodMetrics>)],
 ) -> String {
     let cell = |v: Option<f64>| {
         v.filter(|v| v.is_finite())
@@ -22,10 +22,7 @@ pub(crate) fn tables_csv(
     let mut out = String::from(CSV_HEADER);
     out.push('\n');
     for (name, scans, metrics) in situations {
-        for method in ordered_methods(metrics.keys().map(String::as_str)) {
-            let Some(m) = metrics.get(&method) else {
-                continue;
-            };
+        for (method, m) in metrics {
             // Writing to a String cannot fail.
             let _ = writeln!(
                 out,

@@ -56,7 +56,7 @@ pub fn metrics_json_value(report: &BenchmarkReport) -> Result<serde_json::Value,
         let methods = situation
             .metrics()?
             .iter()
-            .map(|(name, m)| (name.clone(), MethodEntry::from(m)))
+            .map(|(method, m)| (method.name().to_owned(), MethodEntry::from(m)))
             .collect();
         situations.insert(
             situation.name.clone(),
@@ -115,7 +115,7 @@ mod tests {
         let methods = s1["methods"].as_object().unwrap();
         assert_eq!(
             methods.keys().collect::<Vec<_>>(),
-            ["ICP", "KF", "KF-AUTO", "SPGP-HET-ALL", "my-method"]
+            ["FULL-GP-ALL", "ICP", "KF", "KF-AUTO", "SPGP-HET-ALL"]
         );
         for m in methods.values() {
             let keys: Vec<&str> = m.as_object().unwrap().keys().map(String::as_str).collect();
@@ -163,7 +163,7 @@ mod tests {
         let mut report = synthetic_report();
         report.situations[0]
             .methods
-            .insert("ICP-AUTO".into(), vec![None; 30]);
+            .insert(crate::method::Method::IcpAuto, vec![None; 30]);
         let value = metrics_json_value(&report).unwrap();
         let m = &value["situations"]["situation1"]["methods"]["ICP-AUTO"];
         assert!(m["heading_rmse_deg"].is_null());

@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use crate::method::ordered_methods;
+use crate::method::Method;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
 use crate::report::breakdown::breakdown_sections;
 use crate::report::files::fmt_opt;
@@ -13,7 +13,7 @@ use crate::result::BenchmarkReport;
 use crate::thesis_tables::{thesis_row, thesis_situation};
 
 /// Metrics of every situation, in report order: (name, scans, method → metrics).
-pub(crate) type SituationMetrics = (String, usize, BTreeMap<String, MethodMetrics>);
+pub(crate) type SituationMetrics = (String, usize, BTreeMap<Method, MethodMetrics>);
 
 /// The text of `report.md`.
 pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetrics]) -> String {
@@ -63,11 +63,10 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetr
 fn summary_section(md: &mut String, metrics: &[SituationMetrics]) {
     let _ = writeln!(md, "## Summary\n");
     let names: Vec<&str> = metrics.iter().map(|(n, _, _)| n.as_str()).collect();
-    let methods = ordered_methods(
-        metrics
-            .iter()
-            .flat_map(|(_, _, m)| m.keys().map(String::as_str)),
-    );
+    let methods: std::collections::BTreeSet<Method> = metrics
+        .iter()
+        .flat_map(|(_, _, m)| m.keys().copied())
+        .collect();
     let _ = write!(md, "| Method |");
     for n in &names {
         let _ = write!(md, " {n} heading RMSE (°) / speed RMSE (m/s) |");
@@ -109,14 +108,13 @@ fn situation_section(
     md: &mut String,
     name: &str,
     scans: usize,
-    methods: &BTreeMap<String, MethodMetrics>,
+    methods: &BTreeMap<Method, MethodMetrics>,
 ) {
     let thesis = thesis_situation(name);
     let _ = writeln!(md, "## {name} ({scans} scans)\n");
     if let Some(t) = thesis {
         let _ = writeln!(md, "After thesis 4.4: {}.\n", t.description);
     }
-    let order = ordered_methods(methods.keys().map(String::as_str));
     let (heading_label, speed_label) =
         thesis.map_or(("–", "–"), |t| (t.heading_table, t.speed_table));
 
@@ -128,11 +126,8 @@ fn situation_section(
         md,
         "| Method | RMSE | ME | scored scans | coverage | Hess 2008 RMSE | Hess 2008 ME |\n|---|---|---|---|---|---|---|"
     );
-    for method in &order {
-        let Some(m) = methods.get(method) else {
-            continue;
-        };
-        let row = thesis.and_then(|t| thesis_row(&t.heading, method));
+    for (method, m) in methods {
+        let row = thesis.and_then(|t| thesis_row(&t.heading, *method));
         let _ = writeln!(
             md,
             "| {method} | {} | {} | {} | {:.3} | {} | {} |",
@@ -149,11 +144,8 @@ fn situation_section(
         md,
         "| Method | RMSE | ME | EPE | coverage | Hess 2008 RMSE | Hess 2008 ME |\n|---|---|---|---|---|---|---|"
     );
-    for method in &order {
-        let Some(m) = methods.get(method) else {
-            continue;
-        };
-        let row = thesis.and_then(|t| thesis_row(&t.speed, method));
+    for (method, m) in methods {
+        let row = thesis.and_then(|t| thesis_row(&t.speed, *method));
         let _ = writeln!(
             md,
             "| {method} | {} | {} | {} | {:.3} | {} | {} |",

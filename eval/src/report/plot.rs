@@ -12,7 +12,6 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
 use crate::error::EvalError;
-use crate::method::{method_slot, ordered_methods};
 use crate::metrics::wrap_angle_rad;
 use crate::result::SituationResult;
 
@@ -127,21 +126,21 @@ fn method_curves(
     situation: &SituationResult,
     value: impl Fn(usize, &crate::estimate::MotionEstimate) -> f64,
 ) -> Vec<Curve> {
-    ordered_methods(situation.methods.keys().map(String::as_str))
-        .into_iter()
-        .filter_map(|method| {
-            let estimates = situation.methods.get(&method)?;
+    situation
+        .methods
+        .iter()
+        .map(|(method, estimates)| {
             let points = estimates
                 .iter()
                 .enumerate()
                 .map(|(i, e)| e.as_ref().map(|e| (scan_of(situation, i), value(i, e))))
                 .filter(|p| p.is_none_or(|(_, v)| v.is_finite()))
                 .collect();
-            Some(Curve {
-                colour: PALETTE[method_slot(&method) % PALETTE.len()],
-                label: method,
+            Curve {
+                colour: PALETTE[method.slot() % PALETTE.len()],
+                label: method.name().to_owned(),
                 points,
-            })
+            }
         })
         .collect()
 }

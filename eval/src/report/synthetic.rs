@@ -7,6 +7,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::estimate::MotionEstimate;
+use crate::method::Method;
 use crate::progress::StageTiming;
 use crate::result::{BenchmarkReport, SituationResult, TruthAtScan};
 
@@ -36,11 +37,11 @@ pub(crate) fn synthetic_situation(name: &str, scans: usize, seed: u64) -> Situat
             .collect::<Vec<_>>()
     };
     let mut methods = BTreeMap::new();
-    methods.insert("KF".to_owned(), noisy(3.0, 0.4, &|k| k == 0));
-    methods.insert("ICP".to_owned(), noisy(12.0, 1.5, &|k| k == 0 || k == 7));
-    methods.insert("SPGP-HET-ALL".to_owned(), noisy(8.0, 0.8, &|k| k % 5 == 3));
-    methods.insert("KF-AUTO".to_owned(), noisy(4.0, 0.5, &|k| k < 3));
-    methods.insert("my-method".to_owned(), noisy(20.0, 2.0, &|_| false));
+    methods.insert(Method::Kf, noisy(3.0, 0.4, &|k| k == 0));
+    methods.insert(Method::Icp, noisy(12.0, 1.5, &|k| k == 0 || k == 7));
+    methods.insert(Method::SpgpHetAll, noisy(8.0, 0.8, &|k| k % 5 == 3));
+    methods.insert(Method::KfAuto, noisy(4.0, 0.5, &|k| k < 3));
+    methods.insert(Method::FullGpAll, noisy(20.0, 2.0, &|_| false));
     SituationResult {
         name: name.to_owned(),
         scans,

@@ -147,7 +147,7 @@ mod tests {
             .collect();
         assert_eq!(
             methods,
-            ["SPGP-HET-ALL", "KF", "ICP", "KF-AUTO", "my-method"]
+            ["SPGP-HET-ALL", "KF", "ICP", "KF-AUTO", "FULL-GP-ALL"]
         );
         assert!(lines.iter().skip(1).all(|l| l.split(',').count() == 11));
     }
@@ -186,7 +186,7 @@ mod tests {
         let mut report = synthetic_report();
         report.situations[1]
             .methods
-            .insert("KF".into(), vec![None; 3]);
+            .insert(crate::method::Method::Kf, vec![None; 3]);
         let err = write_report(&report, dir.path()).unwrap_err().to_string();
         assert!(err.contains("situation4") && err.contains("KF"), "{err}");
     }

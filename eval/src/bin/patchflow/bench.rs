@@ -255,7 +255,8 @@ fn notes(
 
 /// Prints one line per situation: heading and speed RMSE and coverage of the headline methods.
 fn print_headline(report: &patchflow_eval::BenchmarkReport) -> anyhow::Result<()> {
-    let methods = ["SPGP-HET-ALL", "SPGP-ALL", "KF", "ICP"];
+    use patchflow_eval::Method;
+    let methods = [Method::SpgpHetAll, Method::SpgpAll, Method::Kf, Method::Icp];
     println!(
         "\n{:<12} {}",
         "situation",
@@ -270,7 +271,7 @@ fn print_headline(report: &patchflow_eval::BenchmarkReport) -> anyhow::Result<()
     );
     for situation in &report.situations {
         let metrics = situation.metrics()?;
-        let cells = methods.map(|m| match metrics.get(m) {
+        let cells = methods.map(|m| match metrics.get(&m) {
             Some(x) => format!(
                 "{:>28}",
                 format!(
