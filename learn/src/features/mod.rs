@@ -4,6 +4,7 @@
 
 mod beam_counts;
 mod cluster;
+mod cluster_shape;
 mod csv;
 mod difference_map;
 mod gabor;
@@ -17,6 +18,7 @@ mod render;
 mod sampler;
 mod samples;
 mod sampling;
+mod scan_stream;
 mod slice;
 mod spread_kernel;
 mod sweep_features;
@@ -24,6 +26,7 @@ pub mod synthetic;
 mod top_n;
 
 pub use cluster::Clusters;
+pub use cluster_shape::{ClusterShape, MAX_OBJECT_LENGTH_M};
 pub use csv::{Alignment, META_COLUMNS};
 pub use difference_map::MapPair;
 pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
@@ -33,5 +36,6 @@ pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
 pub use render::{render_png, write_png};
 pub use samples::{Sample, SampleSet};
 pub use sampling::importance_sample;
+pub use scan_stream::{Scan, ScanStream};
 pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
-pub use sweep_features::{FeatureKind, SweepFeatures};
+pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};

@@ -1,10 +1,13 @@
 //! One sweep's motion features (thesis Chapter 2 end to end): the height slice, the reflection
 //! and difference maps, the clusters, and patches and Gabor responses on demand.
 
+use std::time::Instant;
+
 use patchflow_dataset::Sweep;
 use rayon::prelude::*;
 
 use crate::features::cluster::Clusters;
+use crate::features::cluster_shape::ClusterShape;
 use crate::features::difference_map::MapPair;
 use crate::features::gabor::{GABOR_FILTERS, GaborBank};
 use crate::features::grid::{GridMap, GridWindow};
@@ -54,26 +57,59 @@ pub struct SweepFeatures {
     clusters: Clusters,
     maps: MapPair,
     gabor: GaborBank,
+    timing: FeatureTiming,
+}
+
+/// What the feature pipeline of one scan cost, seconds of wall time.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FeatureTiming {
+    /// Height slice of the sweeps cut for this scan (both, or only the current one in a stream).
+    pub slice_secs: f64,
+    /// Reflection and difference maps (thesis 2.1), measured inside their parallel branch.
+    pub maps_secs: f64,
+    /// End points in the window and their single-link clusters (thesis 2.2.1), measured inside
+    /// their parallel branch.
+    pub clusters_secs: f64,
+    /// Maps and clusters together, as they run side by side.
+    pub maps_and_clusters_secs: f64,
 }
 
 impl SweepFeatures {
     /// Runs the per-sweep pipeline on two consecutive sweeps.
     pub fn compute(prev: &Sweep, curr: &Sweep, params: &FeatureParams) -> Result<Self> {
         params.validate()?;
+        let start = Instant::now();
         // 2.1.1: cut both sweeps to the height slice.
         let (prev_slice, curr_slice) = rayon::join(
             || HeightSlice::cut(prev, params),
             || HeightSlice::cut(curr, params),
         );
         let (prev_slice, curr_slice) = (prev_slice?, curr_slice?);
+        let slice_secs = start.elapsed().as_secs_f64();
+        let mut features = Self::from_slices(&prev_slice, &curr_slice, params)?;
+        features.set_slice_secs(slice_secs);
+        Ok(features)
+    }
+
+    /// The pipeline after the height slice, on both sweeps' slices (a [`ScanStream`](crate::ScanStream)
+    /// cuts each sweep once and hands its slice on to the next scan).
+    pub fn from_slices(
+        prev_slice: &HeightSlice,
+        curr_slice: &HeightSlice,
+        params: &FeatureParams,
+    ) -> Result<Self> {
+        params.validate()?;
+        let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
         // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
-        let (maps, (points, clusters)) = rayon::join(
-            || MapPair::build(&prev_slice, &curr_slice, params),
+        let ((maps, maps_secs), (points, clusters, clusters_secs)) = rayon::join(
+            || timed(|| MapPair::build(prev_slice, curr_slice, params)),
             || {
-                let points = points_in_window(&curr_slice, params);
+                let start = Instant::now();
+                let points = points_in_window(curr_slice, params);
                 let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
-                (points, Clusters::single_link(&xy, params.cluster_gap_m))
+                let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
+                (points, clusters, start.elapsed().as_secs_f64())
             },
         );
         Ok(Self {
@@ -82,6 +118,12 @@ impl SweepFeatures {
             clusters,
             maps,
             gabor: GaborBank::new(&params.gabor, params.cell_m),
+            timing: FeatureTiming {
+                slice_secs: 0.0,
+                maps_secs,
+                clusters_secs,
+                maps_and_clusters_secs: start.elapsed().as_secs_f64(),
+            },
         })
     }
 
@@ -99,6 +141,7 @@ impl SweepFeatures {
             clusters: Clusters::default(),
             maps,
             gabor,
+            timing: FeatureTiming::default(),
         }
     }
 
@@ -125,6 +168,35 @@ impl SweepFeatures {
     /// The single-link clusters of the points (ids follow the smallest member).
     pub fn clusters(&self) -> &Clusters {
         &self.clusters
+    }
+
+    /// Ids of the clusters that can be one object (thesis 3.1, step 1: "each cluster is taken as
+    /// a dynamic object hypothesis"), leaving out those longer than any road user
+    /// ([`ClusterShape::is_object_sized`]): building fronts, walls and fences.
+    pub fn object_hypotheses(&self) -> Vec<usize> {
+        (0..self.clusters.len())
+            .filter(|&c| self.cluster_shape(c).is_object_sized())
+            .collect()
+    }
+
+    /// Extent of cluster `c` along its principal axes.
+    pub fn cluster_shape(&self, c: usize) -> ClusterShape {
+        let members = self.clusters.members(c);
+        ClusterShape::of(
+            members
+                .iter()
+                .map(|&i| [self.points[i].x_m, self.points[i].y_m]),
+        )
+    }
+
+    /// What computing these features cost.
+    pub fn timing(&self) -> FeatureTiming {
+        self.timing
+    }
+
+    /// Records the time the height slice took where it was cut (a stream cuts it beforehand).
+    pub(crate) fn set_slice_secs(&mut self, slice_secs: f64) {
+        self.timing.slice_secs = slice_secs;
     }
 
     /// Cluster id of point `i`.
@@ -181,6 +253,13 @@ impl SweepFeatures {
             FeatureKind::Gabor => self.gabor(patch).to_vec(),
         }
     }
+}
+
+/// Runs `work` and measures its wall time in seconds.
+fn timed<T>(work: impl FnOnce() -> T) -> (T, f64) {
+    let start = Instant::now();
+    let value = work();
+    (value, start.elapsed().as_secs_f64())
 }
 
 /// The sliced end points inside the map window centred on the current sensor.
