@@ -29,7 +29,8 @@ pub struct ClusterEstimate {
 
 /// One point's own prediction: the heading its patch votes for (its sin and cos prediction
 /// turned into the world frame) and the speed its patch shows when aligned to the cluster's
-/// merged (ALL) heading, as thesis 3.1.1 aligns speed patches.
+/// merged (ALL) heading, as thesis 3.1.1 aligns speed patches. In the whole-scan step the points
+/// of one map cell share the prediction at their mean (see `CellSamples`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointMotion {
     /// Heading, world frame, CCW from +x.
@@ -63,7 +64,9 @@ pub struct PredictionTiming {
     pub merge_secs: f64,
     /// Clusters estimated.
     pub clusters: usize,
-    /// Points whose heading was predicted.
+    /// Positions predicted at: occupied map cells in the whole-scan step, points for one cluster.
+    pub rows: usize,
+    /// Sliced points the clusters hold.
     pub points: usize,
 }
 

@@ -22,7 +22,7 @@ const CHUNK_ROWS: usize = 128;
 pub(super) struct ClusterPredictions {
     /// Merged estimates, one per cluster.
     pub estimates: Vec<ClusterEstimate>,
-    /// Per cluster, per member: the point's own prediction.
+    /// Per cluster, per position: the prediction there.
     pub points: Vec<Vec<Option<PointMotion>>>,
     /// What it cost.
     pub timing: PredictionTiming,
@@ -77,23 +77,26 @@ fn gaussians(prediction: &GpPrediction) -> impl Iterator<Item = Gaussian> + '_ {
 }
 
 impl MotionEstimator {
-    /// Heading and speed of every cluster given by its members (indices of `features.points()`).
+    /// Heading and speed of every cluster given by the world positions it is predicted at (its
+    /// points, or one sample per map cell).
     pub(super) fn predict_clusters(
         &self,
         features: &SweepFeatures,
-        clusters: &[&[usize]],
+        clusters: &[&[[f64; 2]]],
     ) -> Result<ClusterPredictions> {
         let mut timing = PredictionTiming {
             clusters: clusters.len(),
-            points: clusters.iter().map(|m| m.len()).sum(),
+            rows: clusters.iter().map(|m| m.len()).sum(),
             ..PredictionTiming::default()
         };
         // 3a: heading patches aligned to each point's bearing (thesis 2.2.2).
         let chunks = row_chunks(clusters.iter().map(|m| m.len()));
         let x = timed(&mut timing.patches_secs, || {
             self.chunk_inputs(features, &chunks, |c| {
-                let members = &clusters[c.job][c.start..c.end];
-                members.iter().map(|&i| features.heading_patch(i)).collect()
+                let rows = &clusters[c.job][c.start..c.end];
+                rows.iter()
+                    .map(|&xy| features.patch_at(xy, features.bearing_at(xy)))
+                    .collect()
             })
         })?;
         // 3b: per-point sin and cos of the heading relative to the bearing (thesis 3.1.1).
@@ -108,12 +111,11 @@ impl MotionEstimator {
                 .iter()
                 .zip(&predictions)
                 .map(|(c, (sin, cos))| {
-                    let members = &clusters[c.job][c.start..c.end];
-                    members
-                        .iter()
+                    let rows = &clusters[c.job][c.start..c.end];
+                    rows.iter()
                         .zip(gaussians(sin).zip(gaussians(cos)))
-                        .map(|(&i, (s, c))| {
-                            HeadingVote::from_relative(features.bearing_rad(i), s, c)
+                        .map(|(&xy, (s, c))| {
+                            HeadingVote::from_relative(features.bearing_at(xy), s, c)
                         })
                         .collect()
                 })
@@ -136,10 +138,9 @@ impl MotionEstimator {
         let speed_x = timed(&mut timing.patches_secs, || {
             self.chunk_inputs(features, &speed_chunks, |c| {
                 let (k, heading_rad) = jobs[c.job];
-                let members = &clusters[k][c.start..c.end];
-                members
-                    .iter()
-                    .map(|&i| features.speed_patch(i, heading_rad))
+                let rows = &clusters[k][c.start..c.end];
+                rows.iter()
+                    .map(|&xy| features.patch_at(xy, heading_rad))
                     .collect()
             })
         })?;

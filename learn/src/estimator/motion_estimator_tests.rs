@@ -99,37 +99,40 @@ fn quick_estimator(dir: &std::path::Path) -> MotionEstimator {
     MotionEstimator::train(&dataset, &params).unwrap()
 }
 
-/// Thesis 3.1 steps 3-4 on one cluster with one GP call per step: the reference the batched,
-/// chunked scan step must reproduce exactly.
+/// Thesis 3.1 steps 3-4 on one cluster with one GP call per step, predicted at `positions`: the
+/// reference the batched, chunked predictions must reproduce exactly.
 fn reference_estimate(
     estimator: &MotionEstimator,
     features: &SweepFeatures,
-    members: &[usize],
+    positions: &[[f64; 2]],
 ) -> ClusterEstimate {
-    let patches: Vec<_> = members.iter().map(|&i| features.heading_patch(i)).collect();
+    let patches: Vec<_> = positions
+        .iter()
+        .map(|&xy| features.patch_at(xy, features.bearing_at(xy)))
+        .collect();
     let x = estimator.feature_matrix(features, &patches).unwrap();
     let [sin_gp, cos_gp, speed_gp] = estimator.gps();
     let (sin, cos) = (sin_gp.predict(&x).unwrap(), cos_gp.predict(&x).unwrap());
-    let votes: Vec<HeadingVote> = members
+    let votes: Vec<HeadingVote> = positions
         .iter()
         .enumerate()
-        .map(|(k, &i)| {
+        .map(|(k, &xy)| {
             let g = |p: &crate::GpPrediction| Gaussian {
                 mean: p.mean[k],
                 var: p.var_y[k],
             };
-            HeadingVote::from_relative(features.bearing_rad(i), g(&sin), g(&cos))
+            HeadingVote::from_relative(features.bearing_at(xy), g(&sin), g(&cos))
         })
         .collect();
     let along = |rule| {
         let heading = merge_heading(&votes, rule)?;
-        let patches: Vec<_> = members
+        let patches: Vec<_> = positions
             .iter()
-            .map(|&i| features.speed_patch(i, heading.heading_rad))
+            .map(|&xy| features.patch_at(xy, heading.heading_rad))
             .collect();
         let x = estimator.feature_matrix(features, &patches).unwrap();
         let speed = speed_gp.predict(&x).unwrap();
-        let predictions: Vec<Gaussian> = (0..members.len())
+        let predictions: Vec<Gaussian> = (0..positions.len())
             .map(|k| Gaussian {
                 mean: speed.mean[k],
                 var: speed.var_y[k],
@@ -150,7 +153,7 @@ fn reference_estimate(
 }
 
 #[test]
-fn the_scan_step_gives_every_object_cluster_exactly_its_single_call_estimate() {
+fn batched_chunked_predictions_equal_one_gp_call_per_step_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
     let estimator = quick_estimator(dir.path());
     // A close car (hundreds of points: several row chunks), a far one, and a long wall.
@@ -175,15 +178,24 @@ fn the_scan_step_gives_every_object_cluster_exactly_its_single_call_estimate() {
     for c in 0..3 {
         let members = features.clusters().members(c);
         let wall = features.points()[members[0]].y_m < -10.0;
+        // Every point, as for the thesis' hand-labelled target (several row chunks for the close car).
+        let points: Vec<[f64; 2]> = members
+            .iter()
+            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
+            .collect();
+        let whole = estimator.estimate_cluster(features, members).unwrap();
+        assert_eq!(whole, reference_estimate(&estimator, features, &points));
+        // One sample per occupied cell in the whole-scan step; walls are no hypotheses.
         match scan.motion.clusters[c] {
             None => assert!(wall, "cluster {c} was left out"),
             Some(estimate) => {
                 assert!(!wall, "the wall was estimated");
                 assert!(estimate.all.is_some());
-                assert_eq!(estimate, reference_estimate(&estimator, features, members));
+                let cells = features.cell_samples(members);
+                assert!(cells.len() < members.len());
                 assert_eq!(
                     estimate,
-                    estimator.estimate_cluster(features, members).unwrap()
+                    reference_estimate(&estimator, features, &cells.positions)
                 );
             }
         }
@@ -199,8 +211,15 @@ fn every_point_of_an_estimated_cluster_gets_its_own_heading_and_speed() {
     let scan = estimator.estimate_scan(&sweeps[0], &sweeps[1]).unwrap();
     let members = scan.features.clusters().members(0);
     assert!(members.len() > 10);
-    for &i in members {
+    let cells = scan.features.cell_samples(members);
+    for (&i, &cell) in members.iter().zip(&cells.sample_of_member) {
         let point = scan.motion.points[i].unwrap();
+        let first_of_cell = cells
+            .sample_of_member
+            .iter()
+            .position(|&c| c == cell)
+            .unwrap();
+        assert_eq!(Some(point), scan.motion.points[members[first_of_cell]]);
         assert!(
             point.heading_var > 0.0 && point.speed_var > 0.0,
             "{point:?}"

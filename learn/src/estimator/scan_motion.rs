@@ -6,7 +6,7 @@ use std::time::Instant;
 use patchflow_dataset::Sweep;
 
 use super::cluster_estimate::{ClusterEstimate, ScanEstimate, ScanMotion};
-use crate::{MotionEstimator, Result, SweepFeatures};
+use crate::{CellSamples, MotionEstimator, Result, SweepFeatures};
 
 impl MotionEstimator {
     /// Thesis Algorithm 3.1 on one scan given the previous one. To process a sequence in order,
@@ -38,32 +38,39 @@ impl MotionEstimator {
 
     /// Steps 3 and 4 of thesis Algorithm 3.1 on features already computed (with this model's
     /// feature parameters): every cluster that can be one object gets a heading and a speed
-    /// under both merge rules, and each of its points its own prediction.
+    /// under both merge rules, and each of its points the prediction of its map cell.
     pub fn estimate_features(&self, features: &SweepFeatures) -> Result<ScanMotion> {
         let start = Instant::now();
-        // Step 1's object hypotheses: the clusters no longer than a road user.
+        // Step 1's object hypotheses: the clusters no longer than a road user, each predicted
+        // once per occupied map cell (the patches' resolution).
         let hypotheses = features.object_hypotheses();
-        let members: Vec<&[usize]> = hypotheses
+        let samples: Vec<CellSamples> = hypotheses
             .iter()
-            .map(|&c| features.clusters().members(c))
+            .map(|&c| features.cell_samples(features.clusters().members(c)))
             .collect();
+        let positions: Vec<&[[f64; 2]]> = samples.iter().map(|s| &s.positions[..]).collect();
         let hypotheses_secs = start.elapsed().as_secs_f64();
         // Steps 3 and 4 for all of them at once.
-        let predicted = self.predict_clusters(features, &members)?;
+        let predicted = self.predict_clusters(features, &positions)?;
         let mut clusters = vec![None; features.clusters().len()];
         let mut points = vec![None; features.len()];
-        for ((&c, members), (estimate, motions)) in hypotheses
+        for ((&c, samples), (estimate, motions)) in hypotheses
             .iter()
-            .zip(&members)
+            .zip(&samples)
             .zip(predicted.estimates.into_iter().zip(predicted.points))
         {
             clusters[c] = Some(estimate);
-            for (&i, motion) in members.iter().zip(motions) {
-                points[i] = motion;
+            let members = features.clusters().members(c);
+            for (&i, &sample) in members.iter().zip(&samples.sample_of_member) {
+                points[i] = motions[sample];
             }
         }
         let mut timing = predicted.timing;
         timing.hypotheses_secs = hypotheses_secs;
+        timing.points = hypotheses
+            .iter()
+            .map(|&c| features.clusters().members(c).len())
+            .sum();
         Ok(ScanMotion {
             clusters,
             points,
@@ -71,8 +78,8 @@ impl MotionEstimator {
         })
     }
 
-    /// Steps 3 and 4 for one cluster, whatever its size, under both merge rules. `members` index
-    /// `features.points()`.
+    /// Steps 3 and 4 for one cluster under both merge rules, predicted at every one of its
+    /// points as thesis 4.4 does for its hand-labelled target. `members` index `features.points()`.
     pub fn estimate_cluster(
         &self,
         features: &SweepFeatures,
@@ -81,7 +88,11 @@ impl MotionEstimator {
         if members.is_empty() {
             return Ok(ClusterEstimate::default());
         }
-        let predicted = self.predict_clusters(features, &[members])?;
+        let positions: Vec<[f64; 2]> = members
+            .iter()
+            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
+            .collect();
+        let predicted = self.predict_clusters(features, &[&positions])?;
         Ok(predicted.estimates.into_iter().next().unwrap_or_default())
     }
 }

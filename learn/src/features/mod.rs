@@ -3,6 +3,7 @@
 //! sampled training samples of thesis 3.1.1-3.1.2.
 
 mod beam_counts;
+mod cell_samples;
 mod cluster;
 mod cluster_shape;
 mod csv;
@@ -25,6 +26,7 @@ mod sweep_features;
 pub mod synthetic;
 mod top_n;
 
+pub use cell_samples::CellSamples;
 pub use cluster::Clusters;
 pub use cluster_shape::{ClusterShape, MAX_OBJECT_LENGTH_M};
 pub use csv::{Alignment, META_COLUMNS};

@@ -6,6 +6,7 @@ use std::time::Instant;
 use patchflow_dataset::Sweep;
 use rayon::prelude::*;
 
+use crate::features::cell_samples::CellSamples;
 use crate::features::cluster::Clusters;
 use crate::features::cluster_shape::ClusterShape;
 use crate::features::difference_map::MapPair;
@@ -217,13 +218,29 @@ impl SweepFeatures {
     /// Bearing of sensor → point `i` in the world frame, counter-clockwise from +x.
     pub fn bearing_rad(&self, i: usize) -> f64 {
         let p = &self.points[i];
-        (p.y_m - self.sensor_xy[1]).atan2(p.x_m - self.sensor_xy[0])
+        self.bearing_at([p.x_m, p.y_m])
+    }
+
+    /// Bearing of sensor → a world position, counter-clockwise from +x.
+    pub fn bearing_at(&self, xy: [f64; 2]) -> f64 {
+        (xy[1] - self.sensor_xy[1]).atan2(xy[0] - self.sensor_xy[0])
     }
 
     /// Patch of point `i` rotated to the axis `axis_rad` (thesis 2.2.2).
     pub fn patch_along(&self, i: usize, axis_rad: f64) -> Patch {
         let p = &self.points[i];
-        Patch::extract(&self.maps, [p.x_m, p.y_m], axis_rad)
+        self.patch_at([p.x_m, p.y_m], axis_rad)
+    }
+
+    /// Patch centred on a world position, rotated to the axis `axis_rad` (thesis 2.2.2).
+    pub fn patch_at(&self, xy: [f64; 2], axis_rad: f64) -> Patch {
+        Patch::extract(&self.maps, xy, axis_rad)
+    }
+
+    /// The members of a cluster grouped by map cell, one sample at the mean of each cell's points
+    /// (see [`CellSamples`]).
+    pub fn cell_samples(&self, members: &[usize]) -> CellSamples {
+        CellSamples::group(&self.points, members, self.maps.reflection.window())
     }
 
     /// Heading patch: aligned to the observation direction sensor → point.
