@@ -16,10 +16,11 @@ use std::collections::BTreeMap;
 use crate::cluster_association::{CentroidAssociationParams, CentroidAssociator};
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
-use crate::icp::{IcpParams, icp_motion_estimate};
+use crate::icp::IcpParams;
 use crate::kalman::{ConstantVelocityKalman, KalmanParams};
 use crate::method::Method;
 use crate::observation::ScanObservation;
+use crate::rigid_motion::icp_motion_estimate;
 use crate::tracker::{MultiTargetTracker, TrackStatus, TrackerParams};
 
 /// The four baselines.

@@ -17,6 +17,7 @@ mod progress;
 mod report;
 mod result;
 mod rigid_fit;
+mod rigid_motion;
 mod thesis_tables;
 mod tracker;
 
@@ -31,7 +32,7 @@ pub use cluster_association::{
 pub use cross_validation::{CvParams, cross_validate, cross_validate_samples};
 pub use error::EvalError;
 pub use estimate::MotionEstimate;
-pub use icp::{IcpAlignment, IcpParams, align_icp, icp_motion_estimate};
+pub use icp::{IcpAlignment, IcpParams, align_icp};
 pub use kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
 pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{
@@ -47,6 +48,7 @@ pub use report::{
 };
 pub use result::{BenchmarkReport, SituationResult, TruthAtScan};
 pub use rigid_fit::{fit_rigid_closed_form, fit_rigid_svd};
+pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion};
 pub use thesis_tables::{
     THESIS_CV_HEADING_LOW_VAR_RMSE_DEG, THESIS_CV_HEADING_RMSE_DEG,
     THESIS_CV_SPEED_LOW_VAR_RMSE_MPS, THESIS_CV_SPEED_RMSE_MPS, THESIS_SITUATIONS, ThesisRow,
