@@ -160,12 +160,23 @@ fn evaluate_scan(
         estimate_secs: start.elapsed().as_secs_f64() / methods.len().max(1) as f64,
         target_points: target_points as f64,
     };
+    let mut actors = std::collections::BTreeMap::new();
+    if let Some(c) = target_cluster {
+        actors.insert(
+            target.id,
+            crate::observation::ActorCluster {
+                cluster: c,
+                points: target_points,
+            },
+        );
+    }
     let observation = ScanObservation {
         scan: index,
         stamp_secs: current.stamp_secs,
         sensor_xy_world: features.sensor_xy(),
         clusters: cluster_observations(&features),
-        target_cluster,
+        actors,
+        target_actor: Some(target.id),
     };
     Ok(ScanOutcome {
         observation,

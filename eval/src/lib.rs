@@ -1,6 +1,7 @@
 //! patchflow's evaluation: ICP and constant-velocity Kalman baselines (thesis 3.2), metrics, the
 //! five-situation benchmark (thesis 4.4), cross-validation tables (thesis 4.3), reports and plots.
 
+mod baseline_step;
 mod baselines;
 mod benchmark;
 mod cluster_association;
@@ -21,6 +22,7 @@ mod rigid_motion;
 mod thesis_tables;
 mod tracker;
 
+pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
 pub use benchmark::{
     GpMethod, SituationRun, evaluate_dataset, evaluate_situation, method_prefix, scans_to_evaluate,
@@ -39,7 +41,7 @@ pub use metrics::{
     MIN_SCORED_SPEED_MPS, MethodMetrics, heading_error_deg, mean_abs, rmse, score_method,
     wrap_angle_rad,
 };
-pub use observation::{ClusterObservation, ScanObservation, centroid_of};
+pub use observation::{ActorCluster, ClusterObservation, ScanObservation, centroid_of};
 pub use perception_timing::PerceptionTiming;
 pub use progress::{StageTimer, StageTiming, progress_bar, spinner};
 pub use report::{
