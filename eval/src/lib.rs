@@ -19,6 +19,8 @@ mod report;
 mod result;
 mod rigid_fit;
 mod rigid_motion;
+mod scene_flow;
+mod scene_point;
 mod thesis_tables;
 mod tracker;
 
@@ -51,6 +53,10 @@ pub use report::{
 pub use result::{BenchmarkReport, SituationResult, TruthAtScan};
 pub use rigid_fit::{fit_rigid_closed_form, fit_rigid_svd};
 pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion};
+pub use scene_flow::{
+    DYNAMIC_SPEED_MPS, SPEED_BUCKETS, SceneFlowMetrics, SceneFlowTally, end_point_error,
+};
+pub use scene_point::{FlowClass, ScenePoints};
 pub use thesis_tables::{
     THESIS_CV_HEADING_LOW_VAR_RMSE_DEG, THESIS_CV_HEADING_RMSE_DEG,
     THESIS_CV_SPEED_LOW_VAR_RMSE_MPS, THESIS_CV_SPEED_RMSE_MPS, THESIS_SITUATIONS, ThesisRow,
