@@ -12,6 +12,7 @@ mod icp;
 mod kalman;
 mod method;
 mod metrics;
+mod objects;
 mod observation;
 mod perception_timing;
 mod progress;
@@ -42,6 +43,10 @@ pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{
     MIN_SCORED_SPEED_MPS, MethodMetrics, heading_error_deg, mean_abs, rmse, score_method,
     wrap_angle_rad,
+};
+pub use objects::{
+    MIN_OBJECT_POINTS, ObjectGroup, ObjectMetrics, ObjectScan, POINT_BINS, RANGE_BINS_M,
+    score_objects,
 };
 pub use observation::{ActorCluster, ClusterObservation, ScanObservation, centroid_of};
 pub use perception_timing::PerceptionTiming;
