@@ -3,7 +3,7 @@
 
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
-use patchflow_eval::{BaselineParams, GpMethod, evaluate_dataset, method_prefix, write_report};
+use patchflow_eval::{BaselineParams, evaluate_dataset, write_report};
 use patchflow_learn::{
     EstimatorParams, FeatureKind, FeatureParams, GpKind, MotionEstimator, SampleSet,
 };
@@ -39,17 +39,15 @@ fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
             MotionEstimator::fit_samples(&set, &params).unwrap()
         })
         .collect();
-    let methods: Vec<GpMethod<'_>> = estimators
-        .iter()
-        .map(|e| GpMethod {
-            prefix: method_prefix(e.gp_kind()),
-            estimator: e,
-        })
-        .collect();
-    let (report, perception) =
-        evaluate_dataset(&dataset, &methods, &BaselineParams::default(), &|| {}).unwrap();
-    assert!(perception.maps_secs > 0.0 && perception.estimate_secs > 0.0);
-    assert!(perception.target_points > 0.0);
+    let report =
+        evaluate_dataset(&dataset, &estimators, &BaselineParams::default(), &|| {}).unwrap();
+    let timing = &report.scenes[0].timing;
+    assert!(
+        timing
+            .iter()
+            .all(|t| t.maps_secs > 0.0 && t.estimators.len() == 2)
+    );
+    assert!(timing.iter().any(|t| t.target_points > 0));
     let out = dir.path().join("report");
     let files = write_report(&report, &out).unwrap();
 

@@ -232,7 +232,8 @@ mod tests {
 
     #[test]
     fn baseline_estimates_score_near_zero_error_on_a_clean_constant_velocity_target() {
-        use crate::result::{SituationResult, TruthAtScan};
+        use crate::result::SituationResult;
+        use crate::truth_at_scan::TruthAtScan;
         let scans = situation(30);
         let situation = SituationResult {
             name: "clean".into(),

@@ -3,9 +3,9 @@
 
 mod baseline_step;
 mod baselines;
-mod benchmark;
 mod cluster_association;
 mod cross_validation;
+mod dataset_evaluation;
 mod error;
 mod estimate;
 mod icp;
@@ -14,27 +14,28 @@ mod method;
 mod metrics;
 mod objects;
 mod observation;
+mod perception_summary;
 mod perception_timing;
 mod progress;
 mod report;
 mod result;
 mod rigid_fit;
 mod rigid_motion;
+mod scan_scoring;
+mod scene_evaluation;
 mod scene_flow;
 mod scene_point;
 mod thesis_tables;
 mod tracker;
+mod truth_at_scan;
 
 pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
-pub use benchmark::{
-    GpMethod, SituationRun, evaluate_dataset, evaluate_situation, method_prefix, scans_to_evaluate,
-    situation_names,
-};
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
 };
 pub use cross_validation::{CvParams, cross_validate, cross_validate_samples};
+pub use dataset_evaluation::{evaluate_dataset, scans_to_evaluate, sequences_to_evaluate};
 pub use error::EvalError;
 pub use estimate::MotionEstimate;
 pub use icp::{IcpAlignment, IcpParams, align_icp};
@@ -49,15 +50,17 @@ pub use objects::{
     score_objects,
 };
 pub use observation::{ActorCluster, ClusterObservation, ScanObservation, centroid_of};
-pub use perception_timing::PerceptionTiming;
+pub use perception_summary::{PerceptionSummary, STAGES, StageOf};
+pub use perception_timing::{ScanTiming, Spread, StepTiming};
 pub use progress::{StageTimer, StageTiming, progress_bar, spinner};
 pub use report::{
     CvFeature, CvGp, CvReport, CvRow, ReportFiles, metrics_json, metrics_json_value, plot_heading,
     plot_speed, write_cv_report, write_report,
 };
-pub use result::{BenchmarkReport, SituationResult, TruthAtScan};
+pub use result::{BenchmarkReport, SceneResult, SituationResult};
 pub use rigid_fit::{fit_rigid_closed_form, fit_rigid_svd};
 pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion};
+pub use scene_evaluation::{SequenceRun, evaluate_sequence};
 pub use scene_flow::{
     DYNAMIC_SPEED_MPS, SPEED_BUCKETS, SceneFlowMetrics, SceneFlowTally, end_point_error,
 };
@@ -68,3 +71,4 @@ pub use thesis_tables::{
     ThesisSituation, thesis_row, thesis_situation,
 };
 pub use tracker::{MultiTargetTracker, Track, TrackStatus, TrackerParams};
+pub use truth_at_scan::TruthAtScan;

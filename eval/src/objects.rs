@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 use crate::estimate::MotionEstimate;
 use crate::method::Method;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
-use crate::result::TruthAtScan;
+use crate::truth_at_scan::TruthAtScan;
 
 /// An actor is scored at a scan when at least this many of its points lie in the height slice
 /// inside the map window: fewer carry no usable patch, centroid or shape.

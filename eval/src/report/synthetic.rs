@@ -9,7 +9,8 @@ use rand_chacha::ChaCha8Rng;
 use crate::estimate::MotionEstimate;
 use crate::method::Method;
 use crate::progress::StageTiming;
-use crate::result::{BenchmarkReport, SituationResult, TruthAtScan};
+use crate::result::{BenchmarkReport, SituationResult};
+use crate::truth_at_scan::TruthAtScan;
 
 /// A situation of `scans` scans: heading turns from 150° through 180° to −140°, speed 4-8 m/s
 /// (and 0.3 m/s, unscored for heading, in the first two scans).
@@ -70,5 +71,6 @@ pub(crate) fn synthetic_report() -> BenchmarkReport {
         ],
         seed: Some(7),
         cv: None,
+        scenes: Vec::new(),
     }
 }

@@ -7,12 +7,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::{CvParams, StageTimer, method_prefix, write_cv_report, write_report};
+use patchflow_eval::{CvParams, StageTimer, write_cv_report, write_report};
 use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 use crate::cv::{collect_samples, cv_with_samples};
-use crate::evaluate::{evaluate_with_bar, gp_methods};
+use crate::evaluate::evaluate_with_bar;
 
 /// Arguments of `patchflow bench`.
 #[derive(Debug, clap::Args)]
@@ -122,20 +122,22 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     })?;
 
     // 5. Every method on every situation (thesis 4.4).
-    let methods = gp_methods(&estimators)?;
-    let (mut report, perception) = stage(&mut timer, "evaluate situations", || {
-        evaluate_with_bar(&situations, &methods)
+    let mut report = stage(&mut timer, "evaluate situations", || {
+        evaluate_with_bar(&situations, &estimators)
     })?;
+    let perception = patchflow_eval::PerceptionSummary::of_scenes(&report.scenes);
 
     // 6. The report.
     report.seed = Some(SEED);
-    report.notes = notes(&plan, &estimators, &perception, args.quick);
+    report.notes = notes(&plan, &estimators, args.quick);
     report.cv = Some(cv.clone());
     report.timings = timer.timings().to_vec();
     let files = write_report(&report, &args.out)?;
     write_cv_report(&cv, &args.out)?;
     print_headline(&report)?;
-    println!("\nperception: {}", perception.summary());
+    if let Some(all) = perception.last() {
+        println!("\nperception: {}", all.line());
+    }
     println!("report: {}", files.report_md.display());
     Ok(())
 }
@@ -202,12 +204,7 @@ fn truncate(set: &SampleSet, n: usize) -> SampleSet {
     }
 }
 
-fn notes(
-    plan: &Plan,
-    estimators: &[MotionEstimator],
-    perception: &patchflow_eval::PerceptionTiming,
-    quick: bool,
-) -> Vec<String> {
+fn notes(plan: &Plan, estimators: &[MotionEstimator], quick: bool) -> Vec<String> {
     let mut notes = vec![format!(
         "{}Training tracks: {}. {} importance-sampled samples and their mirror images across the line of sight ({} rows per GP), {} pseudo-inputs, at most {} optimiser iterations per GP, seed {SEED}. Training speed patches are aligned to the true heading plus a Gaussian error of {}° (the error of an estimated heading; thesis: exact heading).",
         if quick { "Quick run (`--quick`). " } else { "" },
@@ -218,10 +215,6 @@ fn notes(
         plan.max_iters,
         patchflow_learn::FeatureParams::default().speed_jitter_deg
     )];
-    notes.push(format!(
-        "Perception: {}; timed per scan while the scans run in parallel on the machine's cores, so about one core per scan (SPEC §8 target: under 50 ms on 2 cores).",
-        perception.summary()
-    ));
     notes.push(
         "Why training differs from the thesis (ARCHITECTURE.md has the measurements that found it): at run time speed patches follow the estimated heading, and a speed GP trained only on exactly aligned patches read a car whose merged heading was 30-60° off as nearly still; and right-hand traffic puts most drawn samples on one side of the line of sight, which the GPs learned as a prior that misreads a target crossing from the other side. `patchflow train --thesis-training` trains without either addition."
             .to_owned(),
@@ -239,7 +232,7 @@ fn notes(
             let r = gp.fit_report();
             notes.push(format!(
                 "{} {target}: n={} d={} m={}, {} evaluations in {:.1} s, NLML {:.2} ({}).",
-                method_prefix(e.gp_kind()),
+                e.gp_kind().name().to_uppercase(),
                 r.n,
                 r.d,
                 r.m,
