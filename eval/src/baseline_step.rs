@@ -12,6 +12,8 @@
 
 use std::collections::BTreeMap;
 
+use rayon::prelude::*;
+
 use crate::baselines::BaselineParams;
 use crate::cluster_association::CentroidAssociator;
 use crate::error::EvalError;
@@ -179,22 +181,21 @@ impl BaselineTrackers {
                     .map(ClusterFlow::Uniform)
             })
             .collect();
-        // ICP-AUTO: ICP between each wanted cluster and the cluster it was linked to.
+        // ICP-AUTO: ICP between each wanted cluster and the cluster it was linked to, the
+        // clusters in parallel (each alignment is independent of the others).
         let links = self.associator.step(&scan).map_err(label)?;
+        let previous = self.previous.as_ref();
+        let icp_params = self.params.icp;
         let icp_auto = (0..n)
+            .into_par_iter()
             .map(|c| {
-                let (previous, dt) = (self.previous.as_ref()?, dt?);
+                let (previous, dt) = (previous?, dt?);
                 if !icp_wanted.get(c).copied().unwrap_or(false) {
                     return None;
                 }
                 let before = &previous.clusters.get((*links.get(c)?)?)?.points_xy_world;
-                icp_rigid_motion(
-                    before,
-                    &scan.clusters[c].points_xy_world,
-                    dt,
-                    &self.params.icp,
-                )
-                .map(ClusterFlow::Rigid)
+                icp_rigid_motion(before, &scan.clusters[c].points_xy_world, dt, &icp_params)
+                    .map(ClusterFlow::Rigid)
             })
             .collect();
         out.clusters.insert(Method::Kf, oracle_clusters(&kf, &scan));

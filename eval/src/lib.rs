@@ -4,6 +4,7 @@
 mod baseline_step;
 mod baselines;
 mod cluster_association;
+mod cpu_time;
 mod cross_validation;
 mod dataset_evaluation;
 mod error;
@@ -14,6 +15,7 @@ mod method;
 mod metrics;
 mod objects;
 mod observation;
+mod oracle;
 mod perception_summary;
 mod perception_timing;
 mod progress;
@@ -34,6 +36,7 @@ pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_basel
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
 };
+pub use cpu_time::process_cpu_secs;
 pub use cross_validation::{CvParams, cross_validate, cross_validate_samples};
 pub use dataset_evaluation::{evaluate_dataset, scans_to_evaluate, sequences_to_evaluate};
 pub use error::EvalError;

@@ -43,6 +43,8 @@ pub struct PerceptionSummary {
     pub stages: Vec<(String, Spread)>,
     /// The whole scan for one estimator (features plus the mean estimator's step).
     pub one_estimator: Spread,
+    /// CPU time of the whole scan, all threads, when the system reports it.
+    pub whole_scan_cpu: Option<Spread>,
     /// The baselines over every cluster.
     pub baselines: Spread,
     /// Median map-cell samples the first estimator predicted at.
@@ -79,6 +81,12 @@ impl PerceptionSummary {
                 .map(|(label, f)| ((*label).to_owned(), spread(f)))
                 .collect(),
             one_estimator: spread(&ScanTiming::one_estimator_secs),
+            whole_scan_cpu: scans
+                .iter()
+                .map(|t| t.whole_scan_cpu_secs)
+                .collect::<Option<Vec<f64>>>()
+                .filter(|v| !v.is_empty())
+                .map(|v| Spread::of(v.into_iter())),
             baselines: spread(&|t| t.baselines_secs),
             median_samples: first_step(|s| s.samples),
             median_points: first_step(|s| s.points),
@@ -107,8 +115,15 @@ impl PerceptionSummary {
     /// One line for the console: whole scan median and worst, per estimator and in total.
     pub fn line(&self) -> String {
         let ms = |s: f64| s * 1e3;
+        let cpu = self.whole_scan_cpu.map_or(String::new(), |c| {
+            format!(
+                " (CPU {:.1} ms median, {:.1} ms worst)",
+                ms(c.median_secs),
+                ms(c.worst_secs)
+            )
+        });
         format!(
-            "{} scans: whole scan {:.1} ms median, {:.1} ms worst ({} estimators); one estimator {:.1} ms median, {:.1} ms worst; {:.0} map-cell samples of {:.0} points in the hypotheses (median)",
+            "{} scans: whole scan {:.1} ms median, {:.1} ms worst{cpu} ({} estimators); one estimator {:.1} ms median, {:.1} ms worst; {:.0} map-cell samples of {:.0} points in the hypotheses (median)",
             self.scans,
             ms(self.whole_scan().median_secs),
             ms(self.whole_scan().worst_secs),

@@ -19,6 +19,10 @@ pub struct ScanTiming {
     pub maps_and_clusters_secs: f64,
     /// Per estimator: hypotheses, patches, GP prediction and merging for the whole scan.
     pub estimators: Vec<StepTiming>,
+    /// CPU time of the whole scan (features and every estimator's step), all threads, where the
+    /// system reports it: the scan's latency on idle cores is at least this over their number.
+    #[serde(default)]
+    pub whole_scan_cpu_secs: Option<f64>,
     /// The four baselines over every cluster (KF-AUTO, ICP-AUTO on the hypotheses, the oracles).
     pub baselines_secs: f64,
     /// Per estimator, the thesis-protocol estimate of the target from all its points (the

@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use patchflow_dataset::{SequenceReader, Sweep};
+use patchflow_dataset::SequenceReader;
 use patchflow_learn::{
     ClusterEstimate, ClusterMotion, FeatureParams, MotionEstimator, Scan, ScanMotion, ScanStream,
     SweepFeatures,
@@ -13,11 +13,12 @@ use patchflow_learn::{
 
 use crate::baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
 use crate::baselines::{BaselineMethod, BaselineParams};
+use crate::cpu_time::process_cpu_secs;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::method::{GpReadout, Method};
 use crate::objects::ObjectScan;
-use crate::observation::{ActorCluster, ClusterObservation, ScanObservation};
+use crate::oracle::{observe, target_at, target_cluster};
 use crate::perception_timing::{ScanTiming, StepTiming};
 use crate::result::{SceneResult, SituationResult};
 use crate::scan_scoring::{MethodFlow, object_scans, score_points};
@@ -84,11 +85,19 @@ pub fn evaluate_sequence(
         target_truth: Vec::new(),
         target_estimates: BTreeMap::new(),
     };
-    for scan in ScanStream::new(sequence, params)? {
-        let scan = scan?;
+    let mut stream = ScanStream::new(sequence, params)?;
+    while let Some((index, sweep)) = stream.read_next()? {
+        let cpu_start = process_cpu_secs();
+        let features = stream.features_of(&sweep)?;
+        let scan = Scan {
+            index,
+            sweep,
+            features,
+        };
         let dt = scan.sweep.stamp_secs - sequence.stamps_secs()[scan.index - 1];
         evaluate_scan(
             &scan,
+            cpu_start,
             dt,
             (estimators, &group_of),
             has_target.then_some(&name),
@@ -122,6 +131,7 @@ pub fn evaluate_sequence(
 /// One scan: the estimators' whole-scan step, the target's estimate, the baselines, the scores.
 fn evaluate_scan(
     scan: &Scan,
+    cpu_start: Option<f64>,
     dt_secs: f64,
     (estimators, group_of): (&[MotionEstimator], &[usize]),
     situation: Option<&String>,
@@ -137,6 +147,9 @@ fn evaluate_scan(
         timing.estimators.push(StepTiming::from(motion.timing));
         motions.push((estimator.gp_kind(), motion));
     }
+    timing.whole_scan_cpu_secs = cpu_start
+        .zip(process_cpu_secs())
+        .map(|(start, end)| end - start);
     // The oracle association (thesis 4.4): every actor's cluster.
     let observation = observe(scan, features);
     let hypotheses = hypothesis_flags(features);
@@ -255,79 +268,6 @@ fn method_flows(
     }
     flows.insert(Method::ZeroFlow, MethodFlow::Zero);
     flows
-}
-
-/// The clusters of a scan and, from the labels, which cluster holds most of each actor's points.
-fn observe(scan: &Scan, features: &SweepFeatures) -> ScanObservation {
-    let clusters = features
-        .clusters()
-        .iter()
-        .enumerate()
-        .map(|(id, members)| {
-            let points = members
-                .iter()
-                .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-                .collect();
-            ClusterObservation::from_points(id, points)
-        })
-        .collect();
-    let mut counts: BTreeMap<(u16, usize), usize> = BTreeMap::new();
-    for (i, p) in features.points().iter().enumerate() {
-        let actor = scan.sweep.labels[p.index].instance();
-        if actor != 0 {
-            *counts.entry((actor, features.cluster_of(i))).or_default() += 1;
-        }
-    }
-    let mut actors: BTreeMap<u16, ActorCluster> = BTreeMap::new();
-    for ((actor, cluster), points) in counts {
-        // Clusters come in ascending order, so ties keep the lowest cluster id.
-        if actors.get(&actor).is_none_or(|a| points > a.points) {
-            actors.insert(actor, ActorCluster { cluster, points });
-        }
-    }
-    ScanObservation {
-        scan: scan.index,
-        stamp_secs: scan.sweep.stamp_secs,
-        sensor_xy_world: features.sensor_xy(),
-        clusters,
-        actors,
-        target_actor: scan.sweep.target().map(|t| t.id),
-    }
-}
-
-/// The cluster holding most of the target's sliced points (ties to the lowest cluster id).
-fn target_cluster(features: &SweepFeatures, sweep: &Sweep) -> Option<usize> {
-    let target = sweep.target()?.id;
-    let mut counts: BTreeMap<usize, usize> = BTreeMap::new();
-    for (i, p) in features.points().iter().enumerate() {
-        if sweep.labels[p.index].instance() == target {
-            *counts.entry(features.cluster_of(i)).or_default() += 1;
-        }
-    }
-    counts
-        .into_iter()
-        .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)))
-        .map(|(c, _)| c)
-}
-
-/// The target's truth at a scan: velocity, range, and the points of its cluster.
-fn target_at(
-    scan: &Scan,
-    features: &SweepFeatures,
-    situation: &str,
-) -> Result<TruthAtScan, EvalError> {
-    let target = scan.sweep.target().ok_or_else(|| EvalError::BadResult {
-        situation: situation.to_owned(),
-        reason: format!("sweep {} has no object marked target", scan.index),
-    })?;
-    let [sx, sy] = features.sensor_xy();
-    let points =
-        target_cluster(features, &scan.sweep).map_or(0, |c| features.clusters().members(c).len());
-    Ok(TruthAtScan {
-        range_m: Some((target.centre_m[0] - sx).hypot(target.centre_m[1] - sy)),
-        target_points: Some(points),
-        ..TruthAtScan::from_velocity(scan.index, [target.velocity_mps[0], target.velocity_mps[1]])
-    })
 }
 
 /// A merged cluster motion as the estimate the tables score.

@@ -7,16 +7,18 @@ use std::fmt::Write as _;
 
 use crate::method::Method;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
+use crate::perception_summary::PerceptionSummary;
 use crate::report::breakdown::breakdown_sections;
 use crate::report::files::fmt_opt;
+use crate::report::perception_markdown::perception_section;
+use crate::report::scene_markdown::scene_sections;
+use crate::report::scores::{ReportScores, SituationMetrics};
 use crate::result::BenchmarkReport;
 use crate::thesis_tables::{thesis_row, thesis_situation};
 
-/// Metrics of every situation, in report order: (name, scans, method → metrics).
-pub(crate) type SituationMetrics = (String, usize, BTreeMap<Method, MethodMetrics>);
-
 /// The text of `report.md`.
-pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetrics]) -> String {
+pub(crate) fn report_markdown(report: &BenchmarkReport, scores: &ReportScores) -> String {
+    let metrics = &scores.situations[..];
     let mut md = String::new();
     // Writing to a String cannot fail, so the `fmt::Result`s below are ignored.
     let _ = writeln!(md, "# patchflow benchmark report\n");
@@ -55,6 +57,8 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetr
             let _ = writeln!(md, "{line}");
         }
     }
+    scene_sections(&mut md, scores);
+    perception_section(&mut md, &PerceptionSummary::of_scenes(&report.scenes));
     timing_section(&mut md, report);
     notes_section(&mut md, report);
     md

@@ -69,7 +69,10 @@ impl<'a> ScanStream<'a> {
             .collect()
     }
 
-    fn advance(&mut self) -> Result<Option<Scan>> {
+    /// Reads the next sweep to process with its index (`None` at the end). The first call also
+    /// reads and cuts sweep 0, the first scan's predecessor. Hand the sweep to
+    /// [`Self::features_of`] before reading the next one; the iterator does both.
+    pub fn read_next(&mut self) -> Result<Option<(usize, Sweep)>> {
         if self.next == 0 {
             if self.sequence.is_empty() {
                 return Ok(None);
@@ -81,10 +84,16 @@ impl<'a> ScanStream<'a> {
             return Ok(None);
         }
         let index = self.next;
-        let sweep = self.sequence.read_sweep(index)?;
+        self.next += 1;
+        Ok(Some((index, self.sequence.read_sweep(index)?)))
+    }
+
+    /// The features of the sweep [`Self::read_next`] returned, given the previous one, one per
+    /// parameter set; its slice becomes the previous one of the next scan.
+    pub fn features_of(&mut self, sweep: &Sweep) -> Result<Vec<SweepFeatures>> {
         let start = Instant::now();
         // 2.1.1: only the new sweep is cut; the previous slice comes from the last scan.
-        let current = self.cut(&sweep)?;
+        let current = self.cut(sweep)?;
         let slice_secs = start.elapsed().as_secs_f64();
         let features = self
             .params
@@ -97,7 +106,14 @@ impl<'a> ScanStream<'a> {
             })
             .collect::<Result<Vec<_>>>()?;
         self.previous = current;
-        self.next += 1;
+        Ok(features)
+    }
+
+    fn advance(&mut self) -> Result<Option<Scan>> {
+        let Some((index, sweep)) = self.read_next()? else {
+            return Ok(None);
+        };
+        let features = self.features_of(&sweep)?;
         Ok(Some(Scan {
             index,
             sweep,
