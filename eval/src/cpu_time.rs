@@ -1,4 +1,5 @@
-//! CPU time of this process, all threads together, where the system reports it (Linux:
+//! CPU time of this process, all threads together, and the machine's load, where the system
+//! reports them (Linux:
 //! `/proc/self/task/*/schedstat`, nanoseconds on a CPU). On a machine shared with other work a
 //! scan's wall time grows with the load, its CPU time hardly: CPU time over the cores is the
 //! latency the scan would have on idle cores with perfect parallelism, a floor for the wall time.
@@ -11,6 +12,17 @@ pub fn process_cpu_secs() -> Option<f64> {
         nanos += text.split_whitespace().next()?.parse::<u64>().ok()?;
     }
     Some(nanos as f64 * 1e-9)
+}
+
+/// The system's 1-minute load average (runnable tasks), where the system reports it (Linux:
+/// `/proc/loadavg`).
+pub fn load_average() -> Option<f64> {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()?
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
 }
 
 #[cfg(test)]

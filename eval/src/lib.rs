@@ -3,6 +3,7 @@
 
 mod baseline_step;
 mod baselines;
+mod bench;
 mod cluster_association;
 mod cpu_time;
 mod cross_validation;
@@ -33,10 +34,14 @@ mod truth_at_scan;
 
 pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
+pub use bench::{
+    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, collect_samples_with_bar,
+    cross_validate_with_bar, evaluate_with_bar, generate_with_progress, run_bench,
+};
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
 };
-pub use cpu_time::process_cpu_secs;
+pub use cpu_time::{load_average, process_cpu_secs};
 pub use cross_validation::{CvParams, cross_validate, cross_validate_samples};
 pub use dataset_evaluation::{evaluate_dataset, scans_to_evaluate, sequences_to_evaluate};
 pub use error::EvalError;

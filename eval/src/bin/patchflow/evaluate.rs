@@ -4,10 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::{
-    BaselineParams, BenchmarkReport, PerceptionSummary, evaluate_dataset, progress_bar,
-    scans_to_evaluate, write_report,
-};
+use patchflow_eval::{PerceptionSummary, evaluate_with_bar, write_report};
 use patchflow_learn::MotionEstimator;
 
 /// Arguments of `patchflow evaluate`.
@@ -41,17 +38,4 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     println!("wrote {}", files.report_md.display());
     Ok(())
-}
-
-/// Evaluates the dataset's situations with a progress bar over the scans.
-pub fn evaluate_with_bar(
-    dataset: &Dataset,
-    estimators: &[MotionEstimator],
-) -> anyhow::Result<BenchmarkReport> {
-    let bar = progress_bar(scans_to_evaluate(dataset)?, "evaluating scans");
-    let result = evaluate_dataset(dataset, estimators, &BaselineParams::default(), &|| {
-        bar.inc(1)
-    });
-    bar.finish_and_clear();
-    Ok(result?)
 }
