@@ -10,7 +10,8 @@ use crate::result::BenchmarkReport;
 use crate::scene_evaluation::evaluate_sequence;
 
 /// The sequences [`evaluate_dataset`] evaluates: every one with at least two sweeps, in the
-/// dataset's order. Those marking a target also get the per-target tables.
+/// dataset's order. Those marking a target also get the per-target tables and come first in
+/// the whole-scene results.
 pub fn sequences_to_evaluate(dataset: &Dataset) -> Result<Vec<String>, EvalError> {
     let names: Vec<String> = dataset
         .sequences()
@@ -70,5 +71,10 @@ pub fn evaluate_dataset(
         report.situations.extend(run.target);
         report.scenes.push(run.scene);
     }
+    // The situations first, in dataset order, then the sequences without a target.
+    let situations: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
+    report
+        .scenes
+        .sort_by_key(|scene| !situations.contains(&scene.name));
     Ok(report)
 }

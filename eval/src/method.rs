@@ -144,8 +144,9 @@ impl Method {
 }
 
 impl fmt::Display for Method {
+    /// The name, honouring width and alignment (`{:>28}`).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+        f.pad(self.name())
     }
 }
 
@@ -229,6 +230,14 @@ mod tests {
         assert_eq!(
             Method::gp(GpKind::Full, GpReadout::Merged(MergeRule::Best)).name(),
             "FULL-GP-BEST"
+        );
+    }
+
+    #[test]
+    fn a_method_formats_as_its_name_padded_to_the_width_asked_for() {
+        assert_eq!(
+            format!("{:>8}|{:<4}|", Method::Kf, Method::Icp),
+            "      KF|ICP |"
         );
     }
 
