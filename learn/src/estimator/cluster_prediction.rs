@@ -6,13 +6,12 @@
 //! (nalgebra hands products with every dimension above five to matrixmultiply) and gets the
 //! prediction a call on its cluster alone would give, bit for bit.
 
-use std::time::Instant;
-
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::cluster_estimate::{ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming};
 use super::merge::{Gaussian, HeadingVote, MergeRule, MergedHeading, merge_heading, merge_scalar};
+use crate::timing::timed;
 use crate::{GpPrediction, MotionEstimator, Patch, Result, SweepFeatures};
 
 /// Most rows in one GP call (a few hundred kB of inputs: stays in cache, balances the cores).
@@ -58,14 +57,6 @@ fn per_job<T>(jobs: usize, chunks: &[RowChunk], rows: Vec<Vec<T>>) -> Vec<Vec<T>
         out[chunk.job].extend(rows);
     }
     out
-}
-
-/// Runs `work`, adding its wall time to `secs`.
-fn timed<T>(secs: &mut f64, work: impl FnOnce() -> T) -> T {
-    let start = Instant::now();
-    let value = work();
-    *secs += start.elapsed().as_secs_f64();
-    value
 }
 
 fn gaussians(prediction: &GpPrediction) -> impl Iterator<Item = Gaussian> + '_ {

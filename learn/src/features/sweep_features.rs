@@ -14,6 +14,7 @@ use crate::features::gabor::{GABOR_FILTERS, GaborBank};
 use crate::features::grid::{GridMap, GridWindow};
 use crate::features::patch::Patch;
 use crate::features::slice::{HeightSlice, SlicedPoint};
+use crate::timing::timed;
 use crate::{FeatureParams, Result};
 
 /// Which feature vector a point gets (thesis 2.2.2 and 2.2.3).
@@ -103,14 +104,20 @@ impl SweepFeatures {
         let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
         // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
-        let ((maps, maps_secs), (points, clusters, clusters_secs)) = rayon::join(
-            || timed(|| MapPair::build(prev_slice, curr_slice, params)),
+        let (mut maps_secs, mut clusters_secs) = (0.0, 0.0);
+        let (maps, (points, clusters)) = rayon::join(
             || {
-                let start = Instant::now();
-                let points = points_in_window(curr_slice, params);
-                let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
-                let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
-                (points, clusters, start.elapsed().as_secs_f64())
+                timed(&mut maps_secs, || {
+                    MapPair::build(prev_slice, curr_slice, params)
+                })
+            },
+            || {
+                timed(&mut clusters_secs, || {
+                    let points = points_in_window(curr_slice, params);
+                    let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
+                    let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
+                    (points, clusters)
+                })
             },
         );
         Ok(Self {
@@ -270,13 +277,6 @@ impl SweepFeatures {
             FeatureKind::Gabor => self.gabor(patch).to_vec(),
         }
     }
-}
-
-/// Runs `work` and measures its wall time in seconds.
-fn timed<T>(work: impl FnOnce() -> T) -> (T, f64) {
-    let start = Instant::now();
-    let value = work();
-    (value, start.elapsed().as_secs_f64())
 }
 
 /// The sliced end points inside the map window centred on the current sensor.
