@@ -86,18 +86,21 @@ pub(crate) fn plot_object_epe(
                 .collect(),
         })
         .collect();
-    let (title, x) = match axis {
+    let (title, x, x_decimals) = match axis {
         ObjectAxis::Range => (
             "Moving objects: point EPE by range",
             "range of the object (m), 5 m bins",
+            0,
         ),
         ObjectAxis::Points => (
             "Moving objects: point EPE by sliced points",
-            "log10 of the object's sliced points",
+            "log10 of the object's sliced points (1 = 10, 2 = 100, 3 = 1,000)",
+            1,
         ),
     };
     let axes = Axes {
         x,
+        x_decimals,
         y: "mean point EPE (m per sweep)",
         y_decimals: 2,
         min_pad: 0.02,

@@ -63,6 +63,8 @@ pub(crate) struct Curve {
 pub(crate) struct Axes<'a> {
     /// Description of the x axis.
     pub x: &'a str,
+    /// Decimals of the x tick labels.
+    pub x_decimals: usize,
     /// Description of the y axis.
     pub y: &'a str,
     /// Decimals of the y tick labels.
@@ -80,6 +82,7 @@ pub(crate) fn colour_of(method: crate::method::Method) -> RGBColor {
 fn scan_axes(y: &str) -> Axes<'_> {
     Axes {
         x: "scan",
+        x_decimals: 0,
         y,
         y_decimals: 0,
         min_pad: 1.0,
@@ -222,7 +225,7 @@ pub(crate) fn draw(
         .configure_mesh()
         .x_desc(axes.x)
         .y_desc(axes.y)
-        .x_label_formatter(&|x| format!("{x:.0}"))
+        .x_label_formatter(&|x| format!("{x:.*}", axes.x_decimals))
         .y_label_formatter(&|y| format!("{y:.*}", axes.y_decimals))
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
