@@ -21,6 +21,7 @@
 mod ard_distance;
 mod blocked;
 mod error;
+mod exp;
 mod fit;
 mod fitc;
 mod full;

@@ -3,6 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::exp::{exp, scaled_exp_in_place};
+
 /// √3, the Matérn 3/2 rate.
 const SQRT_3: f64 = 1.732_050_807_568_877_2;
 
@@ -20,11 +22,19 @@ impl Shape {
     /// ρ(r²).
     pub(crate) fn profile(self, r2: f64) -> f64 {
         match self {
-            Self::SquaredExponential => (-0.5 * r2).exp(),
+            Self::SquaredExponential => exp(-0.5 * r2),
             Self::Matern32 => {
                 let sr = SQRT_3 * r2.sqrt();
-                (1.0 + sr) * (-sr).exp()
+                (1.0 + sr) * exp(-sr)
             }
+        }
+    }
+
+    /// v ← s · ρ(v) for every squared distance v, in a loop the compiler vectorises.
+    pub(crate) fn scaled_profile_in_place(self, r2: &mut [f64], s: f64) {
+        match self {
+            Self::SquaredExponential => scaled_exp_in_place(r2, -0.5, s),
+            Self::Matern32 => r2.iter_mut().for_each(|v| *v = s * self.profile(*v)),
         }
     }
 

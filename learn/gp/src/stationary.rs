@@ -230,7 +230,7 @@ impl Kernel for Stationary {
             return DMatrix::from_element(a.len(), b.len(), s); // no input columns
         };
         let mut k = sq_distances(a, b, &inv_sq, first);
-        k.apply(|v| *v = s * first.shape.profile(*v));
+        first.shape.scaled_profile_in_place(k.as_mut_slice(), s);
         for &g in rest {
             let r2 = sq_distances(a, b, &inv_sq, g);
             k.zip_apply(&r2, |kv, r| *kv *= g.shape.profile(r));
