@@ -55,36 +55,93 @@ pub(crate) fn sq_distances(
     r2
 }
 
-/// Adds the length-scale and first-argument gradients of one group, given E = −2 G ∘ ∂K/∂r²_g:
-/// ∂/∂log ℓ_d = ℓ_d⁻² Σ_pq E_pq (a_pd − b_qd)², ∂/∂a_pd = ℓ_d⁻² Σ_q E_pq (b_qd − a_pd).
+/// The column sums c_q = Σ_p E_pq and row sums r_p = Σ_q E_pq of a P×Q matrix.
+pub(crate) struct LineSums {
+    cols: Vec<f64>,
+    rows: Vec<f64>,
+}
+
+impl LineSums {
+    /// Σ_pq E_pq.
+    pub fn total(&self) -> f64 {
+        sum(&self.cols)
+    }
+}
+
+/// G ∘ K and its line sums, in one sweep over the columns.
+pub(crate) fn product_with_sums(gm: &DMatrix<f64>, k: &DMatrix<f64>) -> (DMatrix<f64>, LineSums) {
+    let p_len = k.nrows();
+    let mut e = DMatrix::zeros(p_len, k.ncols());
+    let mut sums = LineSums {
+        cols: Vec::with_capacity(k.ncols()),
+        rows: vec![0.0; p_len],
+    };
+    if p_len == 0 {
+        sums.cols.resize(k.ncols(), 0.0);
+        return (e, sums);
+    }
+    for ((e_col, g_col), k_col) in e
+        .as_mut_slice()
+        .chunks_exact_mut(p_len)
+        .zip(gm.as_slice().chunks_exact(p_len))
+        .zip(k.as_slice().chunks_exact(p_len))
+    {
+        for (((ev, gv), kv), r) in e_col.iter_mut().zip(g_col).zip(k_col).zip(&mut sums.rows) {
+            *ev = gv * kv;
+            *r += *ev;
+        }
+        sums.cols.push(sum(e_col));
+    }
+    (e, sums)
+}
+
+/// The line sums of `e` (see [`LineSums`]).
+pub(crate) fn line_sums(e: &DMatrix<f64>) -> LineSums {
+    let p_len = e.nrows();
+    let mut sums = LineSums {
+        cols: Vec::with_capacity(e.ncols()),
+        rows: vec![0.0; p_len],
+    };
+    if p_len == 0 {
+        sums.cols.resize(e.ncols(), 0.0);
+        return sums;
+    }
+    for col in e.as_slice().chunks_exact(p_len) {
+        for (r, v) in sums.rows.iter_mut().zip(col) {
+            *r += v;
+        }
+        sums.cols.push(sum(col));
+    }
+    sums
+}
+
+/// Adds the length-scale and first-argument gradients of one group, given E = −2 G ∘ ∂K/∂r²_g
+/// and its line sums: ∂/∂log ℓ_d = ℓ_d⁻² Σ_pq E_pq (a_pd − b_qd)², ∂/∂a_pd = ℓ_d⁻² Σ_q E_pq
+/// (b_qd − a_pd).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn group_gradient(
     a: Points<'_>,
     b: Points<'_>,
-    e: &DMatrix<f64>,
+    (e, sums): (&DMatrix<f64>, &LineSums),
     inv_sq: &DVector<f64>,
     g: Group,
     d_log_l: &mut [f64],
     d_a: Option<&mut DMatrix<f64>>,
 ) {
-    let (p_len, d) = (a.len(), a.dims());
+    let d = a.dims();
     // E B with B's rows read as a row-major view (the fast way round for gemm), then transposed
     // to D_g×P so that each point's row of it is a contiguous column below.
     let b_rows = transposed(b.coord_slice(), d, b.len());
     let ex_t = mul(e, &b_rows.columns(g.start, g.len)).transpose();
     let mut acc = vec![0.0; g.len];
     // Σ_q c_q b_qd² with c_q = Σ_p E_pq.
-    for (col, bq) in e
-        .as_slice()
-        .chunks_exact(p_len)
-        .zip(b.coord_slice().chunks_exact(d))
-    {
-        let c = sum(col);
+    for (&c, bq) in sums.cols.iter().zip(b.coord_slice().chunks_exact(d)) {
         for (a, v) in acc.iter_mut().zip(&bq[g.start..g.start + g.len]) {
             *a += c * v * v;
         }
     }
     // Σ_p r_p a_pd² − 2 a_pd (E B)_pd, with r_p = Σ_q E_pq; and ∂/∂a_pd.
-    let r = e.column_sum();
+    let r = &sums.rows;
     let w = &inv_sq.as_slice()[g.start..g.start + g.len];
     let mut d_a = d_a;
     for (p, (a_col, ex_col)) in a

@@ -270,7 +270,7 @@ fn permuting_the_pseudo_inputs_leaves_the_objective_unchanged() {
 
 #[test]
 fn the_objective_is_bit_identical_on_one_and_two_threads() {
-    let (data, h) = random_problem(700, 6, true, 12); // three row blocks
+    let (data, h) = random_problem(700, 6, true, 12); // four row blocks
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

@@ -162,11 +162,22 @@ pub(crate) fn sum(values: &[f64]) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
-/// Scales column `j` of `a` by `s[j]` in place.
-pub(crate) fn scale_columns(a: &mut DMatrix<f64>, s: &DVector<f64>) {
-    for (mut col, f) in a.column_iter_mut().zip(s.iter()) {
-        col *= *f;
+/// Σ a_i b_i in four interleaved partial sums (vectorised, fixed order for a given length).
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = ac
+        .remainder()
+        .iter()
+        .zip(bc.remainder())
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ac.zip(bc) {
+        for l in 0..4 {
+            acc[l] += x[l] * y[l];
+        }
     }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 /// Column sums of the elementwise product `a ∘ b` (same shapes).

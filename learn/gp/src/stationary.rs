@@ -9,9 +9,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::ard_distance::{group_gradient, sq_distances};
+use super::ard_distance::{group_gradient, line_sums, product_with_sums, sq_distances};
 use super::kernel::{Kernel, Points};
-use super::linalg::sum;
 use super::shape::{Factor, Group, Shape};
 use crate::{GpError, Result};
 
@@ -253,18 +252,19 @@ impl Kernel for Stationary {
         let inv_sq = self.inverse_squares();
         let d = self.lengthscales.len();
         let mut grad = vec![0.0; d + 1];
-        let gk = adjoint.component_mul(k); // ∂𝓛/∂log s = Σ G ∘ K
-        grad[d] = sum(gk.as_slice());
+        let (gk, gk_sums) = product_with_sums(adjoint, k);
+        grad[d] = gk_sums.total(); // ∂𝓛/∂log s = Σ G ∘ K
         for &g in &self.groups {
             let e = match g.shape {
                 Shape::SquaredExponential => None, // E = G ∘ K
                 Shape::Matern32 => {
                     let mut e = sq_distances(a, b, &inv_sq, g);
                     e.zip_apply(&gk, |r2, gkv| *r2 = gkv * g.shape.slope(*r2));
-                    Some(e)
+                    let sums = line_sums(&e);
+                    Some((e, sums))
                 }
             };
-            let e = e.as_ref().unwrap_or(&gk);
+            let e = e.as_ref().map_or((&gk, &gk_sums), |(e, s)| (e, s));
             group_gradient(a, b, e, &inv_sq, g, &mut grad, d_a.as_deref_mut());
         }
         DVector::from_vec(grad)

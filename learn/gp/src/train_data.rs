@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, DVector};
 use super::kernel::{Kernel, Points};
 
 /// Rows per block of the blocked passes; fixed so the reduction order never depends on threads.
-pub(crate) const BLOCK_ROWS: usize = 400;
+pub(crate) const BLOCK_ROWS: usize = 200;
 
 /// The (standardised) training data of one fit.
 #[derive(Debug, Clone)]
