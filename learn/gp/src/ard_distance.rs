@@ -8,8 +8,10 @@ use nalgebra::{DMatrix, DVector};
 use super::kernel::Points;
 use super::linalg::{mul, sum, transposed};
 use super::shape::Group;
+use super::simd::vectorised;
 
 /// Σ_j v_j² w_j with four partial sums, so the loop vectorises.
+#[inline(always)]
 fn weighted_sq_sum(v: &[f64], w: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (vc, wc) = (v.chunks_exact(4), w.chunks_exact(4));
@@ -26,10 +28,17 @@ fn weighted_sq_sum(v: &[f64], w: &[f64]) -> f64 {
 /// Σ_{d∈g} v_d² ℓ_d⁻² for each point.
 fn scaled_norms(p: Points<'_>, inv_sq: &[f64], g: Group) -> Vec<f64> {
     let d = p.dims();
-    p.coord_slice()
-        .chunks_exact(d)
-        .map(|col| weighted_sq_sum(&col[g.start..g.start + g.len], inv_sq))
-        .collect()
+    let mut out = Vec::with_capacity(p.len());
+    vectorised(
+        #[inline(always)]
+        || {
+            // A plain loop: an iterator's `collect` would run in a baseline (unvectorised) copy.
+            for col in p.coord_slice().chunks_exact(d) {
+                out.push(weighted_sq_sum(&col[g.start..g.start + g.len], inv_sq));
+            }
+        },
+    );
+    out
 }
 
 /// Squared scaled distances r² (P×Q) between `a` and `b` over the columns of `g`.
@@ -47,11 +56,16 @@ pub(crate) fn sq_distances(
     let (a_norm, b_norm) = (scaled_norms(a, w, g), scaled_norms(b, w, g));
     let b_all = b.coords();
     let mut r2 = mul(&scaled, &b_all.rows(g.start, g.len));
-    for (col, bn) in r2.as_mut_slice().chunks_exact_mut(a.len()).zip(&b_norm) {
-        for (v, an) in col.iter_mut().zip(&a_norm) {
-            *v = (an + bn - 2.0 * *v).max(0.0);
-        }
-    }
+    vectorised(
+        #[inline(always)]
+        || {
+            for (col, bn) in r2.as_mut_slice().chunks_exact_mut(a.len()).zip(&b_norm) {
+                for (v, an) in col.iter_mut().zip(&a_norm) {
+                    *v = (an + bn - 2.0 * *v).max(0.0);
+                }
+            }
+        },
+    );
     r2
 }
 
@@ -80,18 +94,25 @@ pub(crate) fn product_with_sums(gm: &DMatrix<f64>, k: &DMatrix<f64>) -> (DMatrix
         sums.cols.resize(k.ncols(), 0.0);
         return (e, sums);
     }
-    for ((e_col, g_col), k_col) in e
-        .as_mut_slice()
-        .chunks_exact_mut(p_len)
-        .zip(gm.as_slice().chunks_exact(p_len))
-        .zip(k.as_slice().chunks_exact(p_len))
-    {
-        for (((ev, gv), kv), r) in e_col.iter_mut().zip(g_col).zip(k_col).zip(&mut sums.rows) {
-            *ev = gv * kv;
-            *r += *ev;
-        }
-        sums.cols.push(sum(e_col));
-    }
+    vectorised(
+        #[inline(always)]
+        || {
+            for ((e_col, g_col), k_col) in e
+                .as_mut_slice()
+                .chunks_exact_mut(p_len)
+                .zip(gm.as_slice().chunks_exact(p_len))
+                .zip(k.as_slice().chunks_exact(p_len))
+            {
+                for (((ev, gv), kv), r) in
+                    e_col.iter_mut().zip(g_col).zip(k_col).zip(&mut sums.rows)
+                {
+                    *ev = gv * kv;
+                    *r += *ev;
+                }
+                sums.cols.push(sum(e_col));
+            }
+        },
+    );
     (e, sums)
 }
 
@@ -106,12 +127,17 @@ pub(crate) fn line_sums(e: &DMatrix<f64>) -> LineSums {
         sums.cols.resize(e.ncols(), 0.0);
         return sums;
     }
-    for col in e.as_slice().chunks_exact(p_len) {
-        for (r, v) in sums.rows.iter_mut().zip(col) {
-            *r += v;
-        }
-        sums.cols.push(sum(col));
-    }
+    vectorised(
+        #[inline(always)]
+        || {
+            for col in e.as_slice().chunks_exact(p_len) {
+                for (r, v) in sums.rows.iter_mut().zip(col) {
+                    *r += v;
+                }
+                sums.cols.push(sum(col));
+            }
+        },
+    );
     sums
 }
 
@@ -134,33 +160,38 @@ pub(crate) fn group_gradient(
     let b_rows = transposed(b.coord_slice(), d, b.len());
     let ex_t = mul(e, &b_rows.columns(g.start, g.len)).transpose();
     let mut acc = vec![0.0; g.len];
-    // Σ_q c_q b_qd² with c_q = Σ_p E_pq.
-    for (&c, bq) in sums.cols.iter().zip(b.coord_slice().chunks_exact(d)) {
-        for (a, v) in acc.iter_mut().zip(&bq[g.start..g.start + g.len]) {
-            *a += c * v * v;
-        }
-    }
-    // Σ_p r_p a_pd² − 2 a_pd (E B)_pd, with r_p = Σ_q E_pq; and ∂/∂a_pd.
     let r = &sums.rows;
     let w = &inv_sq.as_slice()[g.start..g.start + g.len];
     let mut d_a = d_a;
-    for (p, (a_col, ex_col)) in a
-        .coord_slice()
-        .chunks_exact(d)
-        .zip(ex_t.as_slice().chunks_exact(g.len))
-        .enumerate()
-    {
-        let a_g = &a_col[g.start..g.start + g.len];
-        for ((a_acc, v), exv) in acc.iter_mut().zip(a_g).zip(ex_col) {
-            *a_acc += r[p] * v * v - 2.0 * v * exv;
-        }
-        if let Some(d_a) = d_a.as_deref_mut() {
-            let out = &mut d_a.as_mut_slice()[p * d + g.start..p * d + g.start + g.len];
-            for (((o, wj), v), exv) in out.iter_mut().zip(w).zip(a_g).zip(ex_col) {
-                *o += wj * (exv - r[p] * v);
+    vectorised(
+        #[inline(always)]
+        || {
+            // Σ_q c_q b_qd² with c_q = Σ_p E_pq.
+            for (&c, bq) in sums.cols.iter().zip(b.coord_slice().chunks_exact(d)) {
+                for (a, v) in acc.iter_mut().zip(&bq[g.start..g.start + g.len]) {
+                    *a += c * v * v;
+                }
             }
-        }
-    }
+            // Σ_p r_p a_pd² − 2 a_pd (E B)_pd, with r_p = Σ_q E_pq; and ∂/∂a_pd.
+            for (p, (a_col, ex_col)) in a
+                .coord_slice()
+                .chunks_exact(d)
+                .zip(ex_t.as_slice().chunks_exact(g.len))
+                .enumerate()
+            {
+                let a_g = &a_col[g.start..g.start + g.len];
+                for ((a_acc, v), exv) in acc.iter_mut().zip(a_g).zip(ex_col) {
+                    *a_acc += r[p] * v * v - 2.0 * v * exv;
+                }
+                if let Some(d_a) = d_a.as_deref_mut() {
+                    let out = &mut d_a.as_mut_slice()[p * d + g.start..p * d + g.start + g.len];
+                    for (((o, wj), v), exv) in out.iter_mut().zip(w).zip(a_g).zip(ex_col) {
+                        *o += wj * (exv - r[p] * v);
+                    }
+                }
+            }
+        },
+    );
     for (j, a_acc) in acc.iter().enumerate() {
         d_log_l[g.start + j] += w[j] * a_acc;
     }

@@ -1,11 +1,13 @@
 //! A branch-free exp(x) that the compiler vectorises, for the M×N kernel matrices: the library
-//! call evaluates one value at a time and took ~7 % of an SPGP objective + gradient. Accurate to
-//! ~1.5 ulp (vs. the correctly rounded value), far inside the 1e-10 agreement the GP tests ask for.
+//! call evaluates one value at a time and took ~7 % of an SPGP objective + gradient. Within ~2 ulp
+//! of the library's value, far inside the 1e-10 agreement the GP tests ask for.
 //!
 //! Method: x = n ln 2 + r with |r| ≤ ln 2 / 2 (Cody-Waite two-part ln 2), e^r by its Taylor series
 //! to r¹² (truncation < 2e-16 relative), and 2ⁿ assembled in the exponent bits. n is rounded by
 //! adding 1.5·2⁵², which leaves n in the low mantissa bits, so no float-to-integer conversion is
-//! needed (the baseline x86-64 target has no vector one).
+//! needed (SSE2 and AVX2 have no vector one).
+
+use super::simd::vectorised;
 
 /// Below this e^x is under the smallest normal f64; the result is flushed to 0.
 const MIN_ARG: f64 = -708.0;
@@ -31,20 +33,16 @@ pub(crate) fn exp(x: f64) -> f64 {
     let t = xc * std::f64::consts::LOG2_E + ROUND;
     let n = t - ROUND;
     let r = (xc - n * LN2_HI) - n * LN2_LO;
-    // Horner form of Σ_{k≤12} r^k / k!.
-    let mut p = 1.0 / 479_001_600.0;
-    p = p * r + 1.0 / 39_916_800.0;
-    p = p * r + 1.0 / 3_628_800.0;
-    p = p * r + 1.0 / 362_880.0;
-    p = p * r + 1.0 / 40_320.0;
-    p = p * r + 1.0 / 5_040.0;
-    p = p * r + 1.0 / 720.0;
-    p = p * r + 1.0 / 120.0;
-    p = p * r + 1.0 / 24.0;
-    p = p * r + 1.0 / 6.0;
-    p = p * r + 0.5;
-    p = p * r + 1.0;
-    p = p * r + 1.0;
+    // Σ_{k≤12} r^k / k! in Estrin's scheme: pairs, then pairs of pairs, so the dependency chain
+    // is four multiply-adds deep instead of Horner's twelve.
+    let r2 = r * r;
+    let r4 = r2 * r2;
+    let r8 = r4 * r4;
+    let s0 = (1.0 + r) + r2 * (0.5 + r * (1.0 / 6.0));
+    let s1 = (1.0 / 24.0 + r * (1.0 / 120.0)) + r2 * (1.0 / 720.0 + r * (1.0 / 5_040.0));
+    let s2 = (1.0 / 40_320.0 + r * (1.0 / 362_880.0))
+        + r2 * (1.0 / 3_628_800.0 + r * (1.0 / 39_916_800.0));
+    let p = (s0 + r4 * s1) + r8 * (s2 + r4 * (1.0 / 479_001_600.0));
     // 2ⁿ: the low mantissa bits of t hold n + 2⁵¹; shifted into the exponent field, the 2⁵¹
     // and the exponent bits of t fall off the top.
     let two_n = f64::from_bits(t.to_bits().wrapping_add(1023) << 52);
@@ -57,11 +55,16 @@ pub(crate) fn exp(x: f64) -> f64 {
     }
 }
 
-/// v ← s · e^{c·v} for every value.
+/// v ← s · e^{c·v} for every value, vectorised.
 pub(crate) fn scaled_exp_in_place(values: &mut [f64], c: f64, s: f64) {
-    for v in values {
-        *v = s * exp(c * *v);
-    }
+    vectorised(
+        #[inline(always)]
+        || {
+            for v in values {
+                *v = s * exp(c * *v);
+            }
+        },
+    );
 }
 
 #[cfg(test)]
@@ -69,14 +72,14 @@ mod tests {
     use super::*;
 
     #[test]
-    fn exp_is_within_two_ulp_of_the_library_over_the_kernel_range() {
+    fn exp_is_within_three_ulp_of_the_library_over_the_kernel_range() {
         let mut worst = 0.0_f64;
         for i in 0..200_000 {
             let x = -700.0 * (i as f64 / 200_000.0).powi(2) + 1.5e-3 * (i % 7) as f64;
             let want = x.exp();
             worst = worst.max(((exp(x) - want) / want).abs());
         }
-        assert!(worst < 2.0 * f64::EPSILON, "worst relative error {worst:e}");
+        assert!(worst < 3.0 * f64::EPSILON, "worst relative error {worst:e}");
     }
 
     #[test]
@@ -87,7 +90,7 @@ mod tests {
         assert_eq!(exp(f64::NEG_INFINITY), 0.0);
         assert_eq!(exp(1e6), f64::INFINITY);
         assert!(exp(f64::NAN).is_nan());
-        assert!(((exp(700.0) - 700f64.exp()) / 700f64.exp()).abs() < 2.0 * f64::EPSILON);
+        assert!(((exp(700.0) - 700f64.exp()) / 700f64.exp()).abs() < 3.0 * f64::EPSILON);
     }
 
     #[test]

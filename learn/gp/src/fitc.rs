@@ -12,6 +12,7 @@ use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
 use super::linalg::{cholesky_with_jitter, dot, log_diag_sum, lower_inverse};
 use super::linalg::{lower_mul, mul, symmetric_mul_t, upper_mul};
+use super::simd::vectorised;
 use super::train_data::TrainData;
 use crate::Result;
 
@@ -88,19 +89,24 @@ fn pass1<K: Kernel>(
     let mut vy = DVector::zeros(m);
     let (mut yy, mut log_g) = (0.0, 0.0);
     // Steps 4-5 and the block's share of Ṽỹ in one sweep over the columns of V.
-    for (n, col) in vt.as_mut_slice().chunks_exact_mut(m).enumerate() {
-        // step 4: λ = diag K_NN − q clamped at 0, q = ‖V_{:,n}‖²
-        let g_n = (k_diag[n] - dot(col, col)).max(0.0) + h.noise_variance;
-        let g_isqrt = 1.0 / g_n.sqrt();
-        let yt = y[n] * g_isqrt; // ỹ = Γ^{-1/2}y
-        for (v, acc) in col.iter_mut().zip(vy.iter_mut()) {
-            *v *= g_isqrt; // step 5: Ṽ = VΓ^{-1/2}
-            *acc += *v * yt;
-        }
-        g[n] = g_n;
-        yy += yt * yt;
-        log_g += g_n.ln();
-    }
+    vectorised(
+        #[inline(always)]
+        || {
+            for (n, col) in vt.as_mut_slice().chunks_exact_mut(m).enumerate() {
+                // step 4: λ = diag K_NN − q clamped at 0, q = ‖V_{:,n}‖²
+                let g_n = (k_diag[n] - dot(col, col)).max(0.0) + h.noise_variance;
+                let g_isqrt = 1.0 / g_n.sqrt();
+                let yt = y[n] * g_isqrt; // ỹ = Γ^{-1/2}y
+                for (v, acc) in col.iter_mut().zip(vy.iter_mut()) {
+                    *v *= g_isqrt; // step 5: Ṽ = VΓ^{-1/2}
+                    *acc += *v * yt;
+                }
+                g[n] = g_n;
+                yy += yt * yt;
+                log_g += g_n.ln();
+            }
+        },
+    );
     let vvt = symmetric_mul_t(&vt, &vt);
     Pass1 {
         yy,
@@ -205,36 +211,46 @@ fn pass2<K: Kernel>(
     let mut d = DVector::zeros(len);
     // One sweep over the columns: α = C⁻¹y, d = diag(G) and, in place of B⁻¹Ṽ,
     // R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d), with V = ṼΓ^{1/2}.
-    for (n, (col, vt_col)) in r_mat
-        .as_mut_slice()
-        .chunks_exact_mut(m)
-        .zip(p.vt.as_slice().chunks_exact(m))
-        .enumerate()
-    {
-        let g_n = p.g[n];
-        let g_sqrt = g_n.sqrt();
-        let w1_sq = dot(vt_col, col); // ‖W1_{:,n}‖²
-        let a = (y[n] - g_sqrt * dot(vt_col, u)) / g_n; // Ṽᵀu = Γ^{-1/2}Vᵀu
-        let d_n = 0.5 * ((1.0 - w1_sq) / g_n - a * a);
-        d[n] = d_n;
-        let (gi, v2d) = (1.0 / g_sqrt, 2.0 * g_sqrt * d_n);
-        for ((x, u), v) in col.iter_mut().zip(u).zip(vt_col) {
-            *x = *x * gi - u * a - v * v2d;
-        }
-    }
+    vectorised(
+        #[inline(always)]
+        || {
+            for (n, (col, vt_col)) in r_mat
+                .as_mut_slice()
+                .chunks_exact_mut(m)
+                .zip(p.vt.as_slice().chunks_exact(m))
+                .enumerate()
+            {
+                let g_n = p.g[n];
+                let g_sqrt = g_n.sqrt();
+                let w1_sq = dot(vt_col, col); // ‖W1_{:,n}‖²
+                let a = (y[n] - g_sqrt * dot(vt_col, u)) / g_n; // Ṽᵀu = Γ^{-1/2}Vᵀu
+                let d_n = 0.5 * ((1.0 - w1_sq) / g_n - a * a);
+                d[n] = d_n;
+                let (gi, v2d) = (1.0 / g_sqrt, 2.0 * g_sqrt * d_n);
+                for ((x, u), v) in col.iter_mut().zip(u).zip(vt_col) {
+                    *x = *x * gi - u * a - v * v2d;
+                }
+            }
+        },
+    );
     let d_u = upper_mul(&f.l_inv_t, &r_mat); // ∂𝓛/∂U = L⁻ᵀR
     // V diag(d) Vᵀ = Ṽ diag(g∘d) Ṽᵀ, reusing R's storage for Ṽ diag(g∘d).
-    for (n, (col, vt_col)) in r_mat
-        .as_mut_slice()
-        .chunks_exact_mut(m)
-        .zip(p.vt.as_slice().chunks_exact(m))
-        .enumerate()
-    {
-        let gd = p.g[n] * d[n];
-        for (x, v) in col.iter_mut().zip(vt_col) {
-            *x = v * gd;
-        }
-    }
+    vectorised(
+        #[inline(always)]
+        || {
+            for (n, (col, vt_col)) in r_mat
+                .as_mut_slice()
+                .chunks_exact_mut(m)
+                .zip(p.vt.as_slice().chunks_exact(m))
+                .enumerate()
+            {
+                let gd = p.g[n] * d[n];
+                for (x, v) in col.iter_mut().zip(vt_col) {
+                    *x = v * gd;
+                }
+            }
+        },
+    );
     Pass2 {
         d_u,
         vdvt: symmetric_mul_t(&r_mat, &p.vt),

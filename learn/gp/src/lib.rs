@@ -38,6 +38,7 @@ mod objective;
 mod params;
 mod pls;
 mod shape;
+mod simd;
 mod sparse_posterior;
 mod squashing;
 mod stationary;

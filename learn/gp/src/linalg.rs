@@ -150,6 +150,7 @@ pub(crate) fn log_diag_sum(l: &DMatrix<f64>) -> f64 {
 
 /// Σ values in four interleaved partial sums: vectorised and, for a given length, always added in
 /// the same order.
+#[inline(always)]
 pub(crate) fn sum(values: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let chunks = values.chunks_exact(4);
@@ -163,6 +164,7 @@ pub(crate) fn sum(values: &[f64]) -> f64 {
 }
 
 /// Σ a_i b_i in four interleaved partial sums (vectorised, fixed order for a given length).
+#[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));

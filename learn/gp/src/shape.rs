@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::exp::{exp, scaled_exp_in_place};
+use super::simd::vectorised;
 
 /// √3, the Matérn 3/2 rate.
 const SQRT_3: f64 = 1.732_050_807_568_877_2;
@@ -20,6 +21,7 @@ pub enum Shape {
 
 impl Shape {
     /// ρ(r²).
+    #[inline(always)]
     pub(crate) fn profile(self, r2: f64) -> f64 {
         match self {
             Self::SquaredExponential => exp(-0.5 * r2),
@@ -34,7 +36,10 @@ impl Shape {
     pub(crate) fn scaled_profile_in_place(self, r2: &mut [f64], s: f64) {
         match self {
             Self::SquaredExponential => scaled_exp_in_place(r2, -0.5, s),
-            Self::Matern32 => r2.iter_mut().for_each(|v| *v = s * self.profile(*v)),
+            Self::Matern32 => vectorised(
+                #[inline(always)]
+                || r2.iter_mut().for_each(|v| *v = s * self.profile(*v)),
+            ),
         }
     }
 
