@@ -97,7 +97,7 @@ fn pass1<K: Kernel>(
                 let g_n = (k_diag[n] - dot(col, col)).max(0.0) + h.noise_variance;
                 let g_isqrt = 1.0 / g_n.sqrt();
                 let yt = y[n] * g_isqrt; // ỹ = Γ^{-1/2}y
-                for (v, acc) in col.iter_mut().zip(vy.iter_mut()) {
+                for (v, acc) in col.iter_mut().zip(vy.as_mut_slice()) {
                     *v *= g_isqrt; // step 5: Ṽ = VΓ^{-1/2}
                     *acc += *v * yt;
                 }

@@ -22,7 +22,11 @@ mod tests {
         let plain: Vec<f64> = x.iter().map(|v| v * v * 0.5 + v / 3.0).collect();
         let fast = vectorised(
             #[inline(always)]
-            || x.iter().map(|v| v * v * 0.5 + v / 3.0).collect::<Vec<f64>>(),
+            || {
+                x.iter()
+                    .map(|v| v * v * 0.5 + v / 3.0)
+                    .collect::<Vec<f64>>()
+            },
         );
         assert_eq!(plain, fast);
     }
