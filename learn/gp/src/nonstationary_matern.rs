@@ -35,6 +35,13 @@ pub(crate) fn nonstationary_matern32(d: f64, l1: f64, l2: f64) -> (f64, f64, f64
 
 /// The kernel and its log-length-scale derivatives for l₁ ≤ l₂.
 fn ordered(d: f64, l1: f64, l2: f64) -> (f64, f64, f64) {
+    // P = 2√r/(1 + r) with r = l₁/l₂; ∂P/∂log l₁ = P(l₂ − l₁)/(2(l₁ + l₂)) = −∂P/∂log l₂.
+    let r = l1 / l2;
+    let p = 2.0 * r.sqrt() / (1.0 + r);
+    let dp = p * (1.0 - r) / (2.0 * (1.0 + r));
+    if d == 0.0 {
+        return (p, dp, -dp); // the exponential part is 1 and flat at d = 0
+    }
     let c = SQRT_3 * d;
     let (u1, u2) = (c / l1, c / l2);
     let (phi1, phi2) = phis(u2 - u1);
@@ -42,10 +49,6 @@ fn ordered(d: f64, l1: f64, l2: f64) -> (f64, f64, f64) {
     let exponential = e * (1.0 + u2 * phi1);
     let d_exp_1 = e * u1 * u2 * (phi1 - phi2);
     let d_exp_2 = e * u1 * u2 * phi2;
-    // P = 2√r/(1 + r) with r = l₁/l₂; ∂P/∂log l₁ = P(l₂ − l₁)/(2(l₁ + l₂)) = −∂P/∂log l₂.
-    let r = l1 / l2;
-    let p = 2.0 * r.sqrt() / (1.0 + r);
-    let dp = p * (1.0 - r) / (2.0 * (1.0 + r));
     (
         p * exponential,
         dp * exponential + p * d_exp_1,
@@ -53,24 +56,30 @@ fn ordered(d: f64, l1: f64, l2: f64) -> (f64, f64, f64) {
     )
 }
 
+/// 1/(k+2)! for k = 0 … 17: the series coefficients of φ₂.
+const PHI2_SERIES: [f64; 18] = {
+    let mut c = [0.0; 18];
+    let mut f = 2.0;
+    let mut k = 0;
+    while k < 18 {
+        c[k] = 1.0 / f;
+        f *= (k + 3) as f64;
+        k += 1;
+    }
+    c
+};
+
 /// φ₁(δ) = (e^δ − 1)/δ and φ₂(δ) = (e^δ − 1 − δ)/δ², with φ₁(0) = 1 and φ₂(0) = ½.
 fn phis(delta: f64) -> (f64, f64) {
     if delta.abs() >= SERIES_LIMIT {
         let em1 = delta.exp_m1();
         return (em1 / delta, (em1 - delta) / (delta * delta));
     }
-    // φ₁ = Σ δᵏ/(k+1)!, φ₂ = Σ δᵏ/(k+2)!, summed from the smallest term up.
-    let mut terms = [0.0; 18];
-    let mut t = 1.0; // δᵏ/(k+2)!
-    for (k, slot) in terms.iter_mut().enumerate() {
-        t = if k == 0 {
-            0.5
-        } else {
-            t * delta / (k as f64 + 2.0)
-        };
-        *slot = t;
-    }
-    let phi2: f64 = terms.iter().rev().sum();
+    // φ₂ = Σ δᵏ/(k+2)! by Horner's rule; φ₁ = 1 + δφ₂.
+    let phi2 = PHI2_SERIES
+        .iter()
+        .rev()
+        .fold(0.0_f64, |acc, c| acc * delta + c);
     (1.0 + delta * phi2, phi2)
 }
 
