@@ -67,6 +67,14 @@ pub enum EvalError {
     /// Reading a dataset failed.
     #[error(transparent)]
     Dataset(#[from] patchflow_dataset::DatasetError),
+    /// Simulating scenarios into a dataset failed.
+    #[error("generating into {out}: {source}")]
+    Sim {
+        /// The dataset folder being written.
+        out: PathBuf,
+        /// What the simulator reported.
+        source: patchflow_sim::SimError,
+    },
 }
 
 impl EvalError {

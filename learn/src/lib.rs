@@ -5,6 +5,7 @@
 mod error;
 mod estimator;
 mod features;
+mod timing;
 
 pub use error::{LearnError, Result};
 pub use estimator::*;

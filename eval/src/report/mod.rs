@@ -7,7 +7,11 @@ mod cv;
 mod files;
 mod json;
 mod markdown;
+mod object_plot;
+mod perception_markdown;
 mod plot;
+mod scene_markdown;
+mod scores;
 #[cfg(test)]
 mod synthetic;
 mod writer;

@@ -3,7 +3,9 @@
 //! sampled training samples of thesis 3.1.1-3.1.2.
 
 mod beam_counts;
+mod cell_samples;
 mod cluster;
+mod cluster_shape;
 mod csv;
 mod difference_map;
 mod gabor;
@@ -23,6 +25,7 @@ mod render;
 mod sampler;
 mod samples;
 mod sampling;
+mod scan_stream;
 mod slice;
 mod spread_kernel;
 mod sweep_features;
@@ -32,7 +35,9 @@ mod synthetic_ground;
 mod synthetic_world;
 mod top_n;
 
+pub use cell_samples::CellSamples;
 pub use cluster::Clusters;
+pub use cluster_shape::{ClusterShape, MAX_OBJECT_LENGTH_M};
 pub use csv::{Alignment, META_COLUMNS};
 pub use difference_map::MapPair;
 pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
@@ -43,5 +48,6 @@ pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
 pub use render::{render_png, write_png};
 pub use samples::{Sample, SampleSet};
 pub use sampling::importance_sample;
+pub use scan_stream::{Scan, ScanStream};
 pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
-pub use sweep_features::{FeatureKind, SweepFeatures};
+pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};

@@ -6,11 +6,7 @@
 use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
-use patchflow_eval::{
-    OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
-    progress_bar, write_occupancy_report,
-};
-use patchflow_occupancy::{OccupancyParams, OccupancySequence};
+use patchflow_eval::{OccupancyReport, occupancy_with_bar, write_occupancy_report};
 
 /// Arguments of `patchflow occupancy`.
 #[derive(Debug, clap::Args)]
@@ -38,23 +34,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         files.plots.len()
     );
     Ok(())
-}
-
-/// Scores every method on the dataset's planar sequences with a progress bar over the maps;
-/// `bench` uses it too.
-pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> anyhow::Result<OccupancyReport> {
-    let params = OccupancyParams::default();
-    let methods_per_scenario = occupancy_methods(seed).len();
-    let maps =
-        occupancy_sequences(dataset)?.len() * params.query_scans.len() * methods_per_scenario;
-    let bar = progress_bar(maps as u64, "occupancy maps");
-    let methods_for =
-        |_: &OccupancySequence, _: Option<&OccupancySequence>| Ok(occupancy_methods(seed));
-    let report = evaluate_occupancy(dataset, &methods_for, &params, seed, &|_, _, _| bar.inc(1));
-    bar.finish_and_clear();
-    let mut report = report?;
-    report.notes = occupancy_notes(&params);
-    Ok(report)
 }
 
 /// One line per scenario and method: AUC at each query time and seconds per map.
