@@ -25,6 +25,7 @@ mod occupancy_grid;
 mod occupancy_sequence;
 mod params;
 mod planar_scan;
+mod predict_ahead;
 mod query_grid;
 mod scan_cells;
 mod training_samples;
@@ -42,6 +43,9 @@ pub use motion_map::{MotionMap, MotionMapParams};
 pub use occupancy_grid::OccupancyGridMethod;
 pub use occupancy_sequence::OccupancySequence;
 pub use params::OccupancyParams;
+/// The velocity and error fields DGPOM's kernel reads, implemented by [`MotionMap`].
+pub use patchflow_gp::MotionField;
 pub use planar_scan::{Beam, PlanarScan};
+pub use predict_ahead::{AheadParams, AheadScores, evaluate_ahead};
 pub use query_grid::QueryGrid;
 pub use training_samples::{OccupancySample, SampleParams, scan_samples};
