@@ -11,7 +11,10 @@ use patchflow_occupancy::*;
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let dataset = Dataset::open(std::path::Path::new(&args[1]))?;
+    let Some(dir) = args.get(1) else {
+        return Err("usage: dgpom_check DATASET [NAME]".into());
+    };
+    let dataset = Dataset::open(std::path::Path::new(dir))?;
     let name = args.get(2).map_or("dgpom_tjunction", String::as_str);
     let seq = OccupancySequence::load(&dataset.sequence(name)?)?;
     let train = OccupancySequence::load(&dataset.sequence(&format!("{name}_train"))?)?;
@@ -74,7 +77,6 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-#[allow(dead_code)]
 fn dump(map: &MotionMap) {
     for c in &map.clusters {
         if c.kind != ClusterKind::Stationary && c.centroid_m[1] > 5.5 {
