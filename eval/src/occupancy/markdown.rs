@@ -52,6 +52,7 @@ pub fn occupancy_section(report: &OccupancyReport) -> String {
         }
         md.push('\n');
         if let Some(map) = report.motion_maps.get(&scores.name) {
+            dgpom_against_gpom(&mut md, scores);
             motion_map_section(&mut md, scores, map);
         }
         if let Some(ahead) = report.ahead.get(&scores.name) {
@@ -233,4 +234,51 @@ fn ahead_section(md: &mut String, scenario: &str, ahead: &AheadScores) {
         let _ = writeln!(md, "| {t:.1} | {m:.4} | {s:.4} | {} |", aucs.len());
     }
     md.push('\n');
+}
+
+/// Where DGPOM's AUC falls below a GPOM's, with DGPOM's fit at those query times (the done-when
+/// of issue #12 asks the report to say why, from the data).
+fn dgpom_against_gpom(md: &mut String, scores: &SequenceScores) {
+    let Some(dgpom) = scores.methods.get("DGPOM") else {
+        return;
+    };
+    let scans: Vec<usize> = dgpom.auc_by_query_scan.keys().copied().collect();
+    let mut below = Vec::new();
+    for (i, &t) in scans.iter().enumerate() {
+        let ours = dgpom.auc_by_query_scan[&t].unwrap_or(f64::NAN);
+        let beaten_by: Vec<String> = ["GPOM-RD", "GPOM-RD1"]
+            .iter()
+            .filter_map(|name| {
+                let other = scores
+                    .methods
+                    .get(*name)?
+                    .auc_by_query_scan
+                    .get(&t)?
+                    .as_ref()?;
+                (*other > ours).then(|| format!("`{name}` {other:.4}"))
+            })
+            .collect();
+        if !beaten_by.is_empty() {
+            let fit = dgpom.summaries.get(i).map_or("", String::as_str);
+            below.push(format!(
+                "- t = {}: `DGPOM` {ours:.4} < {}; DGPOM's fit: {fit}",
+                query_time_key(scores, t),
+                beaten_by.join(", ")
+            ));
+        }
+    }
+    if below.is_empty() {
+        let _ = writeln!(
+            md,
+            "`DGPOM`'s AUC is at least both GPOMs' at every query time.\n"
+        );
+    } else {
+        let _ = writeln!(
+            md,
+            "`DGPOM` is below a GPOM at {} of {} query times:\n\n{}\n",
+            below.len(),
+            scans.len(),
+            below.join("\n")
+        );
+    }
 }

@@ -48,6 +48,41 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             .collect();
         println!("y {y:5.1}: {}", v.join("  "));
     }
+    if std::env::var("CROSSING").is_ok() {
+        // The busy intersection: each lane's Υ at 20, 10 and 5 m before the centre and beyond.
+        for (lane, points) in [
+            (
+                "east  y=-2.5 (+8)",
+                [[-20.0, -2.5], [-10.0, -2.5], [-5.0, -2.5], [10.0, -2.5]],
+            ),
+            (
+                "west  y=+2.5 (-6)",
+                [[20.0, 2.5], [10.0, 2.5], [5.0, 2.5], [-10.0, 2.5]],
+            ),
+            (
+                "north x=+2.5 (+7)",
+                [[2.5, -20.0], [2.5, -10.0], [2.5, -5.0], [2.5, 10.0]],
+            ),
+            (
+                "south x=-2.5 (-9)",
+                [[-2.5, 20.0], [-2.5, 10.0], [-2.5, 5.0], [-2.5, -10.0]],
+            ),
+            (
+                "block (0)",
+                [[20.0, 20.0], [-20.0, -20.0], [20.0, -20.0], [-20.0, 20.0]],
+            ),
+        ] {
+            let v: Vec<String> = points
+                .iter()
+                .map(|&p| {
+                    let v = map.velocity_mps(p);
+                    format!("{:+.2},{:+.2}|{:.2}", v[0], v[1], map.error_mps(p))
+                })
+                .collect();
+            println!("{lane}: {}", v.join("  "));
+        }
+        return Ok(());
+    }
     if std::env::var("DUMP").is_ok() {
         dump(&map);
         return Ok(());
@@ -67,6 +102,11 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             .values()
             .map(|a| format!("{:.4}", a.unwrap_or(f64::NAN)))
             .collect();
+        if std::env::var("FITS").is_ok() {
+            for line in &m.summaries {
+                println!("    {line}");
+            }
+        }
         println!(
             "{name:>9}: {}  {:.2} s/map  {}",
             aucs.join(" "),

@@ -14,7 +14,8 @@ use serde::{Deserialize, Serialize};
 use crate::motion_clusters::motion_clusters;
 use crate::scan_cells::ScanCells;
 use crate::{
-    FieldRaster, MotionCluster, MotionClusterParams, OccupancyError, OccupancySequence, Result,
+    ClusterKind, FieldRaster, MotionCluster, MotionClusterParams, OccupancyError,
+    OccupancySequence, Result,
 };
 
 /// Settings of the motion map.
@@ -112,16 +113,27 @@ impl MotionMap {
             .iter()
             .map(|_| rng.random::<f64>() < params.held_out_fraction)
             .collect();
-        let samples = |held: bool| -> Vec<Sample> {
+        let samples = |held: bool, moving: bool| -> Vec<Sample> {
             clusters
                 .iter()
                 .zip(&held_out)
-                .filter(|(_, h)| **h == held)
+                .filter(|(c, h)| **h == held && (c.kind != ClusterKind::Stationary) == moving)
                 .flat_map(|(c, _)| c.cells_m.iter().map(|&p| (p, c.velocity_mps)))
                 .collect()
         };
-        let velocity_samples = subset(samples(false), params.velocity_points, &mut rng);
-        let held_samples = subset(samples(true), params.error_points, &mut rng);
+        // Stationary cells far outnumber moving ones; a plain draw would leave Υ a few moving
+        // cells among hundreds of zeros. Half the draw comes from each kind (all of a kind if it
+        // has fewer), which keeps both the lanes and the still structure in the field.
+        let mut balanced = |held: bool, n: usize| -> Vec<Sample> {
+            let moving = samples(held, true);
+            let take_moving = moving.len().min(n / 2);
+            let still = samples(held, false);
+            let mut out = subset(moving, take_moving, &mut rng);
+            out.extend(subset(still, n - take_moving, &mut rng));
+            out
+        };
+        let velocity_samples = balanced(false, params.velocity_points);
+        let held_samples = balanced(true, params.error_points);
         if velocity_samples.len() < 10 || held_samples.len() < 10 {
             return Err(degenerate(format!(
                 "{} motion clusters give {} training and {} held-out cells; at least 10 of each are needed",

@@ -30,7 +30,7 @@ impl Default for AheadParams {
         Self {
             start_scans: vec![3, 4, 5, 6],
             scans_per_map: 4,
-            horizon_scans: 5,
+            horizon_scans: 8,
             query_spacing_m: 0.5,
         }
     }
