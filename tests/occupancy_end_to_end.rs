@@ -1,14 +1,21 @@
 //! Occupancy maps end to end on the shipped T-junction: generate it (a planar scanner, 12 scans)
-//! and its training run, map it with the grid and both GPOMs (small settings), score against
-//! exact truth and write the report. Checks that `occupancy.json` has the SPEC §7 shape, that every map beats chance, that
+//! and its training run, learn DGPOM's motion map from the training run, map it with DGPOM, the
+//! grid and both GPOMs (small settings), predict ahead with DGPOM, score against exact truth and
+//! write the report. Checks that `occupancy.json` has the SPEC §7 shape, that every map beats chance, that
 //! the plots are PNGs, and that a dataset of an older build (no `static.json`) is refused with
 //! the file's name.
 
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
-use patchflow_eval::{OccupancyReport, evaluate_occupancy, write_occupancy_report};
+use std::cell::RefCell;
+use std::sync::Arc;
+
+use patchflow_eval::{
+    OccupancyReport, evaluate_occupancy, learn_motion_map, predict_ahead, write_occupancy_report,
+};
 use patchflow_occupancy::{
-    GpomMethod, MapMethod, OccupancyGridMethod, OccupancyParams, OccupancySequence, SampleParams,
+    AheadParams, DgpomMethod, DgpomParams, GpomMethod, MapMethod, OccupancyGridMethod,
+    OccupancyParams, OccupancySequence, SampleParams,
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
@@ -37,11 +44,21 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
         max_iters: 25,
         ..m
     };
+    let motion_map = RefCell::new(None);
     let methods = |sequence: &OccupancySequence, training: Option<&OccupancySequence>| {
         // The training run is handed over for methods that learn beforehand, and not scored.
         assert_eq!(sequence.name, "dgpom_tjunction");
         assert_eq!(training.map(|t| t.scans.len()), Some(100));
+        let map = learn_motion_map(training.unwrap()).unwrap();
+        *motion_map.borrow_mut() = Some(Arc::clone(&map));
+        // DGPOM keeps its default pseudo-inputs: with 60 its map at t = 3 fell to AUC 0.59.
+        let dgpom = DgpomParams {
+            samples: samples.clone(),
+            max_iters: 25,
+            ..DgpomParams::default()
+        };
         let methods: Vec<Box<dyn MapMethod>> = vec![
+            Box::new(DgpomMethod::new(dgpom, map)),
             Box::new(small(GpomMethod::space(samples.clone()))),
             Box::new(small(GpomMethod::space_time(samples.clone()))),
             Box::new(OccupancyGridMethod::default()),
@@ -52,7 +69,16 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
         query_scans: vec![3, 5],
         ..OccupancyParams::default()
     };
-    evaluate_occupancy(dataset, &methods, &params, 7, &|_, _, _| {}).unwrap()
+    let mut report = evaluate_occupancy(dataset, &methods, &params, 7, &|_, _, _| {}).unwrap();
+    let map = motion_map.into_inner().unwrap();
+    report.motion_maps.insert("dgpom_tjunction".into(), map);
+    let ahead = AheadParams {
+        start_scans: vec![4],
+        horizon_scans: 2,
+        ..AheadParams::default()
+    };
+    predict_ahead(dataset, &mut report, &ahead, &|| {}).unwrap();
+    report
 }
 
 #[test]
@@ -71,7 +97,7 @@ fn the_tjunction_is_mapped_scored_and_reported_in_the_spec_shape() {
         .as_object()
         .unwrap();
     let names: Vec<&str> = methods.keys().map(String::as_str).collect();
-    assert_eq!(names, ["GPOM-RD", "GPOM-RD1", "GRID"], "{json}");
+    assert_eq!(names, ["DGPOM", "GPOM-RD", "GPOM-RD1", "GRID"], "{json}");
     for (name, m) in methods {
         for t in ["3", "5"] {
             let auc = m["auc_by_query_time"][t].as_f64().unwrap();
@@ -83,7 +109,13 @@ fn the_tjunction_is_mapped_scored_and_reported_in_the_spec_shape() {
             "{name}"
         );
     }
-    assert_eq!(files.plots.len(), 3);
+    // DGPOM's motion map and its predictions ahead (three times: 0, 1 and 2 s after the scan).
+    let scenario = &json["scenarios"]["dgpom_tjunction"];
+    assert_eq!(scenario["motion_map"]["velocity_points"], 500, "{json}");
+    let ahead = scenario["predict_ahead"]["auc_mean"].as_array().unwrap();
+    assert_eq!(ahead.len(), 3, "{json}");
+    assert!(ahead.iter().all(|a| a.as_f64().unwrap() > 0.6), "{json}");
+    assert_eq!(files.plots.len(), 6);
     for plot in &files.plots {
         let bytes = std::fs::read(plot).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", plot.display());

@@ -1,34 +1,39 @@
 //! Criterion bench of one occupancy map (fit and prediction over the query lattice, SPEC §8) of
 //! each method on the DGPOM T-junction at query time t = 5 (the scans at t = 2 … 5), with the
-//! bench's settings. Prints the training and query points per map first.
+//! bench's settings; DGPOM on the motion map learned from the training run `dgpom_tjunction_train`
+//! (learned once, outside the timing). Prints the training and query points per map first.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use patchflow_dataset::Dataset;
-use patchflow_eval::occupancy_methods;
+use patchflow_eval::{learn_motion_map, occupancy_methods};
 use patchflow_occupancy::{OccupancyParams, OccupancySequence, QueryGrid, ScanWindow};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 use std::hint::black_box;
 
-/// The generated T-junction (seed 7), in a temporary folder kept for the bench's lifetime.
-fn tjunction() -> (tempfile::TempDir, OccupancySequence) {
+/// The generated T-junction and its training run (seed 7), in a temporary folder kept for the
+/// bench's lifetime.
+fn tjunction() -> (tempfile::TempDir, OccupancySequence, OccupancySequence) {
     let dir = tempfile::tempdir().expect("a temporary folder");
-    let source =
-        ScenarioSource::from_argument(std::path::Path::new("dgpom_tjunction")).expect("embedded");
+    let sources = ["dgpom_tjunction", "dgpom_tjunction_train"]
+        .map(|n| ScenarioSource::from_argument(std::path::Path::new(n)).expect("embedded"));
     let options = GenerateOptions {
         out: dir.path().to_owned(),
         seed: 7,
         shard: Shard::ALL,
         overwrite: false,
     };
-    generate_dataset(&[source], &options, &|_| {}).expect("generates");
+    generate_dataset(&sources, &options, &|_| {}).expect("generates");
     let dataset = Dataset::open(dir.path()).expect("opens");
-    let sequence = dataset.sequence("dgpom_tjunction").expect("sequence");
-    let sequence = OccupancySequence::load(&sequence).expect("loads");
-    (dir, sequence)
+    let load = |name: &str| {
+        OccupancySequence::load(&dataset.sequence(name).expect("sequence")).expect("loads")
+    };
+    let (sequence, training) = (load("dgpom_tjunction"), load("dgpom_tjunction_train"));
+    (dir, sequence, training)
 }
 
 fn bench_one_map(c: &mut Criterion) {
-    let (_dir, sequence) = tjunction();
+    let (_dir, sequence, training) = tjunction();
+    let motion_map = learn_motion_map(&training).expect("learns the motion map");
     let params = OccupancyParams::default();
     let t = 5;
     let window = ScanWindow {
@@ -44,7 +49,7 @@ fn bench_one_map(c: &mut Criterion) {
     );
     let mut group = c.benchmark_group("occupancy_map_tjunction_t5");
     group.sample_size(10);
-    for method in occupancy_methods(7) {
+    for method in occupancy_methods(7, Some(motion_map)) {
         let output = method.map(&window, &grid.points_m).expect("maps");
         println!(
             "{}: {} training points, {} query points; {}",

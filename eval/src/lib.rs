@@ -65,8 +65,9 @@ pub use objects::{
 pub use observation::{ActorCluster, ClusterObservation, ScanObservation, centroid_of};
 pub use occupancy::{
     MethodsFor, OccupancyFiles, OccupancyReport, PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow,
-    evaluate_occupancy, occupancy_json, occupancy_markdown, occupancy_methods, occupancy_notes,
-    occupancy_section, occupancy_sequences, plot_occupancy_figure, write_occupancy_report,
+    dgpom_method, dgpom_notes, evaluate_occupancy, learn_motion_map, occupancy_json,
+    occupancy_markdown, occupancy_methods, occupancy_notes, occupancy_section, occupancy_sequences,
+    plot_ahead, plot_motion_map, plot_occupancy_figure, predict_ahead, write_occupancy_report,
 };
 pub use perception_summary::{PerceptionSummary, STAGES, StageOf};
 pub use perception_timing::{ScanTiming, Spread, StepTiming};

@@ -1,13 +1,15 @@
 //! The benchmark's long stages with progress on the terminal (indicatif bars on stderr, hidden
 //! when stderr is not a terminal); `patchflow generate`, `cv` and `evaluate` run them too.
 
-use std::collections::HashMap;
+use std::cell::RefCell;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
 use std::sync::Mutex;
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use patchflow_dataset::{Dataset, Manifest};
 use patchflow_learn::{FeatureKind, FeatureParams, MotionEstimator, SampleSet};
-use patchflow_occupancy::{OccupancyParams, OccupancySequence};
+use patchflow_occupancy::{AheadParams, OccupancyParams, OccupancySequence};
 use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, generate_dataset};
 
 use crate::baselines::BaselineParams;
@@ -15,7 +17,8 @@ use crate::cross_validation::{CvParams, cross_validate_samples};
 use crate::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 use crate::error::EvalError;
 use crate::occupancy::{
-    OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
+    OccupancyReport, dgpom_notes, evaluate_occupancy, learn_motion_map, occupancy_methods,
+    occupancy_notes, occupancy_sequences, predict_ahead,
 };
 use crate::progress::progress_bar;
 use crate::report::CvReport;
@@ -125,18 +128,50 @@ pub fn evaluate_with_bar(
 }
 
 /// Maps every planar scanner's sequence of a dataset with every occupancy method (the DGPOM
-/// paper's protocol), with a progress bar over the maps; `patchflow occupancy` runs it too.
+/// paper's protocol: DGPOM where the scenario has a training run, whose motion map is learned
+/// first), then DGPOM's predictions ahead (Figure 10), with a progress bar over the maps;
+/// `patchflow occupancy` runs it too.
 pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> Result<OccupancyReport, EvalError> {
     let params = OccupancyParams::default();
-    let methods_per_scenario = occupancy_methods(seed).len();
-    let maps =
-        occupancy_sequences(dataset)?.len() * params.query_scans.len() * methods_per_scenario;
+    let ahead = AheadParams::default();
+    let names = occupancy_sequences(dataset)?;
+    let trained = names
+        .iter()
+        .filter(|n| {
+            let training = format!("{n}_train");
+            dataset.sequences().iter().any(|s| s.name == training)
+        })
+        .count();
+    let methods_per_scenario = occupancy_methods(seed, None).len();
+    let maps = (names.len() * methods_per_scenario + trained) * params.query_scans.len()
+        + trained * ahead.start_scans.len();
     let bar = progress_bar(maps as u64, "occupancy maps");
-    let methods_for =
-        |_: &OccupancySequence, _: Option<&OccupancySequence>| Ok(occupancy_methods(seed));
+    // DGPOM's motion map is learned from the training run before the scenario is mapped.
+    let motion_maps = RefCell::new(BTreeMap::new());
+    let methods_for = |sequence: &OccupancySequence, training: Option<&OccupancySequence>| {
+        let map = match training {
+            Some(training) => {
+                bar.set_message("DGPOM motion map");
+                let map = learn_motion_map(training)?;
+                bar.set_message("occupancy maps");
+                motion_maps
+                    .borrow_mut()
+                    .insert(sequence.name.clone(), Arc::clone(&map));
+                Some(map)
+            }
+            None => None,
+        };
+        Ok(occupancy_methods(seed, map))
+    };
     let report = evaluate_occupancy(dataset, &methods_for, &params, seed, &|_, _, _| bar.inc(1));
-    bar.finish_and_clear();
     let mut report = report?;
+    report.motion_maps = motion_maps.into_inner();
+    bar.set_message("DGPOM predicting ahead");
+    predict_ahead(dataset, &mut report, &ahead, &|| bar.inc(1))?;
+    bar.finish_and_clear();
     report.notes = occupancy_notes(&params);
+    if !report.motion_maps.is_empty() {
+        report.notes.extend(dgpom_notes(&ahead));
+    }
     Ok(report)
 }

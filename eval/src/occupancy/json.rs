@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use patchflow_occupancy::{MethodScores, SequenceScores};
+use patchflow_occupancy::{AheadScores, ClusterKind, MethodScores, MotionMap, SequenceScores};
 use serde::Serialize;
 
 use super::OccupancyReport;
@@ -24,8 +24,58 @@ struct OccupancyFile {
 #[derive(Serialize)]
 struct ScenarioEntry {
     methods: BTreeMap<String, MethodEntry>,
+    /// DGPOM's motion map, if the scenario has a training run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    motion_map: Option<MotionMapEntry>,
     occupied_points_by_query_time: BTreeMap<String, usize>,
     query_points_by_query_time: BTreeMap<String, usize>,
+    /// DGPOM's predictions ahead (Figure 10), if the scenario has a training run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    predict_ahead: Option<AheadEntry>,
+}
+
+#[derive(Serialize)]
+struct MotionMapEntry {
+    arrived_clusters: usize,
+    error_points: usize,
+    stationary_clusters: usize,
+    summary: String,
+    vacated_clusters: usize,
+    velocity_points: usize,
+}
+
+#[derive(Serialize)]
+struct AheadEntry {
+    auc_by_start: Vec<Vec<f64>>,
+    auc_mean: Vec<f64>,
+    auc_std: Vec<f64>,
+    method: String,
+    seconds_ahead: Vec<f64>,
+    start_scans: Vec<usize>,
+}
+
+fn motion_map_entry(map: &MotionMap) -> MotionMapEntry {
+    let count = |k: ClusterKind| map.clusters.iter().filter(|c| c.kind == k).count();
+    MotionMapEntry {
+        arrived_clusters: count(ClusterKind::Arrived),
+        error_points: map.error_points,
+        stationary_clusters: count(ClusterKind::Stationary),
+        summary: map.summary.clone(),
+        vacated_clusters: count(ClusterKind::Vacated),
+        velocity_points: map.velocity_points,
+    }
+}
+
+fn ahead_entry(a: &AheadScores) -> AheadEntry {
+    let stats = a.mean_std();
+    AheadEntry {
+        auc_by_start: a.auc.clone(),
+        auc_mean: stats.iter().map(|s| s.0).collect(),
+        auc_std: stats.iter().map(|s| s.1).collect(),
+        method: a.method.clone(),
+        seconds_ahead: a.seconds_ahead.clone(),
+        start_scans: a.start_scans.clone(),
+    }
 }
 
 #[derive(Serialize)]
@@ -94,8 +144,10 @@ pub fn occupancy_json(report: &OccupancyReport) -> Result<String, EvalError> {
                     .iter()
                     .map(|(name, m)| (name.clone(), method_entry(s, m)))
                     .collect(),
+                motion_map: report.motion_maps.get(&s.name).map(|m| motion_map_entry(m)),
                 occupied_points_by_query_time: keyed(&s.occupied_points),
                 query_points_by_query_time: keyed(&s.query_points),
+                predict_ahead: report.ahead.get(&s.name).map(ahead_entry),
             };
             (s.name.clone(), entry)
         })

@@ -2,17 +2,21 @@
 //! the run over a dataset's planar sequences, the DGPOM paper's Table 1 for comparison, and the
 //! report files `occupancy.json`, `occupancy.md` and `plots/occupancy_*.png`.
 
+mod dgpom;
 mod json;
 mod markdown;
 mod paper_table;
 mod plot;
+mod plot_dgpom;
 mod run;
 mod writer;
 
+pub use dgpom::{dgpom_method, dgpom_notes, learn_motion_map, predict_ahead};
 pub use json::occupancy_json;
 pub use markdown::{occupancy_markdown, occupancy_section};
 pub use paper_table::{PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow};
 pub use plot::plot_occupancy_figure;
+pub use plot_dgpom::{plot_ahead, plot_motion_map};
 pub use run::{
     MethodsFor, OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes,
     occupancy_sequences,

@@ -1,12 +1,16 @@
 //! The occupancy run over a dataset: which sequences are scored (every planar scanner's sequence
 //! but training runs), which methods are compared, and the report they make.
 
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
 use patchflow_dataset::{Dataset, SensorKind};
 use patchflow_occupancy::{
-    GpomMethod, MapMethod, OccupancyGridMethod, OccupancyParams, OccupancySequence, SampleParams,
-    SequenceScores, evaluate_sequence,
+    AheadScores, GpomMethod, MapMethod, MotionMap, OccupancyGridMethod, OccupancyParams,
+    OccupancySequence, SampleParams, SequenceScores, evaluate_sequence,
 };
 
+use super::dgpom::dgpom_method;
 use crate::error::EvalError;
 
 /// Scores of every method on every scored sequence, with what produced them.
@@ -20,6 +24,10 @@ pub struct OccupancyReport {
     pub seed: u64,
     /// Notes for the Markdown report.
     pub notes: Vec<String>,
+    /// DGPOM's motion map of each scenario with a training run, by scenario name (Figure 5).
+    pub motion_maps: BTreeMap<String, Arc<MotionMap>>,
+    /// DGPOM's predictions ahead of the last scan, by scenario name (Figure 10).
+    pub ahead: BTreeMap<String, AheadScores>,
 }
 
 /// The sequences of `dataset` to score: those of a planar scanner, except training runs (names
@@ -42,18 +50,22 @@ pub fn occupancy_sequences(dataset: &Dataset) -> Result<Vec<String>, EvalError> 
     Ok(names)
 }
 
-/// The methods compared: GPOM in ℜ^D and ℜ^{D+1} (the DGPOM paper's Table 1) and the grid
-/// baseline; `seed` places the free-space samples along the beams.
-pub fn occupancy_methods(seed: u64) -> Vec<Box<dyn MapMethod>> {
+/// The methods compared: DGPOM (if a motion map was learned for the scenario), GPOM in ℜ^D and
+/// ℜ^{D+1} (the DGPOM paper's Table 1) and the grid baseline; `seed` places the free-space
+/// samples along the beams.
+pub fn occupancy_methods(seed: u64, motion_map: Option<Arc<MotionMap>>) -> Vec<Box<dyn MapMethod>> {
     let samples = SampleParams {
         seed,
         ..SampleParams::default()
     };
-    vec![
-        Box::new(GpomMethod::space(samples.clone())),
-        Box::new(GpomMethod::space_time(samples)),
-        Box::new(OccupancyGridMethod::default()),
-    ]
+    let mut methods: Vec<Box<dyn MapMethod>> = Vec::new();
+    if let Some(map) = motion_map {
+        methods.push(Box::new(dgpom_method(seed, map)));
+    }
+    methods.push(Box::new(GpomMethod::space(samples.clone())));
+    methods.push(Box::new(GpomMethod::space_time(samples)));
+    methods.push(Box::new(OccupancyGridMethod::default()));
+    methods
 }
 
 /// What the report says about how the maps were made and where that differs from the paper, for

@@ -7,6 +7,7 @@ use super::OccupancyReport;
 use super::json::occupancy_json;
 use super::markdown::occupancy_markdown;
 use super::plot::{figure_file_name, plot_occupancy_figure};
+use super::plot_dgpom::{ahead_file_name, motion_map_file_name, plot_ahead, plot_motion_map};
 use crate::error::EvalError;
 use crate::report::{create_dir, write_atomic};
 
@@ -17,7 +18,8 @@ pub struct OccupancyFiles {
     pub json: PathBuf,
     /// `DIR/occupancy.md`.
     pub markdown: PathBuf,
-    /// `DIR/plots/occupancy_*.png`, one per scenario and method.
+    /// `DIR/plots/occupancy_*.png`: one per scenario and method, and per scenario with DGPOM its
+    /// motion map (Figure 5) and its predictions ahead (Figure 10).
     pub plots: Vec<PathBuf>,
 }
 
@@ -41,6 +43,16 @@ pub fn write_occupancy_report(
             plot_occupancy_figure(scores, method, &path)?;
             files.plots.push(path);
         }
+    }
+    for (scenario, map) in &report.motion_maps {
+        let path = plots_dir.join(motion_map_file_name(scenario));
+        plot_motion_map(scenario, map, &path)?;
+        files.plots.push(path);
+    }
+    for (scenario, scores) in &report.ahead {
+        let path = plots_dir.join(ahead_file_name(scenario));
+        plot_ahead(scenario, scores, &path)?;
+        files.plots.push(path);
     }
     Ok(files)
 }

@@ -3,8 +3,9 @@
 //! §6.5, for GP occupancy maps). Depends on no other patchflow crate.
 //!
 //! Every model takes any [`Kernel`]: SE-ARD by default (the thesis' kernel), Matérn 3/2, or a
-//! product over groups of input columns such as space × time ([`Stationary`]); a new covariance
-//! function (e.g. DGPOM's motion-adapted one) implements [`Kernel`] and works everywhere.
+//! product over groups of input columns such as space × time ([`Stationary`]), or DGPOM's
+//! motion-adapted kernel over (x, y, t) ([`MotionAdapted`], reading a [`MotionField`]); a new
+//! covariance function implements [`Kernel`] and works everywhere.
 //!
 //! ```
 //! use nalgebra::{DMatrix, DVector};
@@ -33,6 +34,10 @@ mod linalg;
 mod loo;
 mod model;
 mod model_file;
+mod motion_adapted;
+mod motion_adapted_kernel;
+mod motion_field;
+mod nonstationary_matern;
 mod normal;
 mod objective;
 mod params;
@@ -51,6 +56,8 @@ pub use kernel::{Kernel, Points};
 pub use loo::LooMoments;
 pub use model::{FitReport, GpModel, GpPrediction};
 pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
+pub use motion_adapted::MotionAdapted;
+pub use motion_field::{MotionField, transported};
 pub use objective::GpObjective;
 pub use params::{GpKind, GpParams, GpValidParams};
 pub use pls::{PlsClassifier, PlsParams, PlsPrediction, PlsValidParams};

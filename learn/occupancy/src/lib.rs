@@ -12,27 +12,40 @@
 //! ```
 
 mod auc;
+mod dgpom;
 mod error;
 mod evaluation;
+mod field_raster;
 mod gpom;
 mod ground_truth;
 mod map_method;
+mod motion_clusters;
+mod motion_map;
 mod occupancy_grid;
 mod occupancy_sequence;
 mod params;
 mod planar_scan;
+mod predict_ahead;
 mod query_grid;
+mod scan_cells;
 mod training_samples;
 
 pub use auc::roc_auc;
+pub use dgpom::{DgpomMethod, DgpomParams};
 pub use error::{OccupancyError, Result};
 pub use evaluation::{MapFigure, MethodScores, SequenceScores, evaluate_sequence};
+pub use field_raster::FieldRaster;
 pub use gpom::{GpomMethod, GpomSpace};
 pub use ground_truth::{GroundTruth, OrientedBox};
 pub use map_method::{MapMethod, MapOutput, ScanWindow};
+pub use motion_clusters::{Association, ClusterKind, MotionCluster, MotionClusterParams};
+pub use motion_map::{MotionMap, MotionMapParams};
 pub use occupancy_grid::OccupancyGridMethod;
 pub use occupancy_sequence::OccupancySequence;
 pub use params::OccupancyParams;
+/// The velocity and error fields DGPOM's kernel reads, implemented by [`MotionMap`].
+pub use patchflow_gp::MotionField;
 pub use planar_scan::{Beam, PlanarScan};
+pub use predict_ahead::{AheadParams, AheadScores, evaluate_ahead};
 pub use query_grid::QueryGrid;
 pub use training_samples::{OccupancySample, SampleParams, scan_samples};

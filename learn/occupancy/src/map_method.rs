@@ -44,4 +44,25 @@ pub trait MapMethod: Send + Sync {
     /// Builds the map of `window` and predicts at `points_m` (world frame) at the window's query
     /// time: one map, fit and prediction, the unit the evaluation times.
     fn map(&self, window: &ScanWindow<'_>, points_m: &[[f64; 2]]) -> Result<MapOutput>;
+
+    /// Predicts ahead with no newer scan (DGPOM paper, Figure 10): the map of `window`'s scans
+    /// at `points_m` at each of `times_secs` (at or after the last scan). The default builds one
+    /// map per time; methods whose fit does not depend on the query time fit once.
+    fn map_ahead(
+        &self,
+        window: &ScanWindow<'_>,
+        points_m: &[[f64; 2]],
+        times_secs: &[f64],
+    ) -> Result<Vec<MapOutput>> {
+        times_secs
+            .iter()
+            .map(|&t| {
+                let at = ScanWindow {
+                    query_secs: t,
+                    ..*window
+                };
+                self.map(&at, points_m)
+            })
+            .collect()
+    }
 }

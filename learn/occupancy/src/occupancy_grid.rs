@@ -88,7 +88,7 @@ impl CountGrid {
 }
 
 /// The cell holding `p`.
-fn cell_of(p: [f64; 2], cell_m: f64) -> (i64, i64) {
+pub(crate) fn cell_of(p: [f64; 2], cell_m: f64) -> (i64, i64) {
     (
         (p[0] / cell_m).floor() as i64,
         (p[1] / cell_m).floor() as i64,
@@ -96,7 +96,7 @@ fn cell_of(p: [f64; 2], cell_m: f64) -> (i64, i64) {
 }
 
 /// Every cell the segment from `a` to `b` crosses, in order, `b`'s cell last (Amanatides & Woo).
-fn traced_cells(a: [f64; 2], b: [f64; 2], cell_m: f64) -> Vec<(i64, i64)> {
+pub(crate) fn traced_cells(a: [f64; 2], b: [f64; 2], cell_m: f64) -> Vec<(i64, i64)> {
     let (mut cell, end) = (cell_of(a, cell_m), cell_of(b, cell_m));
     let d = [b[0] - a[0], b[1] - a[1]];
     let step = [d[0].signum() as i64, d[1].signum() as i64];

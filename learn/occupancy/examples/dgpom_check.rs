@@ -1,0 +1,136 @@
+//! Development check: learn the motion map of `<name>_train` in DATASET and score DGPOM and the
+//! GPOMs on `<name>` at t = 3 … 9. `cargo run --release -p patchflow-occupancy --example
+//! dgpom_check -- DATASET [NAME]`.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use patchflow_dataset::Dataset;
+use patchflow_gp::MotionField;
+use patchflow_occupancy::*;
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let Some(dir) = args.get(1) else {
+        return Err("usage: dgpom_check DATASET [NAME]".into());
+    };
+    let dataset = Dataset::open(std::path::Path::new(dir))?;
+    let name = args.get(2).map_or("dgpom_tjunction", String::as_str);
+    let seq = OccupancySequence::load(&dataset.sequence(name)?)?;
+    let train = OccupancySequence::load(&dataset.sequence(&format!("{name}_train"))?)?;
+    let start = Instant::now();
+    let map = MotionMap::learn(&train, &MotionMapParams::default())?;
+    println!(
+        "motion map in {:.2} s: {}",
+        start.elapsed().as_secs_f64(),
+        map.summary
+    );
+    let kinds = |k: ClusterKind| map.clusters.iter().filter(|c| c.kind == k).count();
+    println!(
+        "clusters: {} arrived, {} vacated, {} stationary; paired {}",
+        kinds(ClusterKind::Arrived),
+        kinds(ClusterKind::Vacated),
+        kinds(ClusterKind::Stationary),
+        map.clusters
+            .iter()
+            .filter(|c| c.association == Association::Paired)
+            .count()
+    );
+    for y in [
+        2.0, 3.0, 3.5, 4.0, 4.5, 5.0, 6.0, 6.5, 7.0, 7.5, 8.0, 9.0, 10.0, 11.0,
+    ] {
+        let v: Vec<String> = [0.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0]
+            .iter()
+            .map(|&x| {
+                let v = map.velocity_mps([x, y]);
+                format!("{:+.2},{:+.2}|{:.2}", v[0], v[1], map.error_mps([x, y]))
+            })
+            .collect();
+        println!("y {y:5.1}: {}", v.join("  "));
+    }
+    if std::env::var("CROSSING").is_ok() {
+        // The busy intersection: each lane's Υ at 20, 10 and 5 m before the centre and beyond.
+        for (lane, points) in [
+            (
+                "east  y=-2.5 (+8)",
+                [[-20.0, -2.5], [-10.0, -2.5], [-5.0, -2.5], [10.0, -2.5]],
+            ),
+            (
+                "west  y=+2.5 (-6)",
+                [[20.0, 2.5], [10.0, 2.5], [5.0, 2.5], [-10.0, 2.5]],
+            ),
+            (
+                "north x=+2.5 (+7)",
+                [[2.5, -20.0], [2.5, -10.0], [2.5, -5.0], [2.5, 10.0]],
+            ),
+            (
+                "south x=-2.5 (-9)",
+                [[-2.5, 20.0], [-2.5, 10.0], [-2.5, 5.0], [-2.5, -10.0]],
+            ),
+            (
+                "block (0)",
+                [[20.0, 20.0], [-20.0, -20.0], [20.0, -20.0], [-20.0, 20.0]],
+            ),
+        ] {
+            let v: Vec<String> = points
+                .iter()
+                .map(|&p| {
+                    let v = map.velocity_mps(p);
+                    format!("{:+.2},{:+.2}|{:.2}", v[0], v[1], map.error_mps(p))
+                })
+                .collect();
+            println!("{lane}: {}", v.join("  "));
+        }
+        return Ok(());
+    }
+    if std::env::var("DUMP").is_ok() {
+        dump(&map);
+        return Ok(());
+    }
+    let map = Arc::new(map);
+    let samples = SampleParams::default();
+    let methods: Vec<Box<dyn MapMethod>> = vec![
+        Box::new(DgpomMethod::new(DgpomParams::default(), map)),
+        Box::new(GpomMethod::space(samples.clone())),
+        Box::new(GpomMethod::space_time(samples)),
+    ];
+    let refs: Vec<&dyn MapMethod> = methods.iter().map(|m| m.as_ref()).collect();
+    let scores = evaluate_sequence(&seq, &refs, &OccupancyParams::default(), &|_, _| {})?;
+    for (name, m) in &scores.methods {
+        let aucs: Vec<String> = m
+            .auc_by_query_scan
+            .values()
+            .map(|a| format!("{:.4}", a.unwrap_or(f64::NAN)))
+            .collect();
+        if std::env::var("FITS").is_ok() {
+            for line in &m.summaries {
+                println!("    {line}");
+            }
+        }
+        println!(
+            "{name:>9}: {}  {:.2} s/map  {}",
+            aucs.join(" "),
+            m.mean_seconds_per_map(),
+            m.summaries.last().cloned().unwrap_or_default()
+        );
+    }
+    Ok(())
+}
+
+fn dump(map: &MotionMap) {
+    for c in &map.clusters {
+        if c.kind != ClusterKind::Stationary && c.centroid_m[1] > 5.5 {
+            println!(
+                "scan {:3} {:?} {:?} n {:2} at ({:5.1}, {:4.1}) v ({:+.2}, {:+.2})",
+                c.scan,
+                c.kind,
+                c.association,
+                c.cells_m.len(),
+                c.centroid_m[0],
+                c.centroid_m[1],
+                c.velocity_mps[0],
+                c.velocity_mps[1]
+            );
+        }
+    }
+}

@@ -1,0 +1,167 @@
+//! DGPOM, the dynamic GP occupancy map (O'Callaghan & Ramos, Sections 2-3): the GPOM classifier
+//! (probabilistic least squares, α and β by leave-one-out) with the motion-adapted kernel of
+//! `patchflow-gp` ([`MotionAdapted`], eqs. 2-6) reading a motion map learned beforehand from a
+//! training run ([`MotionMap`], Section 2.3). The window's observations are carried along the
+//! motion map to the query time, so a car hidden at the query time is still predicted where the
+//! flow has taken its earlier returns; ℓ, s, a and b are learned per map by maximising the
+//! marginal likelihood.
+
+use std::sync::Arc;
+
+use nalgebra::DMatrix;
+use patchflow_gp::{GpKind, GpParams, MotionAdapted, PlsClassifier, PlsParams};
+use serde::{Deserialize, Serialize};
+
+use crate::{
+    MapMethod, MapOutput, MotionMap, OccupancyError, OccupancySample, Result, SampleParams,
+    ScanWindow, scan_samples,
+};
+
+/// Settings of DGPOM (the motion map is learned separately and shared).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DgpomParams {
+    /// How training samples are drawn from each scan.
+    pub samples: SampleParams,
+    /// Pseudo-inputs of the sparse GP, held at a seeded random subset of the training points.
+    pub pseudo_inputs: usize,
+    /// Iteration limit of the marginal-likelihood maximisation.
+    pub max_iters: usize,
+    /// Step of the flow-line integration (eq. 4), seconds.
+    pub step_secs: f64,
+}
+
+impl Default for DgpomParams {
+    fn default() -> Self {
+        Self {
+            samples: SampleParams::default(),
+            pseudo_inputs: 250,
+            max_iters: 50,
+            step_secs: 0.1,
+        }
+    }
+}
+
+/// DGPOM as a map method.
+#[derive(Debug, Clone)]
+pub struct DgpomMethod {
+    /// The settings.
+    pub params: DgpomParams,
+    /// The motion map learned from the training run.
+    pub motion_map: Arc<MotionMap>,
+}
+
+type Classifier = PlsClassifier<MotionAdapted<MotionMap>>;
+
+impl DgpomMethod {
+    /// DGPOM with `params` on `motion_map`.
+    pub fn new(params: DgpomParams, motion_map: Arc<MotionMap>) -> Self {
+        Self { params, motion_map }
+    }
+
+    /// Fits the classifier to the window's samples, observations carried to `reference_secs`.
+    fn fit(&self, window: &ScanWindow<'_>, reference_secs: f64) -> Result<(Classifier, usize)> {
+        self.params.samples.validate()?;
+        let scan = window.query_scan().map_or(0, |s| s.index);
+        // Training data: returns occupied, free space along the beams, each at its scan's time.
+        let samples: Vec<OccupancySample> = window
+            .scans
+            .iter()
+            .flat_map(|s| scan_samples(s, &self.params.samples))
+            .collect();
+        let x = DMatrix::from_fn(samples.len(), 3, |i, d| match d {
+            0 | 1 => samples[i].xy_m[d],
+            _ => samples[i].t_secs,
+        });
+        let labels: Vec<bool> = samples.iter().map(|s| s.occupied).collect();
+        // The motion-adapted kernel (eqs. 2-6) in an SPGP with fixed pseudo-inputs, squashed by
+        // probabilistic least squares as GPOM.
+        let kernel = MotionAdapted::new(Arc::clone(&self.motion_map), reference_secs)
+            .step_secs(self.params.step_secs);
+        let gp = GpParams::new(GpKind::Spgp)
+            .pseudo_inputs(self.params.pseudo_inputs)
+            .optimise_pseudo_inputs(false)
+            .seed(self.params.samples.seed ^ scan as u64)
+            .max_iters(self.params.max_iters)
+            .kernel(kernel);
+        let classifier = PlsParams::new(gp)
+            .fit(&x, &labels)
+            .map_err(|e| self.degenerate(scan, e.to_string()))?;
+        Ok((classifier, samples.len()))
+    }
+
+    /// The map of the fitted classifier at `points_m` at `t_secs`.
+    fn predict(
+        &self,
+        classifier: &Classifier,
+        points_m: &[[f64; 2]],
+        t_secs: f64,
+        training_points: usize,
+        scan: usize,
+    ) -> Result<MapOutput> {
+        let query = DMatrix::from_fn(points_m.len(), 3, |i, d| match d {
+            0 | 1 => points_m[i][d],
+            _ => t_secs,
+        });
+        let prediction = classifier
+            .predict(&query)
+            .map_err(|e| self.degenerate(scan, e.to_string()))?;
+        let kernel = classifier.regression().kernel();
+        let [lx, ly] = kernel.lengthscales_m();
+        let s = classifier.squashing();
+        Ok(MapOutput {
+            probability: prediction.probability.iter().copied().collect(),
+            variance: Some(prediction.regression.var_latent.iter().copied().collect()),
+            training_points,
+            summary: format!(
+                "ℓx {lx:.2} m, ℓy {ly:.2} m, a {:.2}, b {:.2} (l_t {:.2} s at ε = 0.5 m/s), σ² = {:.3}, α = {:.2}, β = {:.2}, {} evaluations",
+                kernel.time_scale_a(),
+                kernel.decay_b(),
+                kernel.temporal_lengthscale_secs(0.5),
+                classifier.regression().noise_variance(),
+                s.alpha,
+                s.beta,
+                classifier.regression().fit_report().evals
+            ),
+        })
+    }
+
+    fn degenerate(&self, scan: usize, reason: String) -> OccupancyError {
+        OccupancyError::Degenerate {
+            method: "DGPOM".into(),
+            scan,
+            reason,
+        }
+    }
+}
+
+impl MapMethod for DgpomMethod {
+    fn name(&self) -> &str {
+        "DGPOM"
+    }
+
+    fn map(&self, window: &ScanWindow<'_>, points_m: &[[f64; 2]]) -> Result<MapOutput> {
+        let scan = window.query_scan().map_or(0, |s| s.index);
+        let (classifier, n) = self.fit(window, window.query_secs)?;
+        self.predict(&classifier, points_m, window.query_secs, n, scan)
+    }
+
+    /// One fit with the observations carried to the last scan, then predictions at each later
+    /// time (the query points carried back along the motion map to the last scan).
+    fn map_ahead(
+        &self,
+        window: &ScanWindow<'_>,
+        points_m: &[[f64; 2]],
+        times_secs: &[f64],
+    ) -> Result<Vec<MapOutput>> {
+        let scan = window.query_scan().map_or(0, |s| s.index);
+        let last = window
+            .query_scan()
+            .map_or(window.query_secs, |s| s.stamp_secs);
+        let (classifier, n) = self.fit(window, last)?;
+        times_secs
+            .iter()
+            .map(|&t| self.predict(&classifier, points_m, t, n, scan))
+            .collect()
+    }
+}

@@ -1,0 +1,102 @@
+//! Tests of the motion clusters on synthetic scans: a sensor at the origin facing +y, a wall
+//! along y = 10 and a car's face (a horizontal segment) in front of it.
+
+use super::*;
+use crate::{Beam, PlanarScan};
+
+/// A scan at `t` of 721 beams over 180° against horizontal segments `(y, x_from, x_to)`.
+fn scan(t: f64, segments: &[(f64, f64, f64)]) -> PlanarScan {
+    let beams = (0..721)
+        .map(|j| {
+            let a = (f64::from(j) / 4.0).to_radians();
+            let (c, s) = (a.cos(), a.sin());
+            let range = segments
+                .iter()
+                .filter(|_| s > 1e-9)
+                .filter_map(|&(y, x0, x1)| {
+                    let r = y / s;
+                    (x0..=x1).contains(&(r * c)).then_some(r)
+                })
+                .fold(f64::INFINITY, f64::min);
+            let hit = range <= 20.0;
+            let r = if hit { range } else { 20.0 };
+            Beam {
+                end_m: [c * r, s * r],
+                hit,
+            }
+        })
+        .collect();
+    PlanarScan {
+        index: t as usize,
+        stamp_secs: t,
+        sensor_m: [0.0, 0.0],
+        yaw_rad: std::f64::consts::FRAC_PI_2,
+        beams,
+    }
+}
+
+const WALL: (f64, f64, f64) = (10.1, -12.0, 12.0);
+
+fn clusters(a: &PlanarScan, b: &PlanarScan) -> Vec<MotionCluster> {
+    let p = MotionClusterParams::default();
+    let (ca, cb) = (
+        ScanCells::from_scan(a, p.cell_m),
+        ScanCells::from_scan(b, p.cell_m),
+    );
+    motion_clusters(&ca, &cb, b.index, &p)
+}
+
+#[test]
+fn a_wall_seen_twice_is_one_stationary_object_and_nothing_moves() {
+    let found = clusters(&scan(0.0, &[WALL]), &scan(1.0, &[WALL]));
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].kind, ClusterKind::Stationary);
+    assert_eq!(found[0].velocity_mps, [0.0, 0.0]);
+    assert!(found[0].cells_m.len() > 20);
+}
+
+#[test]
+fn a_car_face_moving_two_metres_along_itself_gets_its_velocity_at_both_ends() {
+    // The face spans x −3 … 1 at t = 0 and x −1 … 3 at t = 1: 2 m/s along +x.
+    let found = clusters(
+        &scan(0.0, &[WALL, (4.1, -3.0, 1.0)]),
+        &scan(1.0, &[WALL, (4.1, -1.0, 3.0)]),
+    );
+    let moving: Vec<&MotionCluster> = found
+        .iter()
+        .filter(|c| c.kind != ClusterKind::Stationary && c.centroid_m[1] < 6.0)
+        .collect();
+    assert_eq!(moving.len(), 2, "{found:?}");
+    for c in moving {
+        assert_eq!(c.association, Association::AdjacentObject);
+        let [vx, vy] = c.velocity_mps;
+        assert!(
+            (vx - 2.0).abs() <= 0.5 && vy.abs() < 0.3,
+            "{:?}: {vx}, {vy}",
+            c.kind
+        );
+    }
+    let wall = found
+        .iter()
+        .find(|c| c.centroid_m[1] > 9.0)
+        .expect("the wall");
+    assert_eq!(wall.kind, ClusterKind::Stationary);
+}
+
+#[test]
+fn an_object_that_jumps_past_its_own_length_is_paired_by_its_centroids() {
+    // A 1 m face moves 5 m to the left in one second.
+    let found = clusters(
+        &scan(0.0, &[WALL, (4.1, 2.0, 3.0)]),
+        &scan(1.0, &[WALL, (4.1, -3.0, -2.0)]),
+    );
+    let paired: Vec<&MotionCluster> = found
+        .iter()
+        .filter(|c| c.association == Association::Paired)
+        .collect();
+    assert_eq!(paired.len(), 2, "{found:?}");
+    for c in paired {
+        let [vx, vy] = c.velocity_mps;
+        assert!((vx + 5.0).abs() < 0.3 && vy.abs() < 0.3, "{vx}, {vy}");
+    }
+}

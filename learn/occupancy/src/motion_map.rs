@@ -1,0 +1,261 @@
+//! The learned motion map (DGPOM paper, Section 2.3): the motion clusters of every pair of
+//! consecutive scans of a training run, a mean velocity field Υ(x) regressed from a subset of
+//! their cells (the paper uses 500 points; both components, one GP each), and an error field ε(x)
+//! regressed from how far Υ misses the velocities of clusters held out from it. The fields are
+//! sampled on a lattice ([`FieldRaster`]) over what the run observed, and the map is the
+//! [`MotionField`] of DGPOM's kernel.
+
+use nalgebra::{DMatrix, DVector};
+use patchflow_gp::{GpKind, GpModel, GpParams, MotionField};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+
+use crate::motion_clusters::motion_clusters;
+use crate::scan_cells::ScanCells;
+use crate::{
+    ClusterKind, FieldRaster, MotionCluster, MotionClusterParams, OccupancyError,
+    OccupancySequence, Result,
+};
+
+/// Settings of the motion map.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MotionMapParams {
+    /// How motion clusters are found.
+    pub clusters: MotionClusterParams,
+    /// Cells the velocity regressor is trained on (paper: 500).
+    pub velocity_points: usize,
+    /// Held-out cells the error regressor is trained on.
+    pub error_points: usize,
+    /// Share of the clusters held out from the velocity regressor for the error field.
+    pub held_out_fraction: f64,
+    /// Smallest error the map reports, m/s (ε^(−1/b) stays bounded where Υ fits exactly).
+    pub min_error_mps: f64,
+    /// Spacing of the lattice the fields are sampled on, metres.
+    pub raster_m: f64,
+    /// Iteration limit of each regressor's marginal-likelihood maximisation.
+    pub max_iters: usize,
+    /// Seed of the held-out split and the subsets.
+    pub seed: u64,
+}
+
+impl Default for MotionMapParams {
+    fn default() -> Self {
+        Self {
+            clusters: MotionClusterParams::default(),
+            velocity_points: 500,
+            error_points: 500,
+            held_out_fraction: 0.3,
+            min_error_mps: 0.05,
+            raster_m: 0.5,
+            max_iters: 60,
+            seed: 7,
+        }
+    }
+}
+
+/// Largest number of raster nodes; a wider area gets a coarser lattice.
+const MAX_RASTER_NODES: usize = 250_000;
+/// Margin of the raster around what the training run observed, metres.
+const RASTER_MARGIN_M: f64 = 4.0;
+/// Points per prediction batch (bounds the k(X, x*) matrix).
+const BATCH: usize = 8192;
+
+/// Field indices in the raster.
+const VX: usize = 0;
+const VY: usize = 1;
+const ERROR: usize = 2;
+
+/// A mean velocity field and its error field, learned from a training run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotionMap {
+    /// Every motion cluster of the training run, with its velocity (Figure 5a).
+    pub clusters: Vec<MotionCluster>,
+    /// Υ_x, Υ_y and ε sampled on a lattice.
+    pub raster: FieldRaster,
+    /// Cells the velocity regressor was trained on.
+    pub velocity_points: usize,
+    /// Held-out cells the error regressor was trained on.
+    pub error_points: usize,
+    /// What the regressors learned, one line.
+    pub summary: String,
+    min_error_mps: f64,
+}
+
+/// One regression sample: a cell centre and a value per target.
+type Sample = ([f64; 2], [f64; 2]);
+
+impl MotionMap {
+    /// Learns the motion map from every pair of consecutive scans of `training`.
+    pub fn learn(training: &OccupancySequence, params: &MotionMapParams) -> Result<Self> {
+        let degenerate = |reason: String| OccupancyError::Degenerate {
+            method: "DGPOM motion map".into(),
+            scan: 0,
+            reason: format!("{}: {reason}", training.dir.display()),
+        };
+        // Motion clusters of consecutive scans (Figure 3).
+        let cells: Vec<ScanCells> = training
+            .scans
+            .iter()
+            .map(|s| ScanCells::from_scan(s, params.clusters.cell_m))
+            .collect();
+        let clusters: Vec<MotionCluster> = cells
+            .windows(2)
+            .zip(&training.scans[1..])
+            .flat_map(|(pair, scan)| {
+                motion_clusters(&pair[0], &pair[1], scan.index, &params.clusters)
+            })
+            .collect();
+        // A portion of the clusters trains Υ, the rest assesses it.
+        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
+        let held_out: Vec<bool> = clusters
+            .iter()
+            .map(|_| rng.random::<f64>() < params.held_out_fraction)
+            .collect();
+        let samples = |held: bool, moving: bool| -> Vec<Sample> {
+            clusters
+                .iter()
+                .zip(&held_out)
+                .filter(|(c, h)| **h == held && (c.kind != ClusterKind::Stationary) == moving)
+                .flat_map(|(c, _)| c.cells_m.iter().map(|&p| (p, c.velocity_mps)))
+                .collect()
+        };
+        // Stationary cells far outnumber moving ones; a plain draw would leave Υ a few moving
+        // cells among hundreds of zeros. Half the draw comes from each kind (all of a kind if it
+        // has fewer), which keeps both the lanes and the still structure in the field.
+        let mut balanced = |held: bool, n: usize| -> Vec<Sample> {
+            let moving = samples(held, true);
+            let take_moving = moving.len().min(n / 2);
+            let still = samples(held, false);
+            let mut out = subset(moving, take_moving, &mut rng);
+            out.extend(subset(still, n - take_moving, &mut rng));
+            out
+        };
+        let velocity_samples = balanced(false, params.velocity_points);
+        let held_samples = balanced(true, params.error_points);
+        if velocity_samples.len() < 10 || held_samples.len() < 10 {
+            return Err(degenerate(format!(
+                "{} motion clusters give {} training and {} held-out cells; at least 10 of each are needed",
+                clusters.len(),
+                velocity_samples.len(),
+                held_samples.len()
+            )));
+        }
+        // Υ(x): one regressor per component.
+        let fit = |samples: &[Sample], component: usize| -> Result<GpModel> {
+            let x = DMatrix::from_fn(samples.len(), 2, |i, d| samples[i].0[d]);
+            let y = DVector::from_fn(samples.len(), |i, _| samples[i].1[component]);
+            GpParams::new(GpKind::Full)
+                .max_iters(params.max_iters)
+                .fit(&x, &y)
+                .map_err(|e| degenerate(e.to_string()))
+        };
+        let (vx, vy) = (fit(&velocity_samples, 0)?, fit(&velocity_samples, 1)?);
+        // ε(x): how far Υ misses the held-out clusters' velocities.
+        let held_points: Vec<[f64; 2]> = held_samples.iter().map(|s| s.0).collect();
+        let (ux, uy) = (predict(&vx, &held_points)?, predict(&vy, &held_points)?);
+        let errors: Vec<Sample> = held_samples
+            .iter()
+            .enumerate()
+            .map(|(i, (p, v))| (*p, [(v[0] - ux[i]).hypot(v[1] - uy[i]), 0.0]))
+            .collect();
+        let error = fit(&errors, 0)?;
+        // Sample the three fields over what the training run observed.
+        let (lo, hi) = observed_box(training);
+        let area = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+        let step = params.raster_m.max((area / MAX_RASTER_NODES as f64).sqrt());
+        let (mut raster, nodes) = FieldRaster::lattice(lo, hi, step);
+        raster.values = vec![
+            predict(&vx, &nodes)?,
+            predict(&vy, &nodes)?,
+            predict(&error, &nodes)?,
+        ];
+        let describe = |name: &str, m: &GpModel| {
+            let l = m.lengthscales();
+            let spread = m.fit_report();
+            format!(
+                "{name}: {} evaluations, σ² {:.3}, ℓ (standardised) {:.2}/{:.2}",
+                spread.evals,
+                m.noise_variance(),
+                l[0],
+                l[1]
+            )
+        };
+        let summary = format!(
+            "{} motion clusters; Υ from {} cells, ε from {} held-out cells; {}; {}; {}",
+            clusters.len(),
+            velocity_samples.len(),
+            errors.len(),
+            describe("Υx", &vx),
+            describe("Υy", &vy),
+            describe("ε", &error)
+        );
+        Ok(Self {
+            clusters,
+            raster,
+            velocity_points: velocity_samples.len(),
+            error_points: errors.len(),
+            summary,
+            min_error_mps: params.min_error_mps,
+        })
+    }
+}
+
+impl MotionField for MotionMap {
+    fn velocity_mps(&self, xy_m: [f64; 2]) -> [f64; 2] {
+        [self.raster.at(VX, xy_m), self.raster.at(VY, xy_m)]
+    }
+
+    fn error_mps(&self, xy_m: [f64; 2]) -> f64 {
+        self.raster.at(ERROR, xy_m).max(self.min_error_mps)
+    }
+}
+
+/// `n` of `samples` drawn without replacement (all if there are fewer), in their original order.
+fn subset(samples: Vec<Sample>, n: usize, rng: &mut ChaCha8Rng) -> Vec<Sample> {
+    if samples.len() <= n {
+        return samples;
+    }
+    let mut idx: Vec<usize> = (0..samples.len()).collect();
+    for i in 0..n {
+        let j = rng.random_range(i..idx.len());
+        idx.swap(i, j);
+    }
+    let mut chosen = idx[..n].to_vec();
+    chosen.sort_unstable();
+    chosen.into_iter().map(|i| samples[i]).collect()
+}
+
+/// The regressor's mean at `points`, in batches.
+fn predict(model: &GpModel, points: &[[f64; 2]]) -> Result<Vec<f64>> {
+    let mut out = Vec::with_capacity(points.len());
+    for batch in points.chunks(BATCH) {
+        let x = DMatrix::from_fn(batch.len(), 2, |i, d| batch[i][d]);
+        let p = model.predict(&x).map_err(|e| OccupancyError::Degenerate {
+            method: "DGPOM motion map".into(),
+            scan: 0,
+            reason: e.to_string(),
+        })?;
+        out.extend(p.mean.iter());
+    }
+    Ok(out)
+}
+
+/// The box around every sensor position and beam end of `training`, with a margin.
+fn observed_box(training: &OccupancySequence) -> ([f64; 2], [f64; 2]) {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for scan in &training.scans {
+        for p in std::iter::once(scan.sensor_m).chain(scan.beams.iter().map(|b| b.end_m)) {
+            for d in 0..2 {
+                lo[d] = lo[d].min(p[d]);
+                hi[d] = hi[d].max(p[d]);
+            }
+        }
+    }
+    (
+        [lo[0] - RASTER_MARGIN_M, lo[1] - RASTER_MARGIN_M],
+        [hi[0] + RASTER_MARGIN_M, hi[1] + RASTER_MARGIN_M],
+    )
+}
