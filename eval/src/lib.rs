@@ -38,9 +38,9 @@ mod truth_at_scan;
 pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
 pub use bench::{
-    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, collect_samples_with_bar,
-    cross_validate_with_bar, evaluate_with_bar, generate_with_progress, occupancy_with_bar,
-    run_bench,
+    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, MethodSpread, QUICK_SWEEP_SHARE,
+    SeedFigure, SeedSpread, collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar,
+    generate_with_progress, occupancy_with_bar, run_bench,
 };
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
@@ -70,9 +70,11 @@ pub use occupancy::{
 };
 pub use perception_summary::{PerceptionSummary, STAGES, StageOf};
 pub use perception_timing::{ScanTiming, Spread, StepTiming};
-pub use progress::{StageTimer, StageTiming, progress_bar, spinner};
+pub use progress::{
+    StageTimer, StageTiming, progress_bar, progress_line, spinner, stderr_is_terminal,
+};
 pub use report::{
-    CvFeature, CvGp, CvReport, CvRow, ReportFiles, metrics_json, metrics_json_value, plot_heading,
+    CvFeature, CvGp, CvReport, CvRow, ReportFiles, add_to_metrics, metrics_json, metrics_json_value, plot_heading,
     plot_speed, write_cv_report, write_report,
 };
 pub use result::{BenchmarkReport, SceneResult, SituationResult};

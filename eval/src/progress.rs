@@ -1,6 +1,8 @@
 //! Progress bars and stage timing for long commands: indicatif bars on stderr (hidden when stderr
-//! is not a terminal) and a [`StageTimer`] whose per-stage seconds fill the report's timing table.
+//! is not a terminal), progress lines that also reach a log file, and a [`StageTimer`] whose
+//! per-stage seconds fill the report's timing table.
 
+use std::io::IsTerminal as _;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -70,6 +72,21 @@ impl StageTimer {
     }
 }
 
+/// Whether stderr is a terminal, i.e. whether the progress bars are drawn.
+pub fn stderr_is_terminal() -> bool {
+    std::io::stderr().is_terminal()
+}
+
+/// Writes one progress line to stderr: seconds since `start`, then `text`. Unlike the bars,
+/// these lines reach a log file when stderr is redirected.
+pub fn progress_line(start: Instant, text: &str) {
+    eprintln!("{}", progress_text(start.elapsed().as_secs_f64(), text));
+}
+
+fn progress_text(seconds: f64, text: &str) -> String {
+    format!("[{seconds:>7.1} s] {text}")
+}
+
 /// A progress bar of `len` steps labelled `message`, with elapsed time and ETA.
 pub fn progress_bar(len: u64, message: &str) -> ProgressBar {
     let bar = ProgressBar::new(len);
@@ -105,6 +122,11 @@ mod tests {
         assert_eq!(names, ["generate", "train"]);
         assert!((timer.timings()[0].seconds - 2.0).abs() < 1e-12);
         assert!((timer.total_seconds() - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_progress_line_starts_with_the_elapsed_seconds() {
+        assert_eq!(progress_text(12.34, "train: started"), "[   12.3 s] train: started");
     }
 
     #[test]

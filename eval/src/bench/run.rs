@@ -1,6 +1,7 @@
 //! One benchmark run from scenarios to report, stage by stage (SPEC §7, `patchflow bench`).
 
 use std::path::Path;
+use std::time::Instant;
 
 use patchflow_dataset::Dataset;
 use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
@@ -8,16 +9,19 @@ use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 use crate::bench::notes::notes;
 use crate::bench::plan::BenchPlan;
+use crate::bench::seed_spread::SeedSpread;
+use crate::bench::short_tracks::shortened_tracks;
 use crate::bench::stages::{
     collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar, generate_with_progress,
     occupancy_with_bar,
 };
+use crate::bench::target_runs::evaluate_targets;
 use crate::cpu_time::load_average;
 use crate::error::EvalError;
 use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
 use crate::perception_summary::PerceptionSummary;
-use crate::progress::{StageTimer, StageTiming, spinner};
-use crate::report::{CvReport, ReportFiles, write_cv_report, write_report};
+use crate::progress::{StageTimer, StageTiming, progress_line, spinner};
+use crate::report::{CvReport, ReportFiles, add_to_metrics, write_cv_report, write_report};
 use crate::result::BenchmarkReport;
 
 /// What a benchmark run produced.
@@ -33,10 +37,14 @@ pub struct BenchOutcome {
     pub perception: Vec<PerceptionSummary>,
     /// The occupancy maps' scores (`OUT/occupancy.json`, `occupancy.md`), if the plan maps any.
     pub occupancy: Option<OccupancyReport>,
+    /// The headline figures' mean ± std over the training seeds.
+    pub spread: SeedSpread,
 }
 
-/// Runs a benchmark into `out`: the datasets under `out/data`, the models under `out/models`,
-/// the report files in `out`. `on_stage` hears of every stage as it finishes.
+/// Runs a benchmark into `out`: the datasets under `out/data` (deleted once used unless
+/// `plan.keep_data`), the models under `out/models`, the report files in `out`. Every stage's
+/// start and end is a line on stderr (a log shows progress without a terminal); `on_stage` hears
+/// of every stage as it finishes.
 ///
 /// ```no_run
 /// use patchflow_eval::{BenchPlan, run_bench};
@@ -51,10 +59,13 @@ pub fn run_bench(
     out: &Path,
     on_stage: &dyn Fn(&StageTiming),
 ) -> Result<BenchOutcome, EvalError> {
+    let run_start = Instant::now();
     let mut timer = StageTimer::new();
     let mut stage = |name: &str, work: &mut dyn FnMut() -> Result<(), EvalError>| {
+        progress_line(run_start, &format!("{name}: started"));
         timer.time(name, work)?;
         if let Some(t) = timer.timings().last() {
+            progress_line(run_start, &format!("{name}: done in {:.1} s", t.seconds));
             on_stage(t);
         }
         Ok::<(), EvalError>(())
@@ -62,10 +73,14 @@ pub fn run_bench(
     let data = out.join("data");
     let (mut train, mut situations) = (None, None);
     let (mut sets, mut estimators, mut cv, mut report) = (Vec::new(), Vec::new(), None, None);
+    let seeds = plan.training_seeds();
+    let (mut further, mut further_targets) = (Vec::new(), Vec::new());
 
     // 1. Simulate the training tracks and the evaluation sequences (SPEC §3).
     stage("generate training tracks", &mut || {
-        train = Some(generate(&plan.training, &data.join("train"), plan.seed)?);
+        let scenarios = data.join("scenarios");
+        let tracks = shortened_tracks(&plan.training, plan.training_sweep_share, &scenarios)?;
+        train = Some(generate(&tracks, &data.join("train"), plan.seed)?);
         Ok(())
     })?;
     stage("generate situations", &mut || {
@@ -88,26 +103,51 @@ pub fn run_bench(
         .ok_or_else(|| missing("a sample set with prior 0.5 (CvParams::priors)"))?;
     // 3. One estimator per GP kind on the same samples (thesis 3.1.3).
     stage("train SPGP and SPGP-HET", &mut || {
-        estimators = plan
-            .gps
-            .iter()
-            .map(|&gp| train_estimator(&train, training_set, plan, gp, out))
-            .collect::<Result<_, _>>()?;
+        estimators = train_estimators(&train, training_set, plan, plan.seed, out)?;
         Ok(())
     })?;
+    // 3b. The further training seeds: their own samples and GPs, for the spread over seeds.
+    if let [_, rest @ ..] = &seeds[..]
+        && !rest.is_empty()
+    {
+        stage("sample and train further seeds", &mut || {
+            for &seed in rest {
+                let sets = collect_samples_with_bar(&train, &[0.5], plan.samples, seed)?;
+                let set = sets.first().ok_or_else(|| missing("a sample set"))?;
+                further.push(train_estimators(&train, set, plan, seed, out)?);
+            }
+            Ok(())
+        })?;
+    }
+    if !plan.keep_data {
+        remove_data(&data.join("train"))?;
+        remove_data(&data.join("scenarios"))?;
+    }
     // 4. Cross-validation tables (thesis 4.3, Tables 4.1-4.4).
     let cv_sets: Vec<SampleSet> = sets.iter().map(|s| first(s, plan.cv.samples)).collect();
     stage("cross-validation", &mut || {
         cv = Some(cross_validate_with_bar(&cv_sets, &plan.cv)?);
         Ok(())
     })?;
-    // 5. Every method on every sequence (thesis 4.4 and the whole scene).
+    // 5. Every method on every sequence (thesis 4.4 and the whole scene); the further seeds'
+    //    GPs on the targets only (the baselines do not learn).
     let load_before = load_average();
     stage("evaluate situations", &mut || {
         report = Some(evaluate_with_bar(&situations, &estimators)?);
         Ok(())
     })?;
     let load = load_before.zip(load_average());
+    if !further.is_empty() {
+        stage("evaluate further seeds", &mut || {
+            for estimators in &further {
+                further_targets.push(evaluate_targets(&situations, estimators)?);
+            }
+            Ok(())
+        })?;
+    }
+    if !plan.keep_data {
+        remove_data(&data.join("situations"))?;
+    }
     let (cv, mut report) = cv.zip(report).ok_or_else(|| missing("results"))?;
     // 6. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
     //    training run is generated beside it for methods that learn beforehand.
@@ -127,14 +167,27 @@ pub fn run_bench(
             occupancy = Some(occupancy_with_bar(&maps, plan.seed)?);
             Ok(())
         })?;
+        if !plan.keep_data {
+            remove_data(&data.join("occupancy"))?;
+        }
     }
-    // 7. The report.
+    if !plan.keep_data {
+        remove_empty_dir(&data)?;
+    }
+    // 7. The report, with the spread over the training seeds.
     report.seed = Some(plan.seed);
     report.notes = notes(plan, &estimators, load);
     report.cv = Some(cv.clone());
     report.timings = timer.timings().to_vec();
     let files = write_report(&report, out)?;
     write_cv_report(&cv, out)?;
+    let mut runs = vec![report.situations.clone()];
+    runs.extend(further_targets);
+    let spread = SeedSpread::of(&seeds, &runs)?;
+    add_to_metrics(&files.metrics_json, run_entries(plan, &spread))?;
+    if seeds.len() > 1 {
+        insert_after_summary(&files.report_md, &spread.markdown())?;
+    }
     if let Some(occupancy) = &occupancy {
         write_occupancy_report(occupancy, out)?;
         append(&files.report_md, &occupancy_section(occupancy))?;
@@ -146,7 +199,56 @@ pub fn run_bench(
         files,
         perception,
         occupancy,
+        spread,
     })
+}
+
+/// What `metrics.json` records of the run beside the scores: the training seeds, the model
+/// files (relative to the output folder, seed by seed) and the spread over the seeds.
+fn run_entries(plan: &BenchPlan, spread: &SeedSpread) -> serde_json::Map<String, serde_json::Value> {
+    let seeds = plan.training_seeds();
+    let models: Vec<String> = seeds
+        .iter()
+        .flat_map(|&seed| plan.gps.iter().map(move |&gp| model_file(plan, gp, seed)))
+        .collect();
+    let mut entries = serde_json::Map::new();
+    entries.insert("seeds".into(), serde_json::json!(seeds));
+    entries.insert("model_files".into(), serde_json::json!(models));
+    entries.insert("quick".into(), serde_json::json!(plan.quick));
+    entries.insert("seed_spread".into(), spread.json());
+    entries
+}
+
+/// Inserts `section` into the Markdown file at `path` before its second `## ` heading (right
+/// after the summary), or at its end.
+fn insert_after_summary(path: &Path, section: &str) -> Result<(), EvalError> {
+    let content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
+    let at = content
+        .match_indices("\n## ")
+        .nth(1)
+        .map_or(content.len(), |(i, _)| i + 1);
+    let text = format!("{}{section}\n{}", &content[..at], &content[at..]);
+    std::fs::write(path, text).map_err(|e| EvalError::io(path, e))
+}
+
+/// Deletes a dataset folder the run no longer needs (nothing if it is gone already).
+fn remove_data(dir: &Path) -> Result<(), EvalError> {
+    match std::fs::remove_dir_all(dir) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(EvalError::io(dir, e)),
+        _ => Ok(()),
+    }
+}
+
+/// Deletes a folder if it is empty.
+fn remove_empty_dir(dir: &Path) -> Result<(), EvalError> {
+    let empty = match std::fs::read_dir(dir) {
+        Ok(mut entries) => entries.next().is_none(),
+        Err(_) => false,
+    };
+    if empty {
+        std::fs::remove_dir(dir).map_err(|e| EvalError::io(dir, e))?;
+    }
+    Ok(())
 }
 
 /// Appends `text` to the file at `path`, after a blank line.
@@ -175,29 +277,45 @@ fn generate(sources: &[ScenarioSource], out: &Path, seed: u64) -> Result<Dataset
     Ok(Dataset::open(out)?)
 }
 
-fn train_estimator(
+/// One estimator per GP kind of the plan on `set`, trained with `seed` and saved to
+/// `OUT/models/` (the first seed's as `<gp>.json`, further seeds' as `<gp>-seed<N>.json`).
+fn train_estimators(
     dataset: &Dataset,
     set: &SampleSet,
     plan: &BenchPlan,
-    gp: GpKind,
+    seed: u64,
     out: &Path,
-) -> Result<MotionEstimator, EvalError> {
-    let params = EstimatorParams {
-        gp,
-        samples: plan.samples,
-        pseudo_inputs: plan.pseudo_inputs,
-        max_iters: plan.max_iters,
-        seed: plan.seed,
-        ..EstimatorParams::default()
-    };
-    let spinner = spinner(&format!("fitting 3 {gp} GPs"));
-    let estimator = MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset));
-    spinner.finish_and_clear();
-    let estimator = estimator?;
+) -> Result<Vec<MotionEstimator>, EvalError> {
     let models = out.join("models");
     std::fs::create_dir_all(&models).map_err(|e| EvalError::io(&models, e))?;
-    estimator.save(&models.join(format!("{gp}.json")))?;
-    Ok(estimator)
+    let mut estimators = Vec::with_capacity(plan.gps.len());
+    for &gp in &plan.gps {
+        let params = EstimatorParams {
+            gp,
+            samples: plan.samples,
+            pseudo_inputs: plan.pseudo_inputs,
+            max_iters: plan.max_iters,
+            seed,
+            ..EstimatorParams::default()
+        };
+        let spinner = spinner(&format!("fitting 3 {gp} GPs, seed {seed}"));
+        let estimator =
+            MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset));
+        spinner.finish_and_clear();
+        let estimator = estimator?;
+        estimator.save(&out.join(model_file(plan, gp, seed)))?;
+        estimators.push(estimator);
+    }
+    Ok(estimators)
+}
+
+/// The model file of one GP kind and seed, relative to the output folder.
+fn model_file(plan: &BenchPlan, gp: GpKind, seed: u64) -> String {
+    if seed == plan.seed {
+        format!("models/{gp}.json")
+    } else {
+        format!("models/{gp}-seed{seed}.json")
+    }
 }
 
 /// The first `n` samples of a set (samples are in dataset order, so this is itself a sample).

@@ -17,7 +17,7 @@ use crate::error::EvalError;
 use crate::occupancy::{
     OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
 };
-use crate::progress::progress_bar;
+use crate::progress::{progress_bar, progress_line, stderr_is_terminal};
 use crate::report::CvReport;
 use crate::result::BenchmarkReport;
 
@@ -33,7 +33,13 @@ pub fn generate_with_progress(
     .unwrap_or_else(|_| ProgressStyle::default_bar())
     .progress_chars("=> ");
     let open: Mutex<HashMap<String, ProgressBar>> = Mutex::new(HashMap::new());
+    // Without a terminal the bars are hidden: a line per finished sequence shows the progress.
+    let (lines, start) = (!stderr_is_terminal(), std::time::Instant::now());
     let on_progress = |event: Progress| {
+        if let (true, Progress::SequenceDone { name, skipped }) = (lines, &event) {
+            let done = if *skipped { "already complete" } else { "generated" };
+            progress_line(start, &format!("  {name}: {done}"));
+        }
         let Ok(mut open) = open.lock() else { return };
         match event {
             Progress::Waiting { name } => {

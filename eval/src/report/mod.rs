@@ -2,23 +2,29 @@
 //! and `cv.md` for cross-validation.
 
 mod breakdown;
+mod chart;
 mod csv;
 mod cv;
 mod files;
 mod json;
 mod markdown;
+mod metrics_extras;
 mod object_plot;
 mod perception_markdown;
 mod plot;
 mod scene_markdown;
 mod scores;
+mod summary_plot;
 #[cfg(test)]
 mod synthetic;
 mod writer;
 
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
-pub(crate) use files::{create_dir, write_atomic};
+pub(crate) use files::{create_dir, fmt_opt, write_atomic};
 pub use json::{metrics_json, metrics_json_value};
+pub use metrics_extras::add_to_metrics;
 pub(crate) use plot::{FONT, ensure_font};
 pub use plot::{plot_heading, plot_speed};
 pub use writer::{ReportFiles, write_report};
+#[cfg(test)]
+pub(crate) use synthetic::synthetic_report;

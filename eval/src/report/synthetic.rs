@@ -73,6 +73,7 @@ pub(crate) fn synthetic_report() -> BenchmarkReport {
         seed: Some(7),
         cv: None,
         scenes: Vec::new(),
+        descriptions: Default::default(),
     }
 }
 
