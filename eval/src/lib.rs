@@ -74,7 +74,9 @@ pub use progress::{
     StageTimer, StageTiming, progress_bar, progress_line, spinner, stderr_is_terminal,
 };
 pub use report::{
-    CvFeature, CvGp, CvReport, CvRow, ReportFiles, add_to_metrics, metrics_json, metrics_json_value, plot_heading,
+    CvFeature, CvGp, CvReport, CvRow, ReportFiles, SceneFigures, add_to_metrics, metrics_json,
+    metrics_json_value, plot_heading, write_dataset_scene_figures, write_map_figure,
+    write_scene_figures,
     plot_speed, write_cv_report, write_report,
 };
 pub use result::{BenchmarkReport, SceneResult, SituationResult};

@@ -106,6 +106,10 @@ pub struct BenchmarkReport {
     /// scenarios are described by their own words, not the thesis').
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub descriptions: BTreeMap<String, String>,
+    /// Sequences with scene figures (`plots/<name>_scene.png`, `plots/<name>_cloud.png`) and
+    /// the sweep they show, linked from `report.md`.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub scene_figures: BTreeMap<String, usize>,
     /// Cross-validation tables, included in `report.md` when present.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cv: Option<crate::report::CvReport>,

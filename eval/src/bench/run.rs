@@ -21,7 +21,10 @@ use crate::error::EvalError;
 use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
 use crate::perception_summary::PerceptionSummary;
 use crate::progress::{StageTimer, StageTiming, progress_line, spinner};
-use crate::report::{CvReport, ReportFiles, add_to_metrics, write_cv_report, write_report};
+use crate::report::{
+    CvReport, ReportFiles, add_to_metrics, write_cv_report, write_dataset_scene_figures,
+    write_report,
+};
 use crate::result::BenchmarkReport;
 
 /// What a benchmark run produced.
@@ -145,10 +148,16 @@ pub fn run_bench(
             Ok(())
         })?;
     }
+    let (cv, mut report) = cv.zip(report).ok_or_else(|| missing("results"))?;
+    // A bird's-eye view and a point cloud of each situation, from the data before it goes.
+    let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
+    stage("scene figures", &mut || {
+        report.scene_figures = write_dataset_scene_figures(&situations, &names, &out.join("plots"))?;
+        Ok(())
+    })?;
     if !plan.keep_data {
         remove_data(&data.join("situations"))?;
     }
-    let (cv, mut report) = cv.zip(report).ok_or_else(|| missing("results"))?;
     // 6. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
     //    training run is generated beside it for methods that learn beforehand.
     let mut occupancy = None;

@@ -54,6 +54,9 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, scores: &ReportScores) -
     for ((name, scans, methods), situation) in metrics.iter().zip(&report.situations) {
         let description = report.descriptions.get(name).map(String::as_str);
         situation_section(&mut md, name, *scans, methods, description);
+        if let Some(sweep) = report.scene_figures.get(name) {
+            scene_figure_lines(&mut md, name, *sweep);
+        }
         breakdown_sections(&mut md, situation);
     }
     if let Some(cv) = &report.cv {
@@ -205,6 +208,19 @@ fn situation_section(
     let _ = writeln!(
         md,
         "![{name} speed](plots/{name}_speed.png)\n\n*Speed over time, true and estimated{speed_fig}.*\n"
+    );
+}
+
+fn scene_figure_lines(md: &mut String, name: &str, sweep: usize) {
+    let _ = writeln!(
+        md,
+        "![{name} scene](plots/{name}_scene.png)\n\n*Bird's-eye view: static structures, the ego \
+         path, every actor's path, the target in red; boxes and range rings at sweep {sweep}.*\n"
+    );
+    let _ = writeln!(
+        md,
+        "![{name} point cloud](plots/{name}_cloud.png)\n\n*Sweep {sweep} from above: points \
+         coloured by class, moving points by the direction of their true flow (colour wheel).*\n"
     );
 }
 

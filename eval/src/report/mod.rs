@@ -3,15 +3,18 @@
 
 mod breakdown;
 mod chart;
+mod cloud_view;
 mod csv;
 mod cv;
 mod files;
 mod json;
+mod map_view;
 mod markdown;
 mod metrics_extras;
 mod object_plot;
 mod perception_markdown;
 mod plot;
+mod scene_figure;
 mod scene_markdown;
 mod scores;
 mod summary_plot;
@@ -22,9 +25,11 @@ mod writer;
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
 pub(crate) use files::{create_dir, fmt_opt, write_atomic};
 pub use json::{metrics_json, metrics_json_value};
+pub use map_view::write_map_figure;
 pub use metrics_extras::add_to_metrics;
 pub(crate) use plot::{FONT, ensure_font};
 pub use plot::{plot_heading, plot_speed};
+pub use scene_figure::{SceneFigures, write_dataset_scene_figures, write_scene_figures};
 pub use writer::{ReportFiles, write_report};
 #[cfg(test)]
 pub(crate) use synthetic::synthetic_report;

@@ -74,6 +74,7 @@ pub(crate) fn synthetic_report() -> BenchmarkReport {
         cv: None,
         scenes: Vec::new(),
         descriptions: Default::default(),
+        scene_figures: Default::default(),
     }
 }
 
