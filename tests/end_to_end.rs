@@ -45,8 +45,8 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         stages.lock().unwrap().push(t.stage.clone())
     })
     .unwrap();
-    // The six stages of one seed, then the second seed's training and its targets.
-    assert_eq!(stages.lock().unwrap().len(), 8);
+    // The six stages of one seed, the second seed's training and its targets, the figures.
+    assert_eq!(stages.lock().unwrap().len(), 9);
     assert!(
         !out.join("data").exists(),
         "the datasets are deleted once used without keep_data"
@@ -117,7 +117,11 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         .unwrap();
     assert!(object_scans > 13, "{object_scans} object scans");
     assert!(metrics["objects"]["by_class"]["car"].is_object());
-    // Plots, perception and the report.
+    // Plots (the scene figures too), perception and the report.
+    for figure in ["e2e_scene.png", "e2e_cloud.png", "summary_rmse.png"] {
+        assert!(out.join("plots").join(figure).exists(), "{figure}");
+        assert!(md_links(&files.report_md, figure), "{figure} not linked");
+    }
     for plot in &files.plots {
         let bytes = std::fs::read(plot).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", plot.display());
@@ -137,4 +141,10 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
     ] {
         assert!(md.contains(needle), "{needle}");
     }
+}
+
+fn md_links(report_md: &std::path::Path, figure: &str) -> bool {
+    std::fs::read_to_string(report_md)
+        .unwrap()
+        .contains(&format!("(plots/{figure})"))
 }

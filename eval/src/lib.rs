@@ -71,7 +71,8 @@ pub use occupancy::{
 pub use perception_summary::{PerceptionSummary, STAGES, StageOf};
 pub use perception_timing::{ScanTiming, Spread, StepTiming};
 pub use progress::{
-    StageTimer, StageTiming, progress_bar, progress_line, spinner, stderr_is_terminal,
+    ProgressLines, StageTimer, StageTiming, progress_bar, progress_line, spinner,
+    stderr_is_terminal,
 };
 pub use report::{
     CvFeature, CvGp, CvReport, CvRow, ReportFiles, SceneFigures, add_to_metrics, metrics_json,

@@ -41,7 +41,7 @@ fn evaluate_on_an_own_scenario_writes_its_figures_and_no_thesis_placeholders() {
     }
     let metrics: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).unwrap()).unwrap();
-    assert_eq!(metrics["seeds"], serde_json::json!([7]), "{metrics}");
+    assert_eq!(metrics["seeds"], serde_json::json!([0]), "{metrics}");
     assert_eq!(metrics["models"][0]["file"], model.to_str().unwrap());
     assert_eq!(metrics["models"][0]["gp"], "spgp");
     assert!(metrics["version"].is_string());

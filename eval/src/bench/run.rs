@@ -79,22 +79,14 @@ pub fn run_bench(
     let seeds = plan.training_seeds();
     let (mut further, mut further_targets) = (Vec::new(), Vec::new());
 
-    // 1. Simulate the training tracks and the evaluation sequences (SPEC §3).
+    // 1. Simulate the training tracks (SPEC §3); the evaluation sequences follow training.
     stage("generate training tracks", &mut || {
         let scenarios = data.join("scenarios");
         let tracks = shortened_tracks(&plan.training, plan.training_sweep_share, &scenarios)?;
         train = Some(generate(&tracks, &data.join("train"), plan.seed)?);
         Ok(())
     })?;
-    stage("generate situations", &mut || {
-        situations = Some(generate(
-            &plan.situations,
-            &data.join("situations"),
-            plan.seed,
-        )?);
-        Ok(())
-    })?;
-    let (train, situations) = train.zip(situations).ok_or_else(|| missing("datasets"))?;
+    let train = train.ok_or_else(|| missing("training dataset"))?;
     // 2. Importance-sample map patches once per prior (thesis 3.1.2); prior 0.5 also trains.
     stage("sample patches", &mut || {
         sets = collect_samples_with_bar(&train, &plan.cv.priors, plan.samples, plan.seed)?;
@@ -122,11 +114,22 @@ pub fn run_bench(
             Ok(())
         })?;
     }
+    // The training tracks are no longer needed: without `keep_data` they go before the
+    // situations are simulated, so the two datasets are never on disk together.
     if !plan.keep_data {
         remove_data(&data.join("train"))?;
         remove_data(&data.join("scenarios"))?;
     }
-    // 4. Cross-validation tables (thesis 4.3, Tables 4.1-4.4).
+    stage("generate situations", &mut || {
+        situations = Some(generate(
+            &plan.situations,
+            &data.join("situations"),
+            plan.seed,
+        )?);
+        Ok(())
+    })?;
+    let situations = situations.ok_or_else(|| missing("situations dataset"))?;
+    // 4. Simulate the evaluation sequences (SPEC §3); cross-validation tables (thesis 4.3, Tables 4.1-4.4).
     let cv_sets: Vec<SampleSet> = sets.iter().map(|s| first(s, plan.cv.samples)).collect();
     stage("cross-validation", &mut || {
         cv = Some(cross_validate_with_bar(&cv_sets, &plan.cv)?);

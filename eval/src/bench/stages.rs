@@ -17,7 +17,7 @@ use crate::error::EvalError;
 use crate::occupancy::{
     OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
 };
-use crate::progress::{progress_bar, progress_line, stderr_is_terminal};
+use crate::progress::{ProgressLines, progress_bar, progress_line, stderr_is_terminal};
 use crate::report::CvReport;
 use crate::result::BenchmarkReport;
 
@@ -87,6 +87,7 @@ pub fn collect_samples_with_bar(
     seed: u64,
 ) -> Result<Vec<SampleSet>, EvalError> {
     let bar = progress_bar(0, "sampling patches");
+    let lines = ProgressLines::new("sweeps sampled");
     let sets = SampleSet::collect_priors(
         dataset,
         &FeatureParams::default(),
@@ -97,6 +98,7 @@ pub fn collect_samples_with_bar(
         &|done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
+            lines.update(done, total);
         },
     );
     bar.finish_and_clear();
@@ -109,9 +111,11 @@ pub fn cross_validate_with_bar(
     params: &CvParams,
 ) -> Result<CvReport, EvalError> {
     let bar = progress_bar(0, "cross-validation");
+    let lines = ProgressLines::new("cross-validation fits");
     let report = cross_validate_samples(sets, params, &|done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
+        lines.update(done, total);
     });
     bar.finish_and_clear();
     report
@@ -122,9 +126,14 @@ pub fn evaluate_with_bar(
     dataset: &Dataset,
     estimators: &[MotionEstimator],
 ) -> Result<BenchmarkReport, EvalError> {
-    let bar = progress_bar(scans_to_evaluate(dataset)?, "evaluating scans");
+    let total = scans_to_evaluate(dataset)?;
+    let bar = progress_bar(total, "evaluating scans");
+    let lines = ProgressLines::new("scans evaluated");
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let result = evaluate_dataset(dataset, estimators, &BaselineParams::default(), &|| {
-        bar.inc(1)
+        bar.inc(1);
+        let done = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        lines.update(done, total as usize);
     });
     bar.finish_and_clear();
     result

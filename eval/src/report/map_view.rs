@@ -7,6 +7,7 @@ use std::path::Path;
 
 use patchflow_dataset::Sweep;
 use patchflow_learn::{GridMap, SweepFeatures};
+use plotters::coord::ReverseCoordTranslate;
 use plotters::prelude::*;
 
 use crate::error::EvalError;

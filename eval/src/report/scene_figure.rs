@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use patchflow_dataset::{SequenceReader, Sweep};
+use patchflow_dataset::{ObjectTruth, SequenceReader, Sweep};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -52,50 +52,57 @@ pub fn write_scene_figures(
     cloud: &Path,
 ) -> Result<SceneFigures, EvalError> {
     let name = sequence.info().name.clone();
-    let sweeps: Vec<Sweep> = (0..sequence.len())
-        .map(|i| sequence.read_sweep(i))
+    // The actors of every sweep from its object truth alone (SPEC §4 `objects/NNNNNN.json`);
+    // only the sweep shown is read whole.
+    let objects: Vec<Vec<ObjectTruth>> = (0..sequence.len())
+        .map(|i| read_objects(sequence.dir(), i))
         .collect::<Result<_, _>>()?;
     let chosen = match sweep {
-        Some(i) if i < sweeps.len() => i,
+        Some(i) if i < objects.len() => i,
         Some(i) => {
             return Err(EvalError::BadParameter {
                 name: "sweep",
-                reason: format!("{name} has {} sweeps, no sweep {i}", sweeps.len()),
+                reason: format!("{name} has {} sweeps, no sweep {i}", objects.len()),
             });
         }
-        None => busiest_sweep(&sweeps),
+        None => busiest_sweep(&objects),
     };
-    let Some(shown) = sweeps.get(chosen) else {
+    if objects.is_empty() {
         return Err(EvalError::BadResult {
             situation: name,
             reason: "the sequence has no sweep".into(),
         });
-    };
+    }
+    let shown = sequence.read_sweep(chosen)?;
     let structures = sequence.static_obstacles()?;
     let figures = SceneFigures {
         birds_eye: birds_eye.to_owned(),
         cloud: cloud.to_owned(),
         sweep: chosen,
     };
-    let paths = actor_paths(&sweeps);
-    let ego: Vec<(f64, f64)> = sweeps
+    let paths = actor_paths(&objects);
+    let ego: Vec<(f64, f64)> = sequence
+        .poses()
         .iter()
-        .map(|s| (s.world_from_sensor.translation.x, s.world_from_sensor.translation.y))
+        .map(|p| (p.translation.x, p.translation.y))
         .collect();
     let view = View::around(ego.iter().chain(paths.values().flat_map(|p| p.points.iter())));
     let title = format!(
         "{name}: bird's-eye view of {} sweeps (boxes and rings at sweep {chosen}, t = {:.1} s)",
-        sweeps.len(),
+        objects.len(),
         shown.stamp_secs
     );
     draw_figure(&figures.birds_eye, &title, &view, |chart, key| {
-        draw_birds_eye(chart, key, &structures, &ego, &paths, shown)
+        draw_birds_eye(chart, key, &structures, &ego, &paths, &shown)
     })?;
-    let ego_xy = ego[chosen];
+    let ego_xy = (
+        shown.world_from_sensor.translation.x,
+        shown.world_from_sensor.translation.y,
+    );
     let cloud_view = View::square((ego_xy.0, ego_xy.1), RINGS_M[2] + 10.0);
     let title = format!("{name}: sweep {chosen} from above, points by class and flow direction");
     draw_figure(&figures.cloud, &title, &cloud_view, |chart, key| {
-        draw_cloud(chart, key, shown, &structures)
+        draw_cloud(chart, key, &shown, &structures)
     })?;
     Ok(figures)
 }
@@ -122,14 +129,23 @@ pub fn write_dataset_scene_figures(
         .collect()
 }
 
+/// The object truth of sweep `index` of the sequence in `dir`.
+fn read_objects(dir: &Path, index: usize) -> Result<Vec<ObjectTruth>, EvalError> {
+    let path = dir.join("objects").join(format!("{index:06}.json"));
+    let bytes = std::fs::read(&path).map_err(|e| EvalError::io(&path, e))?;
+    serde_json::from_slice(&bytes).map_err(|source| EvalError::Json { path, source })
+}
+
 /// The sweep where the target (or else any moving actor) has the most points.
-fn busiest_sweep(sweeps: &[Sweep]) -> usize {
-    let points = |s: &Sweep| {
-        s.target()
-            .map(|t| t.point_count)
-            .unwrap_or_else(|| s.objects.iter().filter(|o| o.moving).map(|o| o.point_count).sum())
+fn busiest_sweep(objects: &[Vec<ObjectTruth>]) -> usize {
+    let points = |objects: &Vec<ObjectTruth>| {
+        let target = objects.iter().find(|o| o.target).map(|t| t.point_count);
+        target.unwrap_or_else(|| objects.iter().filter(|o| o.moving).map(|o| o.point_count).sum())
     };
-    let best = sweeps.iter().enumerate().max_by_key(|(i, s)| (points(s), usize::MAX - i));
+    let best = objects
+        .iter()
+        .enumerate()
+        .max_by_key(|(i, o)| (points(o), usize::MAX - i));
     best.map_or(0, |(i, _)| i)
 }
 
@@ -139,10 +155,10 @@ pub(crate) struct ActorPath {
     pub points: Vec<(f64, f64)>,
 }
 
-fn actor_paths(sweeps: &[Sweep]) -> BTreeMap<u16, ActorPath> {
+fn actor_paths(objects: &[Vec<ObjectTruth>]) -> BTreeMap<u16, ActorPath> {
     let mut paths: BTreeMap<u16, ActorPath> = BTreeMap::new();
-    for sweep in sweeps {
-        for o in &sweep.objects {
+    for sweep in objects {
+        for o in sweep {
             let path = paths.entry(o.id).or_insert(ActorPath {
                 target: o.target,
                 points: Vec::new(),
