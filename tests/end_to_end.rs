@@ -74,7 +74,10 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
     assert!(spread["heading_rmse_deg"]["std"].as_f64().unwrap() >= 0.0);
     let situation = &metrics["situations"]["e2e"];
     // The first seed's spread entry is the main table's figure.
-    assert_eq!(values[0], situation["methods"]["SPGP-HET-ALL"]["heading_rmse_deg"]);
+    assert_eq!(
+        values[0],
+        situation["methods"]["SPGP-HET-ALL"]["heading_rmse_deg"]
+    );
     assert_eq!(situation["scans"], 13, "{metrics}");
     let methods = situation["methods"].as_object().unwrap();
     // The eight methods of SPEC §6 with their per-target scores.

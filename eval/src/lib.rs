@@ -76,9 +76,8 @@ pub use progress::{
 };
 pub use report::{
     CvFeature, CvGp, CvReport, CvRow, ReportFiles, SceneFigures, add_to_metrics, metrics_json,
-    metrics_json_value, plot_heading, write_dataset_scene_figures, write_map_figure,
-    write_scene_figures,
-    plot_speed, write_cv_report, write_report,
+    metrics_json_value, plot_heading, plot_speed, write_cv_report, write_dataset_scene_figures,
+    write_map_figure, write_report, write_scene_figures,
 };
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
 pub use rigid_fit::{fit_rigid_closed_form, fit_rigid_svd};

@@ -171,7 +171,10 @@ mod tests {
 
     #[test]
     fn a_progress_line_starts_with_the_elapsed_seconds() {
-        assert_eq!(progress_text(12.34, "train: started"), "[   12.3 s] train: started");
+        assert_eq!(
+            progress_text(12.34, "train: started"),
+            "[   12.3 s] train: started"
+        );
     }
 
     #[test]

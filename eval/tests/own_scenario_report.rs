@@ -35,7 +35,10 @@ fn evaluate_on_an_own_scenario_writes_its_figures_and_no_thesis_placeholders() {
         assert!(!md.contains(placeholder), "{placeholder} in {md}");
     }
     for figure in ["tiny_scene.png", "tiny_cloud.png", "summary_rmse.png"] {
-        assert!(md.contains(&format!("plots/{figure}")), "{figure} not linked");
+        assert!(
+            md.contains(&format!("plots/{figure}")),
+            "{figure} not linked"
+        );
         let bytes = std::fs::read(out.join("plots").join(figure)).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{figure}");
     }

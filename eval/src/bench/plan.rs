@@ -99,9 +99,9 @@ impl BenchPlan {
         Self {
             training_sweep_share: QUICK_SWEEP_SHARE,
             seeds: 1,
-            samples: 800,
-            pseudo_inputs: 40,
-            max_iters: 120,
+            samples: 1200,
+            pseudo_inputs: 60,
+            max_iters: 150,
             cv: CvParams {
                 folds: 2,
                 samples: 600,
@@ -117,7 +117,9 @@ impl BenchPlan {
 
     /// The training seeds, `seed` first.
     pub fn training_seeds(&self) -> Vec<u64> {
-        (0..self.seeds.max(1) as u64).map(|k| self.seed + k).collect()
+        (0..self.seeds.max(1) as u64)
+            .map(|k| self.seed + k)
+            .collect()
     }
 
     /// Names of the training tracks, for the report.

@@ -155,7 +155,8 @@ pub fn run_bench(
     // A bird's-eye view and a point cloud of each situation, from the data before it goes.
     let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
     stage("scene figures", &mut || {
-        report.scene_figures = write_dataset_scene_figures(&situations, &names, &out.join("plots"))?;
+        report.scene_figures =
+            write_dataset_scene_figures(&situations, &names, &out.join("plots"))?;
         Ok(())
     })?;
     if !plan.keep_data {
@@ -217,7 +218,10 @@ pub fn run_bench(
 
 /// What `metrics.json` records of the run beside the scores: the training seeds, the model
 /// files (relative to the output folder, seed by seed) and the spread over the seeds.
-fn run_entries(plan: &BenchPlan, spread: &SeedSpread) -> serde_json::Map<String, serde_json::Value> {
+fn run_entries(
+    plan: &BenchPlan,
+    spread: &SeedSpread,
+) -> serde_json::Map<String, serde_json::Value> {
     let seeds = plan.training_seeds();
     let models: Vec<String> = seeds
         .iter()

@@ -195,6 +195,9 @@ mod tests {
         let json = spread.json();
         assert_eq!(json["seeds"], serde_json::json!([7, 8]));
         let md = spread.markdown();
-        assert!(md.contains("| SPGP-HET-ALL |") && md.contains(" ± 0.0"), "{md}");
+        assert!(
+            md.contains("| SPGP-HET-ALL |") && md.contains(" ± 0.0"),
+            "{md}"
+        );
     }
 }

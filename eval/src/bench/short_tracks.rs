@@ -76,7 +76,8 @@ mod tests {
 
     #[test]
     fn a_third_of_the_sweeps_is_kept_and_tables_are_untouched() {
-        let text = "description = \"x\"\nsweeps = 150\n[ego]\nspeed_mps = 6.0\n[lidar]\nsweeps = 9\n";
+        let text =
+            "description = \"x\"\nsweeps = 150\n[ego]\nspeed_mps = 6.0\n[lidar]\nsweeps = 9\n";
         let short = shorten(text, 1.0 / 3.0);
         assert!(short.contains("\nsweeps = 50 #"), "{short}");
         assert!(short.ends_with("[lidar]\nsweeps = 9\n"), "{short}");

@@ -37,7 +37,11 @@ pub fn generate_with_progress(
     let (lines, start) = (!stderr_is_terminal(), std::time::Instant::now());
     let on_progress = |event: Progress| {
         if let (true, Progress::SequenceDone { name, skipped }) = (lines, &event) {
-            let done = if *skipped { "already complete" } else { "generated" };
+            let done = if *skipped {
+                "already complete"
+            } else {
+                "generated"
+            };
             progress_line(start, &format!("  {name}: {done}"));
         }
         let Ok(mut open) = open.lock() else { return };

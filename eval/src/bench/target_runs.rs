@@ -71,8 +71,10 @@ fn evaluate_target(
                 Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
                 None => ClusterEstimate::default(),
             };
-            for (rule, motion) in [(MergeRule::All, estimate.all), (MergeRule::Best, estimate.best)]
-            {
+            for (rule, motion) in [
+                (MergeRule::All, estimate.all),
+                (MergeRule::Best, estimate.best),
+            ] {
                 let method = Method::gp(estimator.gp_kind(), GpReadout::Merged(rule));
                 let column = methods.entry(method).or_default();
                 column.push(motion.map(to_estimate));

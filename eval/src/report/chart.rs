@@ -103,9 +103,7 @@ pub(crate) fn draw(
     };
     let root = BitMapBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
-    let root = root
-        .titled(title, (FONT, 24))
-        .map_err(|e| plot_err(&e))?;
+    let root = root.titled(title, (FONT, 24)).map_err(|e| plot_err(&e))?;
     let (left, key) = root.split_horizontally(size.0 - KEY_PX);
     let (main, strip) = if decor.strip.is_some() {
         let (main, strip) = left.split_vertically(size.1 - 60 - 190);
@@ -132,9 +130,12 @@ pub(crate) fn draw(
         .map_err(|e| plot_err(&e))?;
     let band_style = RGBColor(215, 215, 215).mix(0.6).filled();
     chart
-        .draw_series(decor.bands.iter().map(|&(a, b)| {
-            Rectangle::new([(a, y_range.start), (b, y_range.end)], band_style)
-        }))
+        .draw_series(
+            decor
+                .bands
+                .iter()
+                .map(|&(a, b)| Rectangle::new([(a, y_range.start), (b, y_range.end)], band_style)),
+        )
         .map_err(|e| plot_err(&e))?;
     let truth_curve = Curve {
         label: "truth".into(),
@@ -170,7 +171,11 @@ type DrawResult =
     Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
 
 fn draw_curve(chart: &mut Chart<'_>, curve: &Curve, width: u32) -> DrawResult {
-    let width = if curve.dashed { 1.max(width - 1) } else { width };
+    let width = if curve.dashed {
+        1.max(width - 1)
+    } else {
+        width
+    };
     let style = curve.colour.stroke_width(width);
     // Lines over runs without gaps.
     for run in curve.points.split(Option::is_none) {

@@ -10,12 +10,28 @@ use crate::report::scene_figure::{Area, DrawResult, WorldChart, footprint};
 
 /// Class colours: (SemanticKITTI ids, colour, key label).
 const CLASSES: [(&[u16], RGBColor, &str); 8] = [
-    (&[40, 44, 48, 49, 72], RGBColor(215, 215, 215), "road, sidewalk, terrain"),
+    (
+        &[40, 44, 48, 49, 72],
+        RGBColor(215, 215, 215),
+        "road, sidewalk, terrain",
+    ),
     (&[50, 51, 52], RGBColor(150, 110, 80), "buildings, walls"),
     (&[70, 71], RGBColor(80, 160, 80), "vegetation"),
-    (&[80, 81, 99], RGBColor(40, 40, 40), "poles, signs, other objects"),
-    (&[10, 13, 15, 18, 20], RGBColor(90, 140, 210), "parked vehicles"),
-    (&[30, 31, 32], RGBColor(170, 90, 200), "standing people, cyclists"),
+    (
+        &[80, 81, 99],
+        RGBColor(40, 40, 40),
+        "poles, signs, other objects",
+    ),
+    (
+        &[10, 13, 15, 18, 20],
+        RGBColor(90, 140, 210),
+        "parked vehicles",
+    ),
+    (
+        &[30, 31, 32],
+        RGBColor(170, 90, 200),
+        "standing people, cyclists",
+    ),
     (&[0, 1], RGBColor(175, 175, 175), "unlabelled"),
     (&[], RGBColor(120, 120, 120), "other"),
 ];
@@ -85,7 +101,11 @@ pub(crate) fn draw_cloud(
             RGBColor(150, 110, 80).mix(0.5).stroke_width(1),
         )))?;
     }
-    chart.draw_series(moving.into_iter().map(|(p, c)| Circle::new(p, 2, c.filled())))?;
+    chart.draw_series(
+        moving
+            .into_iter()
+            .map(|(p, c)| Circle::new(p, 2, c.filled())),
+    )?;
     let ego = (
         sweep.world_from_sensor.translation.x,
         sweep.world_from_sensor.translation.y,
@@ -105,8 +125,16 @@ fn draw_key(key: &Area<'_>) -> DrawResult {
     key.draw(&TriangleMarker::new((20, y), 7, BLACK.filled()))?;
     key.draw(&Text::new("ego car (sensor)", (38, y - 8), text.clone()))?;
     y += 40;
-    key.draw(&Text::new("moving points: true flow", (10, y - 8), text.clone()))?;
-    key.draw(&Text::new("direction (world frame)", (10, y + 10), text.clone()))?;
+    key.draw(&Text::new(
+        "moving points: true flow",
+        (10, y - 8),
+        text.clone(),
+    ))?;
+    key.draw(&Text::new(
+        "direction (world frame)",
+        (10, y + 10),
+        text.clone(),
+    ))?;
     // The colour wheel: direction → colour, +x to the right, +y up.
     let (cx, cy, r) = (110, y + 100, 55);
     for k in 0..72 {
@@ -119,7 +147,12 @@ fn draw_key(key: &Area<'_>) -> DrawResult {
             key.draw(&Circle::new(p, 2, direction_colour(a).filled()))?;
         }
     }
-    for (label, dx, dy) in [("+x", r + 8, -8), ("+y", -8, -r - 26), ("−x", -r - 30, -8), ("−y", -8, r + 6)] {
+    for (label, dx, dy) in [
+        ("+x", r + 8, -8),
+        ("+y", -8, -r - 26),
+        ("−x", -r - 30, -8),
+        ("−y", -8, r + 6),
+    ] {
         key.draw(&Text::new(label, (cx + dx, cy + dy), text.clone()))?;
     }
     Ok(())
@@ -131,12 +164,18 @@ mod tests {
 
     #[test]
     fn opposite_flow_directions_get_clearly_different_colours() {
-        let (a, b) = (direction_colour(0.0), direction_colour(std::f64::consts::PI));
+        let (a, b) = (
+            direction_colour(0.0),
+            direction_colour(std::f64::consts::PI),
+        );
         let distance = (i32::from(a.0) - i32::from(b.0)).abs()
             + (i32::from(a.1) - i32::from(b.1)).abs()
             + (i32::from(a.2) - i32::from(b.2)).abs();
         assert!(distance > 200, "{a:?} vs {b:?}");
-        assert_eq!(direction_colour(0.0), direction_colour(std::f64::consts::TAU));
+        assert_eq!(
+            direction_colour(0.0),
+            direction_colour(std::f64::consts::TAU)
+        );
     }
 
     #[test]

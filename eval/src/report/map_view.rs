@@ -52,9 +52,30 @@ pub fn write_map_figure(
     let (panels, keys) = root.split_vertically(SIZE_PX.1 - 30 - KEY_PX);
     let (left, right) = panels.split_horizontally(SIZE_PX.0 / 2);
     let (left_key, right_key) = keys.split_horizontally(SIZE_PX.0 / 2);
-    let maps: [(&Area<'_>, &Area<'_>, &GridMap, &str, fn(f64) -> RGBColor, (f64, f64)); 2] = [
-        (&left, &left_key, features.reflection_map(), "reflection map m_t", reflection_colour, (0.0, 1.0)),
-        (&right, &right_key, features.difference_map(), "difference map m_t − m_(t−1)", difference_colour, (-1.0, 1.0)),
+    let maps: [(
+        &Area<'_>,
+        &Area<'_>,
+        &GridMap,
+        &str,
+        fn(f64) -> RGBColor,
+        (f64, f64),
+    ); 2] = [
+        (
+            &left,
+            &left_key,
+            features.reflection_map(),
+            "reflection map m_t",
+            reflection_colour,
+            (0.0, 1.0),
+        ),
+        (
+            &right,
+            &right_key,
+            features.difference_map(),
+            "difference map m_t − m_(t−1)",
+            difference_colour,
+            (-1.0, 1.0),
+        ),
     ];
     for (area, key, map, label, colour, (lo, hi)) in maps {
         draw_map(area, map, label, colour, features, sweep).map_err(|e| plot_err(&e))?;
@@ -118,11 +139,22 @@ fn draw_map(
     for o in &sweep.objects {
         let mut corners = footprint(o.centre_m, o.size_m, o.yaw_rad);
         corners.push(corners[0]);
-        let colour = if o.target { RGBColor(214, 39, 40) } else { RGBColor(200, 0, 200) };
-        chart.draw_series(std::iter::once(PathElement::new(corners, colour.stroke_width(2))))?;
+        let colour = if o.target {
+            RGBColor(214, 39, 40)
+        } else {
+            RGBColor(200, 0, 200)
+        };
+        chart.draw_series(std::iter::once(PathElement::new(
+            corners,
+            colour.stroke_width(2),
+        )))?;
     }
     let [sx, sy] = features.sensor_xy();
-    chart.draw_series(std::iter::once(TriangleMarker::new((sx, sy), 7, BLACK.filled())))?;
+    chart.draw_series(std::iter::once(TriangleMarker::new(
+        (sx, sy),
+        7,
+        BLACK.filled(),
+    )))?;
     Ok(())
 }
 
@@ -139,13 +171,27 @@ fn draw_colour_key(
     let (x0, width, y) = (70, 320, 14);
     for k in 0..width {
         let v = lo + (hi - lo) * f64::from(k) / f64::from(width - 1);
-        key.draw(&Rectangle::new([(x0 + k, y), (x0 + k + 1, y + 18)], colour(v).filled()))?;
+        key.draw(&Rectangle::new(
+            [(x0 + k, y), (x0 + k + 1, y + 18)],
+            colour(v).filled(),
+        ))?;
     }
-    key.draw(&Rectangle::new([(x0, y), (x0 + width, y + 18)], BLACK.stroke_width(1)))?;
-    for (v, x) in [(lo, x0), ((lo + hi) / 2.0, x0 + width / 2), (hi, x0 + width)] {
+    key.draw(&Rectangle::new(
+        [(x0, y), (x0 + width, y + 18)],
+        BLACK.stroke_width(1),
+    ))?;
+    for (v, x) in [
+        (lo, x0),
+        ((lo + hi) / 2.0, x0 + width / 2),
+        (hi, x0 + width),
+    ] {
         key.draw(&Text::new(format!("{v:.1}"), (x - 8, y + 22), text.clone()))?;
     }
-    key.draw(&Text::new(label.to_owned(), (x0 + width + 14, y + 2), text.clone()))?;
+    key.draw(&Text::new(
+        label.to_owned(),
+        (x0 + width + 14, y + 2),
+        text.clone(),
+    ))?;
     key.draw(&Text::new(
         "blue dots: sliced points of the clusters; magenta boxes: actors (red: target); ▲ sensor",
         (x0, y + 44),

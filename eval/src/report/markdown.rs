@@ -34,7 +34,10 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, scores: &ReportScores) -
             .map(|s| format!(", seed {s}"))
             .unwrap_or_default()
     );
-    if metrics.iter().any(|(name, _, _)| thesis_situation(name).is_some()) {
+    if metrics
+        .iter()
+        .any(|(name, _, _)| thesis_situation(name).is_some())
+    {
         let _ = writeln!(
             md,
             "Columns marked **Hess 2008** are the thesis' own numbers, measured on real Urban Challenge \

@@ -45,6 +45,9 @@ mod tests {
         let value: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(value["seeds"], serde_json::json!([7, 8, 9]));
         assert_eq!(value["version"], "0.1.0");
-        assert!(text.find("\"seeds\"") < text.find("\"situations\""), "{text}");
+        assert!(
+            text.find("\"seeds\"") < text.find("\"situations\""),
+            "{text}"
+        );
     }
 }

@@ -30,6 +30,6 @@ pub use metrics_extras::add_to_metrics;
 pub(crate) use plot::{FONT, ensure_font};
 pub use plot::{plot_heading, plot_speed};
 pub use scene_figure::{SceneFigures, write_dataset_scene_figures, write_scene_figures};
-pub use writer::{ReportFiles, write_report};
 #[cfg(test)]
 pub(crate) use synthetic::synthetic_report;
+pub use writer::{ReportFiles, write_report};

@@ -202,4 +202,3 @@ fn method_curves(
         })
         .collect()
 }
-

@@ -86,7 +86,10 @@ pub fn write_scene_figures(
         .iter()
         .map(|p| (p.translation.x, p.translation.y))
         .collect();
-    let view = View::around(ego.iter().chain(paths.values().flat_map(|p| p.points.iter())));
+    let view = View::around(
+        ego.iter()
+            .chain(paths.values().flat_map(|p| p.points.iter())),
+    );
     let title = format!(
         "{name}: bird's-eye view of {} sweeps (boxes and rings at sweep {chosen}, t = {:.1} s)",
         objects.len(),
@@ -140,7 +143,13 @@ fn read_objects(dir: &Path, index: usize) -> Result<Vec<ObjectTruth>, EvalError>
 fn busiest_sweep(objects: &[Vec<ObjectTruth>]) -> usize {
     let points = |objects: &Vec<ObjectTruth>| {
         let target = objects.iter().find(|o| o.target).map(|t| t.point_count);
-        target.unwrap_or_else(|| objects.iter().filter(|o| o.moving).map(|o| o.point_count).sum())
+        target.unwrap_or_else(|| {
+            objects
+                .iter()
+                .filter(|o| o.moving)
+                .map(|o| o.point_count)
+                .sum()
+        })
     };
     let best = objects
         .iter()
@@ -178,7 +187,10 @@ pub(crate) struct View {
 impl View {
     /// The square around `points` with a margin.
     fn around<'a>(points: impl Iterator<Item = &'a (f64, f64)>) -> Self {
-        let (mut lo, mut hi) = ((f64::INFINITY, f64::INFINITY), (f64::NEG_INFINITY, f64::NEG_INFINITY));
+        let (mut lo, mut hi) = (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
         for &(x, y) in points {
             lo = (lo.0.min(x), lo.1.min(y));
             hi = (hi.0.max(x), hi.1.max(y));
@@ -261,7 +273,10 @@ fn draw_birds_eye(
     shown: &Sweep,
 ) -> DrawResult {
     chart.draw_series(structures.iter().map(|o| {
-        Polygon::new(footprint(o.centre_m, o.size_m, o.yaw_rad), STRUCTURE.mix(0.7).filled())
+        Polygon::new(
+            footprint(o.centre_m, o.size_m, o.yaw_rad),
+            STRUCTURE.mix(0.7).filled(),
+        )
     }))?;
     let centre = (
         shown.world_from_sensor.translation.x,
@@ -274,7 +289,12 @@ fn draw_birds_eye(
                 (centre.0 + r * a.cos(), centre.1 + r * a.sin())
             })
             .collect();
-        chart.draw_series(DashedLineSeries::new(ring, 6, 5, RGBColor(120, 120, 120).stroke_width(1)))?;
+        chart.draw_series(DashedLineSeries::new(
+            ring,
+            6,
+            5,
+            RGBColor(120, 120, 120).stroke_width(1),
+        ))?;
         chart.draw_series(std::iter::once(Text::new(
             format!("{r:.0} m"),
             (centre.0 + r * 0.71, centre.1 + r * 0.71),
@@ -295,9 +315,16 @@ fn draw_birds_eye(
         let colour = if o.target { TARGET } else { ACTOR };
         let mut corners = footprint(o.centre_m, o.size_m, o.yaw_rad);
         corners.push(corners[0]);
-        chart.draw_series(std::iter::once(PathElement::new(corners, colour.stroke_width(2))))?;
+        chart.draw_series(std::iter::once(PathElement::new(
+            corners,
+            colour.stroke_width(2),
+        )))?;
     }
-    chart.draw_series(std::iter::once(TriangleMarker::new(centre, 8, EGO.filled())))?;
+    chart.draw_series(std::iter::once(TriangleMarker::new(
+        centre,
+        8,
+        EGO.filled(),
+    )))?;
     let rows: [(&str, RGBColor, u32); 5] = [
         ("ego path (▲ at the sweep)", EGO, 3),
         ("target path (● start)", TARGET, 4),
@@ -314,9 +341,15 @@ pub(crate) fn draw_line_key(key: &Area<'_>, rows: &[(&str, RGBColor, u32)]) -> D
     for (k, (label, colour, width)) in rows.iter().enumerate() {
         let y = 50 + 26 * k as i32;
         if *width >= 10 {
-            key.draw(&Rectangle::new([(10, y - 6), (40, y + 6)], colour.mix(0.7).filled()))?;
+            key.draw(&Rectangle::new(
+                [(10, y - 6), (40, y + 6)],
+                colour.mix(0.7).filled(),
+            ))?;
         } else {
-            key.draw(&PathElement::new(vec![(10, y), (40, y)], colour.stroke_width(*width)))?;
+            key.draw(&PathElement::new(
+                vec![(10, y), (40, y)],
+                colour.stroke_width(*width),
+            ))?;
         }
         key.draw(&Text::new(label.to_string(), (48, y - 8), text.clone()))?;
     }

@@ -25,7 +25,11 @@ pub(crate) fn plot_summary(metrics: &[SituationMetrics], path: &Path) -> Result<
     let methods: Vec<Method> = {
         let mut all: Vec<Method> = metrics
             .iter()
-            .flat_map(|(_, _, m)| m.iter().filter(|(_, x)| x.coverage > 0.0 || x.heading_rmse_deg.is_some()).map(|(k, _)| *k))
+            .flat_map(|(_, _, m)| {
+                m.iter()
+                    .filter(|(_, x)| x.coverage > 0.0 || x.heading_rmse_deg.is_some())
+                    .map(|(k, _)| *k)
+            })
             .collect();
         all.sort();
         all.dedup();
@@ -34,7 +38,10 @@ pub(crate) fn plot_summary(metrics: &[SituationMetrics], path: &Path) -> Result<
     let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let root = root
-        .titled("Target heading and speed RMSE per method and situation", (FONT, 24))
+        .titled(
+            "Target heading and speed RMSE per method and situation",
+            (FONT, 24),
+        )
         .map_err(|e| plot_err(&e))?;
     let (left, key) = root.split_horizontally(SIZE_PX.0 - KEY_PX);
     let (top, bottom) = left.split_vertically((SIZE_PX.1 - 40) / 2);
@@ -48,9 +55,10 @@ pub(crate) fn plot_summary(metrics: &[SituationMetrics], path: &Path) -> Result<
             .iter()
             .enumerate()
             .flat_map(|(s, (_, _, by_method))| {
-                methods.iter().enumerate().filter_map(move |(k, m)| {
-                    by_method.get(m).and_then(value).map(|v| (s, k, v))
-                })
+                methods
+                    .iter()
+                    .enumerate()
+                    .filter_map(move |(k, m)| by_method.get(m).and_then(value).map(|v| (s, k, v)))
             })
             .filter(|(_, _, v)| v.is_finite())
             .collect();

@@ -67,7 +67,10 @@ fn print_headline(report: &BenchmarkReport, spread: &SeedSpread) -> anyhow::Resu
     for situation in &report.situations {
         let metrics = situation.metrics()?;
         let spread_of = |m: &Method| {
-            let (_, methods) = spread.situations.iter().find(|(n, _)| *n == situation.name)?;
+            let (_, methods) = spread
+                .situations
+                .iter()
+                .find(|(n, _)| *n == situation.name)?;
             methods.get(m).filter(|s| s.heading_rmse_deg.std.is_some())
         };
         let cells = methods.map(|m| match (spread_of(&m), metrics.get(&m)) {

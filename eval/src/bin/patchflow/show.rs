@@ -63,11 +63,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     write_map_figure(&features, &curr, &title, &args.out)?;
     let beside = |suffix: &str| {
-        let stem = args.out.file_stem().map_or_else(|| "show".into(), |s| s.to_string_lossy());
+        let stem = args
+            .out
+            .file_stem()
+            .map_or_else(|| "show".into(), |s| s.to_string_lossy());
         args.out.with_file_name(format!("{stem}_{suffix}.png"))
     };
-    let figures =
-        write_scene_figures(&sequence, Some(args.scan), &beside("scene"), &beside("cloud"))?;
+    let figures = write_scene_figures(
+        &sequence,
+        Some(args.scan),
+        &beside("scene"),
+        &beside("cloud"),
+    )?;
     println!(
         "wrote {}, {} and {}",
         args.out.display(),
