@@ -39,8 +39,9 @@ pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
 pub use bench::{
     BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, MethodSpread, QUICK_SWEEP_SHARE,
-    SeedFigure, SeedSpread, collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar,
-    generate_with_progress, occupancy_with_bar, run_bench,
+    SeedFigure, SeedSpread, collect_draws_with_bar, collect_samples_with_bar,
+    cross_validate_with_bar, evaluate_with_bar, generate_with_progress, occupancy_with_bar,
+    run_bench,
 };
 pub use cluster_association::{
     CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,

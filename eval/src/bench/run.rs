@@ -12,7 +12,7 @@ use crate::bench::plan::BenchPlan;
 use crate::bench::seed_spread::SeedSpread;
 use crate::bench::short_tracks::shortened_tracks;
 use crate::bench::stages::{
-    collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar, generate_with_progress,
+    collect_draws_with_bar, cross_validate_with_bar, evaluate_with_bar, generate_with_progress,
     occupancy_with_bar,
 };
 use crate::bench::target_runs::evaluate_targets;
@@ -88,8 +88,14 @@ pub fn run_bench(
     })?;
     let train = train.ok_or_else(|| missing("training dataset"))?;
     // 2. Importance-sample map patches once per prior (thesis 3.1.2); prior 0.5 also trains.
+    //    The further seeds draw their own samples (prior 0.5) in the same pass over the maps.
+    let further_seeds = seeds.get(1..).unwrap_or_default();
+    let mut further_sets = Vec::new();
     stage("sample patches", &mut || {
-        sets = collect_samples_with_bar(&train, &plan.cv.priors, plan.samples, plan.seed)?;
+        let mut draws: Vec<(f64, u64)> = plan.cv.priors.iter().map(|&p| (p, plan.seed)).collect();
+        draws.extend(further_seeds.iter().map(|&seed| (0.5, seed)));
+        sets = collect_draws_with_bar(&train, &draws, plan.samples)?;
+        further_sets = sets.split_off(plan.cv.priors.len());
         Ok(())
     })?;
     let training_set = sets
@@ -101,14 +107,10 @@ pub fn run_bench(
         estimators = train_estimators(&train, training_set, plan, plan.seed, out)?;
         Ok(())
     })?;
-    // 3b. The further training seeds: their own samples and GPs, for the spread over seeds.
-    if let [_, rest @ ..] = &seeds[..]
-        && !rest.is_empty()
-    {
-        stage("sample and train further seeds", &mut || {
-            for &seed in rest {
-                let sets = collect_samples_with_bar(&train, &[0.5], plan.samples, seed)?;
-                let set = sets.first().ok_or_else(|| missing("a sample set"))?;
+    // 3b. The further training seeds' GPs, for the spread over seeds.
+    if !further_seeds.is_empty() {
+        stage("train further seeds", &mut || {
+            for (set, &seed) in further_sets.iter().zip(further_seeds) {
                 further.push(train_estimators(&train, set, plan, seed, out)?);
             }
             Ok(())

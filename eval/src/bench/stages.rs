@@ -90,15 +90,25 @@ pub fn collect_samples_with_bar(
     n: usize,
     seed: u64,
 ) -> Result<Vec<SampleSet>, EvalError> {
+    let draws: Vec<(f64, u64)> = priors.iter().map(|&prior| (prior, seed)).collect();
+    collect_draws_with_bar(dataset, &draws, n)
+}
+
+/// Importance-samples map patches for several `(prior, seed)` draws in one pass over the
+/// dataset (each prior's maps built once and shared by its seeds), with a progress bar.
+pub fn collect_draws_with_bar(
+    dataset: &Dataset,
+    draws: &[(f64, u64)],
+    n: usize,
+) -> Result<Vec<SampleSet>, EvalError> {
     let bar = progress_bar(0, "sampling patches");
     let lines = ProgressLines::new("sweeps sampled");
-    let sets = SampleSet::collect_priors(
+    let sets = SampleSet::collect_draws(
         dataset,
         &FeatureParams::default(),
-        priors,
+        draws,
         FeatureKind::Patch,
         n,
-        seed,
         &|done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
