@@ -4,11 +4,14 @@ use std::path::Path;
 use std::time::Instant;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
+use patchflow_learn::{EstimatorParams, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 use crate::bench::notes::notes;
 use crate::bench::plan::BenchPlan;
+use crate::bench::run_files::{
+    append, insert_after_summary, model_file, remove_data, remove_empty_dir, run_entries,
+};
 use crate::bench::seed_spread::SeedSpread;
 use crate::bench::short_tracks::shortened_tracks;
 use crate::bench::stages::{
@@ -116,8 +119,8 @@ pub fn run_bench(
             Ok(())
         })?;
     }
-    // The training tracks are no longer needed: without `keep_data` they go before the
-    // situations are simulated, so the two datasets are never on disk together.
+    // 4. Simulate the evaluation sequences (SPEC §3). The training tracks are no longer needed:
+    //    without `keep_data` they go first, so the two datasets are never on disk together.
     if !plan.keep_data {
         remove_data(&data.join("train"))?;
         remove_data(&data.join("scenarios"))?;
@@ -131,13 +134,13 @@ pub fn run_bench(
         Ok(())
     })?;
     let situations = situations.ok_or_else(|| missing("situations dataset"))?;
-    // 4. Simulate the evaluation sequences (SPEC §3); cross-validation tables (thesis 4.3, Tables 4.1-4.4).
+    // 5. Cross-validation tables (thesis 4.3, Tables 4.1-4.4).
     let cv_sets: Vec<SampleSet> = sets.iter().map(|s| first(s, plan.cv.samples)).collect();
     stage("cross-validation", &mut || {
         cv = Some(cross_validate_with_bar(&cv_sets, &plan.cv)?);
         Ok(())
     })?;
-    // 5. Every method on every sequence (thesis 4.4 and the whole scene); the further seeds'
+    // 6. Every method on every sequence (thesis 4.4 and the whole scene); the further seeds'
     //    GPs on the targets only (the baselines do not learn).
     let load_before = load_average();
     stage("evaluate situations", &mut || {
@@ -164,7 +167,7 @@ pub fn run_bench(
     if !plan.keep_data {
         remove_data(&data.join("situations"))?;
     }
-    // 6. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
+    // 7. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
     //    training run is generated beside it for methods that learn beforehand.
     let mut occupancy = None;
     if !plan.occupancy.is_empty() {
@@ -189,7 +192,7 @@ pub fn run_bench(
     if !plan.keep_data {
         remove_empty_dir(&data)?;
     }
-    // 7. The report, with the spread over the training seeds.
+    // 8. The report, with the spread over the training seeds.
     report.seed = Some(plan.seed);
     report.notes = notes(plan, &estimators, load);
     report.cv = Some(cv.clone());
@@ -216,65 +219,6 @@ pub fn run_bench(
         occupancy,
         spread,
     })
-}
-
-/// What `metrics.json` records of the run beside the scores: the training seeds, the model
-/// files (relative to the output folder, seed by seed) and the spread over the seeds.
-fn run_entries(
-    plan: &BenchPlan,
-    spread: &SeedSpread,
-) -> serde_json::Map<String, serde_json::Value> {
-    let seeds = plan.training_seeds();
-    let models: Vec<String> = seeds
-        .iter()
-        .flat_map(|&seed| plan.gps.iter().map(move |&gp| model_file(plan, gp, seed)))
-        .collect();
-    let mut entries = serde_json::Map::new();
-    entries.insert("seeds".into(), serde_json::json!(seeds));
-    entries.insert("model_files".into(), serde_json::json!(models));
-    entries.insert("quick".into(), serde_json::json!(plan.quick));
-    entries.insert("seed_spread".into(), spread.json());
-    entries
-}
-
-/// Inserts `section` into the Markdown file at `path` before its second `## ` heading (right
-/// after the summary), or at its end.
-fn insert_after_summary(path: &Path, section: &str) -> Result<(), EvalError> {
-    let content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
-    let at = content
-        .match_indices("\n## ")
-        .nth(1)
-        .map_or(content.len(), |(i, _)| i + 1);
-    let text = format!("{}{section}\n{}", &content[..at], &content[at..]);
-    std::fs::write(path, text).map_err(|e| EvalError::io(path, e))
-}
-
-/// Deletes a dataset folder the run no longer needs (nothing if it is gone already).
-fn remove_data(dir: &Path) -> Result<(), EvalError> {
-    match std::fs::remove_dir_all(dir) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(EvalError::io(dir, e)),
-        _ => Ok(()),
-    }
-}
-
-/// Deletes a folder if it is empty.
-fn remove_empty_dir(dir: &Path) -> Result<(), EvalError> {
-    let empty = match std::fs::read_dir(dir) {
-        Ok(mut entries) => entries.next().is_none(),
-        Err(_) => false,
-    };
-    if empty {
-        std::fs::remove_dir(dir).map_err(|e| EvalError::io(dir, e))?;
-    }
-    Ok(())
-}
-
-/// Appends `text` to the file at `path`, after a blank line.
-fn append(path: &Path, text: &str) -> Result<(), EvalError> {
-    let mut content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
-    content.push('\n');
-    content.push_str(text);
-    std::fs::write(path, content).map_err(|e| EvalError::io(path, e))
 }
 
 fn missing(what: &str) -> EvalError {
@@ -325,15 +269,6 @@ fn train_estimators(
         estimators.push(estimator);
     }
     Ok(estimators)
-}
-
-/// The model file of one GP kind and seed, relative to the output folder.
-fn model_file(plan: &BenchPlan, gp: GpKind, seed: u64) -> String {
-    if seed == plan.seed {
-        format!("models/{gp}.json")
-    } else {
-        format!("models/{gp}-seed{seed}.json")
-    }
 }
 
 /// The first `n` samples of a set (samples are in dataset order, so this is itself a sample).

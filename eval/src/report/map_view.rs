@@ -18,6 +18,16 @@ const SIZE_PX: (u32, u32) = (1500, 800);
 /// Height of the colour-key strip under the panels.
 const KEY_PX: u32 = 90;
 
+/// One panel: its area, its key's area, the map, its label, its colours and their value range.
+type Panel<'a, 'b> = (
+    &'a Area<'b>,
+    &'a Area<'b>,
+    &'a GridMap,
+    &'static str,
+    fn(f64) -> RGBColor,
+    (f64, f64),
+);
+
 /// Grey of a reflection probability: white at 0, black at 1.
 fn reflection_colour(p: f64) -> RGBColor {
     let grey = (255.0 * (1.0 - p.clamp(0.0, 1.0))).round() as u8;
@@ -52,14 +62,7 @@ pub fn write_map_figure(
     let (panels, keys) = root.split_vertically(SIZE_PX.1 - 30 - KEY_PX);
     let (left, right) = panels.split_horizontally(SIZE_PX.0 / 2);
     let (left_key, right_key) = keys.split_horizontally(SIZE_PX.0 / 2);
-    let maps: [(
-        &Area<'_>,
-        &Area<'_>,
-        &GridMap,
-        &str,
-        fn(f64) -> RGBColor,
-        (f64, f64),
-    ); 2] = [
+    let maps: [Panel<'_, '_>; 2] = [
         (
             &left,
             &left_key,

@@ -46,7 +46,7 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, scores: &ReportScores) -
         );
     }
     summary_section(&mut md, metrics);
-    if metrics.len() > 0 {
+    if !metrics.is_empty() {
         let _ = writeln!(
             md,
             "![heading and speed RMSE per method and situation](plots/summary_rmse.png)\n\n\

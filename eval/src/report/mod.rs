@@ -1,6 +1,7 @@
 //! Report writers: `metrics.json`, `tables.csv`, `report.md` and plots for the benchmark; `cv.json`
 //! and `cv.md` for cross-validation.
 
+mod birds_eye;
 mod breakdown;
 mod chart;
 mod cloud_view;

@@ -7,11 +7,12 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use patchflow_dataset::{ObjectTruth, SequenceReader, Sweep};
+use patchflow_dataset::{ObjectTruth, SequenceReader};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::error::EvalError;
+use crate::report::birds_eye::draw_birds_eye;
 use crate::report::cloud_view::draw_cloud;
 use crate::report::plot::{FONT, ensure_font};
 
@@ -20,12 +21,7 @@ pub(crate) const SCENE_PX: (u32, u32) = (1100, 860);
 /// Width of the key panel.
 pub(crate) const KEY_PX: u32 = 250;
 /// Range rings around the ego car, metres.
-const RINGS_M: [f64; 3] = [10.0, 20.0, 40.0];
-/// Colour of the target.
-pub(crate) const TARGET: RGBColor = RGBColor(214, 39, 40);
-const EGO: RGBColor = RGBColor(20, 20, 20);
-const ACTOR: RGBColor = RGBColor(31, 119, 180);
-const STRUCTURE: RGBColor = RGBColor(150, 150, 150);
+pub(crate) const RINGS_M: [f64; 3] = [10.0, 20.0, 40.0];
 
 pub(crate) type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
 pub(crate) type DrawResult =
@@ -160,7 +156,9 @@ fn busiest_sweep(objects: &[Vec<ObjectTruth>]) -> usize {
 
 /// One actor's path over the sequence.
 pub(crate) struct ActorPath {
+    /// Whether the actor is the target.
     pub target: bool,
+    /// Its centre at every sweep it is in, world x, y.
     pub points: Vec<(f64, f64)>,
 }
 
@@ -180,7 +178,9 @@ fn actor_paths(objects: &[Vec<ObjectTruth>]) -> BTreeMap<u16, ActorPath> {
 
 /// A square window of the world, metres.
 pub(crate) struct View {
+    /// World x range, metres.
     pub x: std::ops::Range<f64>,
+    /// World y range, metres.
     pub y: std::ops::Range<f64>,
 }
 
@@ -247,7 +247,7 @@ pub(crate) fn draw_figure(
         .y_label_formatter(&|y| format!("{y:.0}"))
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 16))
-        .light_line_style(RGBColor(240, 240, 240))
+        .light_line_style(RGBColor(250, 250, 250))
         .draw()
         .map_err(|e| plot_err(&e))?;
     fill(&mut chart, &key).map_err(|e| plot_err(&e))?;
@@ -262,96 +262,4 @@ pub(crate) fn footprint(centre: [f64; 3], size: [f64; 3], yaw_rad: f64) -> Vec<(
         .iter()
         .map(|(a, b)| (centre[0] + a * c - b * s, centre[1] + a * s + b * c))
         .collect()
-}
-
-fn draw_birds_eye(
-    chart: &mut WorldChart<'_>,
-    key: &Area<'_>,
-    structures: &[patchflow_dataset::StaticObstacle],
-    ego: &[(f64, f64)],
-    paths: &BTreeMap<u16, ActorPath>,
-    shown: &Sweep,
-) -> DrawResult {
-    chart.draw_series(structures.iter().map(|o| {
-        Polygon::new(
-            footprint(o.centre_m, o.size_m, o.yaw_rad),
-            STRUCTURE.mix(0.7).filled(),
-        )
-    }))?;
-    let centre = (
-        shown.world_from_sensor.translation.x,
-        shown.world_from_sensor.translation.y,
-    );
-    for r in RINGS_M {
-        let ring: Vec<(f64, f64)> = (0..=96)
-            .map(|k| {
-                let a = k as f64 / 96.0 * std::f64::consts::TAU;
-                (centre.0 + r * a.cos(), centre.1 + r * a.sin())
-            })
-            .collect();
-        chart.draw_series(DashedLineSeries::new(
-            ring,
-            6,
-            5,
-            RGBColor(120, 120, 120).stroke_width(1),
-        ))?;
-        chart.draw_series(std::iter::once(Text::new(
-            format!("{r:.0} m"),
-            (centre.0 + r * 0.71, centre.1 + r * 0.71),
-            (FONT, 13).into_font().color(&RGBColor(90, 90, 90)),
-        )))?;
-    }
-    for path in paths.values().filter(|p| !p.target) {
-        chart.draw_series(LineSeries::new(path.points.clone(), ACTOR.stroke_width(2)))?;
-    }
-    chart.draw_series(LineSeries::new(ego.to_vec(), EGO.stroke_width(3)))?;
-    for path in paths.values().filter(|p| p.target) {
-        chart.draw_series(LineSeries::new(path.points.clone(), TARGET.stroke_width(4)))?;
-        if let Some(&start) = path.points.first() {
-            chart.draw_series(std::iter::once(Circle::new(start, 5, TARGET.filled())))?;
-        }
-    }
-    for o in &shown.objects {
-        let colour = if o.target { TARGET } else { ACTOR };
-        let mut corners = footprint(o.centre_m, o.size_m, o.yaw_rad);
-        corners.push(corners[0]);
-        chart.draw_series(std::iter::once(PathElement::new(
-            corners,
-            colour.stroke_width(2),
-        )))?;
-    }
-    chart.draw_series(std::iter::once(TriangleMarker::new(
-        centre,
-        8,
-        EGO.filled(),
-    )))?;
-    let rows: [(&str, RGBColor, u32); 5] = [
-        ("ego path (▲ at the sweep)", EGO, 3),
-        ("target path (● start)", TARGET, 4),
-        ("other actors' paths", ACTOR, 2),
-        ("range rings 10/20/40 m", RGBColor(120, 120, 120), 1),
-        ("static structures", STRUCTURE, 10),
-    ];
-    draw_line_key(key, &rows)
-}
-
-/// Key rows of a line (or a filled block for width ≥ 10) and a text each.
-pub(crate) fn draw_line_key(key: &Area<'_>, rows: &[(&str, RGBColor, u32)]) -> DrawResult {
-    let text = TextStyle::from((FONT, 14)).color(&BLACK);
-    for (k, (label, colour, width)) in rows.iter().enumerate() {
-        let y = 50 + 26 * k as i32;
-        if *width >= 10 {
-            key.draw(&Rectangle::new(
-                [(10, y - 6), (40, y + 6)],
-                colour.mix(0.7).filled(),
-            ))?;
-        } else {
-            key.draw(&PathElement::new(
-                vec![(10, y), (40, y)],
-                colour.stroke_width(*width),
-            ))?;
-        }
-        key.draw(&Text::new(label.to_string(), (48, y - 8), text.clone()))?;
-    }
-    Ok(())
 }

@@ -15,6 +15,9 @@ use crate::report::scores::SituationMetrics;
 const SIZE_PX: (u32, u32) = (1200, 760);
 const KEY_PX: u32 = 230;
 
+/// The figure a panel shows.
+type Figure = fn(&MethodMetrics) -> Option<f64>;
+
 /// Draws the summary figure of `metrics` (situations in report order) to `path`.
 pub(crate) fn plot_summary(metrics: &[SituationMetrics], path: &Path) -> Result<(), EvalError> {
     ensure_font(path)?;
@@ -46,7 +49,7 @@ pub(crate) fn plot_summary(metrics: &[SituationMetrics], path: &Path) -> Result<
     let (left, key) = root.split_horizontally(SIZE_PX.0 - KEY_PX);
     let (top, bottom) = left.split_vertically((SIZE_PX.1 - 40) / 2);
     let names: Vec<&str> = metrics.iter().map(|(n, _, _)| n.as_str()).collect();
-    let panels: [(&_, &str, fn(&MethodMetrics) -> Option<f64>); 2] = [
+    let panels: [(_, &str, Figure); 2] = [
         (&top, "heading RMSE (°)", |m| m.heading_rmse_deg),
         (&bottom, "speed RMSE (m/s)", |m| m.speed_rmse_mps),
     ];
