@@ -150,9 +150,7 @@ pub fn run_bench(
     let load = load_before.zip(load_average());
     if !further.is_empty() {
         stage("evaluate further seeds", &mut || {
-            for estimators in &further {
-                further_targets.push(evaluate_targets(&situations, estimators)?);
-            }
+            further_targets = evaluate_targets(&situations, &further)?;
             Ok(())
         })?;
     }

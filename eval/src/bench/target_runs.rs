@@ -19,43 +19,55 @@ use crate::result::SituationResult;
 use crate::scene_evaluation::to_estimate;
 
 /// Every GP read-out's estimate of the target at every scan of every situation (sequences with a
-/// target) of `dataset`, in dataset order. The estimates equal those of the whole evaluation
-/// ([`crate::evaluate_dataset`]) for the same estimators.
+/// target) of `dataset`, in dataset order, for each of several trained runs (`runs[k]` holds one
+/// run's estimators, one per GP kind); the runs share each scan's maps. The estimates equal
+/// those of the whole evaluation ([`crate::evaluate_dataset`]) for the same estimators.
 pub(crate) fn evaluate_targets(
     dataset: &Dataset,
-    estimators: &[MotionEstimator],
-) -> Result<Vec<SituationResult>, EvalError> {
+    runs: &[Vec<MotionEstimator>],
+) -> Result<Vec<Vec<SituationResult>>, EvalError> {
     let names = sequences_to_evaluate(dataset)?;
-    let runs = names
+    let sequences = names
         .par_iter()
-        .map(|name| evaluate_target(&dataset.sequence(name)?, estimators))
+        .map(|name| evaluate_target(&dataset.sequence(name)?, runs))
         .collect::<Result<Vec<_>, EvalError>>()?;
-    Ok(runs.into_iter().flatten().collect())
+    let mut per_run = vec![Vec::new(); runs.len()];
+    for results in sequences.into_iter().flatten() {
+        for (run, result) in per_run.iter_mut().zip(results) {
+            run.push(result);
+        }
+    }
+    Ok(per_run)
 }
 
-/// One sequence's target, or `None` when the sequence marks no target.
+/// One sequence's target for every run, or `None` when the sequence marks no target.
 fn evaluate_target(
     sequence: &SequenceReader,
-    estimators: &[MotionEstimator],
-) -> Result<Option<SituationResult>, EvalError> {
+    runs: &[Vec<MotionEstimator>],
+) -> Result<Option<Vec<SituationResult>>, EvalError> {
     let name = sequence.info().name.clone();
     if sequence.len() < 2 || sequence.read_sweep(0)?.target().is_none() {
         return Ok(None);
     }
     // Each distinct set of feature parameters gets its maps once per scan.
     let mut params: Vec<FeatureParams> = Vec::new();
-    let mut group_of = Vec::with_capacity(estimators.len());
-    for e in estimators {
-        match params.iter().position(|p| p == e.feature_params()) {
-            Some(g) => group_of.push(g),
-            None => {
-                params.push(e.feature_params().clone());
-                group_of.push(params.len() - 1);
+    let mut group_of: Vec<Vec<usize>> = Vec::with_capacity(runs.len());
+    for run in runs {
+        let mut groups = Vec::with_capacity(run.len());
+        for e in run {
+            match params.iter().position(|p| p == e.feature_params()) {
+                Some(g) => groups.push(g),
+                None => {
+                    params.push(e.feature_params().clone());
+                    groups.push(params.len() - 1);
+                }
             }
         }
+        group_of.push(groups);
     }
     let mut truth = Vec::new();
-    let mut methods: BTreeMap<Method, Vec<Option<MotionEstimate>>> = BTreeMap::new();
+    let mut methods: Vec<BTreeMap<Method, Vec<Option<MotionEstimate>>>> =
+        vec![BTreeMap::new(); runs.len()];
     let mut stream = ScanStream::new(sequence, params)?;
     while let Some((index, sweep)) = stream.read_next()? {
         let features = stream.features_of(&sweep)?;
@@ -65,30 +77,37 @@ fn evaluate_target(
             features,
         };
         truth.push(target_at(&scan, &scan.features[0], &name)?);
-        for (estimator, &group) in estimators.iter().zip(&group_of) {
-            let own = &scan.features[group];
-            let estimate = match target_cluster(own, &scan.sweep) {
-                Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
-                None => ClusterEstimate::default(),
-            };
-            for (rule, motion) in [
-                (MergeRule::All, estimate.all),
-                (MergeRule::Best, estimate.best),
-            ] {
-                let method = Method::gp(estimator.gp_kind(), GpReadout::Merged(rule));
-                let column = methods.entry(method).or_default();
-                column.push(motion.map(to_estimate));
+        for ((run, groups), columns) in runs.iter().zip(&group_of).zip(&mut methods) {
+            for (estimator, &group) in run.iter().zip(groups) {
+                let own = &scan.features[group];
+                let estimate = match target_cluster(own, &scan.sweep) {
+                    Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
+                    None => ClusterEstimate::default(),
+                };
+                for (rule, motion) in [
+                    (MergeRule::All, estimate.all),
+                    (MergeRule::Best, estimate.best),
+                ] {
+                    let method = Method::gp(estimator.gp_kind(), GpReadout::Merged(rule));
+                    let column = columns.entry(method).or_default();
+                    column.push(motion.map(to_estimate));
+                }
             }
         }
     }
-    let result = SituationResult {
-        name,
-        scans: truth.len(),
-        truth,
-        methods,
-    };
-    result.validate()?;
-    Ok(Some(result))
+    let results = methods
+        .into_iter()
+        .map(|methods| {
+            let result = SituationResult {
+                name: name.clone(),
+                scans: truth.len(),
+                truth: truth.clone(),
+                methods,
+            };
+            result.validate().map(|()| result)
+        })
+        .collect::<Result<Vec<_>, EvalError>>()?;
+    Ok(Some(results))
 }
 
 #[cfg(test)]
@@ -123,9 +142,12 @@ mod tests {
         let estimators = [estimator];
         let whole =
             evaluate_dataset(&dataset, &estimators, &BaselineParams::default(), &|| {}).unwrap();
-        let targets = evaluate_targets(&dataset, &estimators).unwrap();
-        assert_eq!(targets.len(), 1);
-        let (alone, full) = (&targets[0], &whole.situations[0]);
+        let runs = [estimators.to_vec(), estimators.to_vec()];
+        let targets = evaluate_targets(&dataset, &runs).unwrap();
+        assert_eq!(targets.len(), 2, "one result per run");
+        assert_eq!(targets[0], targets[1], "the same estimators twice");
+        assert_eq!(targets[0].len(), 1);
+        let (alone, full) = (&targets[0][0], &whole.situations[0]);
         assert_eq!((&alone.name, alone.scans), (&full.name, full.scans));
         assert_eq!(alone.truth, full.truth);
         assert_eq!(alone.methods.len(), 2, "SPGP-ALL and SPGP-BEST");
