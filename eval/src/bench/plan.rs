@@ -10,7 +10,7 @@ use crate::cross_validation::CvParams;
 pub const BENCH_SEED: u64 = 7;
 
 /// Share of each training track's sweeps that `--quick` simulates.
-pub const QUICK_SWEEP_SHARE: f64 = 0.5;
+pub const QUICK_SWEEP_SHARE: f64 = 1.0 / 3.0;
 
 /// The dense random-traffic scene the whole-scan perception is also measured on
 /// (`scenarios/dense_traffic.toml`; not a thesis situation, so it has no target).
@@ -99,7 +99,7 @@ impl BenchPlan {
         Self {
             training_sweep_share: QUICK_SWEEP_SHARE,
             seeds: 1,
-            samples: 1600,
+            samples: 1200,
             pseudo_inputs: 60,
             max_iters: 150,
             cv: CvParams {
