@@ -35,7 +35,9 @@ fn evaluate_on_an_own_scenario_writes_its_figures_and_no_thesis_placeholders() {
         assert!(!md.contains(placeholder), "{placeholder} in {md}");
     }
     // The tables have our columns only (a method without estimates still shows its "–").
-    assert!(md.contains("| Method | RMSE | ME | scored scans | coverage |\n|---|---|---|---|---|\n"));
+    assert!(
+        md.contains("| Method | RMSE | ME | scored scans | coverage |\n|---|---|---|---|---|\n")
+    );
     for figure in ["tiny_scene.png", "tiny_cloud.png", "summary_rmse.png"] {
         assert!(
             md.contains(&format!("plots/{figure}")),
