@@ -34,6 +34,9 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
             ..CvParams::default()
         },
         seed: 3,
+        seeds: 2,
+        training_sweep_share: 1.0,
+        keep_data: false,
         quick: true,
     };
     let out = dir.path().join("bench");
@@ -42,20 +45,39 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         stages.lock().unwrap().push(t.stage.clone())
     })
     .unwrap();
-    assert_eq!(stages.lock().unwrap().len(), 6);
+    // The six stages of one seed, the second seed's training and its targets, the figures.
+    assert_eq!(stages.lock().unwrap().len(), 9);
+    assert!(
+        !out.join("data").exists(),
+        "the datasets are deleted once used without keep_data"
+    );
     let files = &outcome.files;
     for file in [
         "cv.json",
         "cv.md",
         "models/spgp.json",
         "models/spgp-het.json",
+        "models/spgp-seed4.json",
+        "models/spgp-het-seed4.json",
     ] {
         assert!(out.join(file).exists(), "{file} missing");
     }
 
     let metrics: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&files.metrics_json).unwrap()).unwrap();
+    // What produced the numbers, and their spread over the two training seeds.
+    assert_eq!(metrics["seeds"], serde_json::json!([3, 4]));
+    assert_eq!(metrics["model_files"].as_array().unwrap().len(), 4);
+    let spread = &metrics["seed_spread"]["situations"]["e2e"]["SPGP-HET-ALL"];
+    let values = spread["heading_rmse_deg"]["values"].as_array().unwrap();
+    assert_eq!(values.len(), 2);
+    assert!(spread["heading_rmse_deg"]["std"].as_f64().unwrap() >= 0.0);
     let situation = &metrics["situations"]["e2e"];
+    // The first seed's spread entry is the main table's figure.
+    assert_eq!(
+        values[0],
+        situation["methods"]["SPGP-HET-ALL"]["heading_rmse_deg"]
+    );
     assert_eq!(situation["scans"], 13, "{metrics}");
     let methods = situation["methods"].as_object().unwrap();
     // The eight methods of SPEC §6 with their per-target scores.
@@ -98,12 +120,16 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         .unwrap();
     assert!(object_scans > 13, "{object_scans} object scans");
     assert!(metrics["objects"]["by_class"]["car"].is_object());
-    // Plots, perception and the report.
+    // Plots (the scene figures too), perception and the report.
+    for figure in ["e2e_scene.png", "e2e_cloud.png", "summary_rmse.png"] {
+        assert!(out.join("plots").join(figure).exists(), "{figure}");
+        assert!(md_links(&files.report_md, figure), "{figure} not linked");
+    }
     for plot in &files.plots {
         let bytes = std::fs::read(plot).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", plot.display());
     }
-    assert_eq!(files.plots.len(), 4);
+    assert_eq!(files.plots.len(), 5);
     let all = outcome.perception.last().unwrap();
     assert_eq!(
         (all.name.as_str(), all.scans, all.estimators),
@@ -114,7 +140,14 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         "## e2e (13 scans)",
         "### Scene flow",
         "## Perception per scan",
+        "## Spread over training seeds",
     ] {
         assert!(md.contains(needle), "{needle}");
     }
+}
+
+fn md_links(report_md: &std::path::Path, figure: &str) -> bool {
+    std::fs::read_to_string(report_md)
+        .unwrap()
+        .contains(&format!("(plots/{figure})"))
 }

@@ -1,7 +1,7 @@
 //! Evaluates every sequence of a dataset (thesis 4.4 and the whole scene): the library entry
 //! point behind `patchflow evaluate` and the evaluation stage of `patchflow bench`.
 
-use patchflow_dataset::Dataset;
+use patchflow_dataset::{Dataset, SequenceReader};
 use patchflow_learn::MotionEstimator;
 
 use crate::baselines::BaselineParams;
@@ -67,7 +67,11 @@ pub fn evaluate_dataset(
     }
     let mut report = BenchmarkReport::default();
     for name in sequences_to_evaluate(dataset)? {
-        let run = evaluate_sequence(&dataset.sequence(&name)?, estimators, baselines, on_scan)?;
+        let sequence = dataset.sequence(&name)?;
+        if let Some(description) = description_of(&sequence) {
+            report.descriptions.insert(name.clone(), description);
+        }
+        let run = evaluate_sequence(&sequence, estimators, baselines, on_scan)?;
         report.situations.extend(run.target);
         report.scenes.push(run.scene);
     }
@@ -77,4 +81,13 @@ pub fn evaluate_dataset(
         .scenes
         .sort_by_key(|scene| !situations.contains(&scene.name));
     Ok(report)
+}
+
+/// The `description` of the scenario a sequence was generated from, when it states one.
+fn description_of(sequence: &SequenceReader) -> Option<String> {
+    let text = sequence.scenario_toml().ok()?;
+    let name = &sequence.info().name;
+    let scenario = patchflow_sim::Scenario::from_toml(&text, "scenario.toml", name).ok()?;
+    let description = scenario.description.trim();
+    (!description.is_empty()).then(|| description.to_owned())
 }

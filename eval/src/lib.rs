@@ -38,7 +38,8 @@ mod truth_at_scan;
 pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
 pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
 pub use bench::{
-    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, collect_samples_with_bar,
+    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, MethodSpread, QUICK_SWEEP_SHARE,
+    SeedFigure, SeedSpread, collect_draws_with_bar, collect_samples_with_bar,
     cross_validate_with_bar, evaluate_with_bar, generate_with_progress, occupancy_with_bar,
     run_bench,
 };
@@ -71,10 +72,14 @@ pub use occupancy::{
 };
 pub use perception_summary::{PerceptionSummary, STAGES, StageOf};
 pub use perception_timing::{ScanTiming, Spread, StepTiming};
-pub use progress::{StageTimer, StageTiming, progress_bar, spinner};
+pub use progress::{
+    ProgressLines, StageTimer, StageTiming, progress_bar, progress_line, spinner,
+    stderr_is_terminal,
+};
 pub use report::{
-    CvFeature, CvGp, CvReport, CvRow, ReportFiles, metrics_json, metrics_json_value, plot_heading,
-    plot_speed, write_cv_report, write_report,
+    CvFeature, CvGp, CvReport, CvRow, ReportFiles, SceneFigures, add_to_metrics, metrics_json,
+    metrics_json_value, plot_heading, plot_speed, write_cv_report, write_dataset_scene_figures,
+    write_map_figure, write_report, write_scene_figures,
 };
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
 pub use rigid_fit::{fit_rigid_closed_form, fit_rigid_svd};

@@ -1,6 +1,8 @@
 //! Progress bars and stage timing for long commands: indicatif bars on stderr (hidden when stderr
-//! is not a terminal) and a [`StageTimer`] whose per-stage seconds fill the report's timing table.
+//! is not a terminal), progress lines that also reach a log file, and a [`StageTimer`] whose
+//! per-stage seconds fill the report's timing table.
 
+use std::io::IsTerminal as _;
 use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -70,6 +72,66 @@ impl StageTimer {
     }
 }
 
+/// Whether stderr is a terminal, i.e. whether the progress bars are drawn.
+pub fn stderr_is_terminal() -> bool {
+    std::io::stderr().is_terminal()
+}
+
+/// Writes one progress line to stderr: seconds since `start`, then `text`. Unlike the bars,
+/// these lines reach a log file when stderr is redirected.
+pub fn progress_line(start: Instant, text: &str) {
+    eprintln!("{}", progress_text(start.elapsed().as_secs_f64(), text));
+}
+
+fn progress_text(seconds: f64, text: &str) -> String {
+    format!("[{seconds:>7.1} s] {text}")
+}
+
+/// Progress as lines when stderr is not a terminal (a log file): one line at every tenth of the
+/// work, so a long stage shows it is moving; silent on a terminal, where the bars draw.
+#[derive(Debug)]
+pub struct ProgressLines {
+    label: String,
+    start: Instant,
+    enabled: bool,
+    last_tenth: std::sync::atomic::AtomicUsize,
+}
+
+impl ProgressLines {
+    /// Lines labelled `label`, timed from now, written only when stderr is not a terminal.
+    pub fn new(label: &str) -> Self {
+        Self::with_output(label, !stderr_is_terminal())
+    }
+
+    fn with_output(label: &str, enabled: bool) -> Self {
+        Self {
+            label: label.to_owned(),
+            start: Instant::now(),
+            enabled,
+            last_tenth: std::sync::atomic::AtomicUsize::new(0),
+        }
+    }
+
+    /// Reports `done` of `total` steps; returns the line when one is due (and writes it).
+    pub fn update(&self, done: usize, total: usize) -> Option<String> {
+        if !self.enabled || total == 0 {
+            return None;
+        }
+        let tenth = (10 * done.min(total)) / total;
+        let previous = self
+            .last_tenth
+            .fetch_max(tenth, std::sync::atomic::Ordering::Relaxed);
+        (tenth > previous).then(|| {
+            let line = progress_text(
+                self.start.elapsed().as_secs_f64(),
+                &format!("  {}: {done}/{total}", self.label),
+            );
+            eprintln!("{line}");
+            line
+        })
+    }
+}
+
 /// A progress bar of `len` steps labelled `message`, with elapsed time and ETA.
 pub fn progress_bar(len: u64, message: &str) -> ProgressBar {
     let bar = ProgressBar::new(len);
@@ -105,6 +167,25 @@ mod tests {
         assert_eq!(names, ["generate", "train"]);
         assert!((timer.timings()[0].seconds - 2.0).abs() < 1e-12);
         assert!((timer.total_seconds() - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_progress_line_starts_with_the_elapsed_seconds() {
+        assert_eq!(
+            progress_text(12.34, "train: started"),
+            "[   12.3 s] train: started"
+        );
+    }
+
+    #[test]
+    fn progress_lines_come_once_per_tenth_of_the_work() {
+        let lines = ProgressLines::with_output("scans", true);
+        let written: Vec<usize> = (1..=100)
+            .filter(|&done| lines.update(done, 100).is_some())
+            .collect();
+        assert_eq!(written, [10, 20, 30, 40, 50, 60, 70, 80, 90, 100]);
+        let silent = ProgressLines::with_output("scans", false);
+        assert!((1..=100).all(|done| silent.update(done, 100).is_none()));
     }
 
     #[test]

@@ -102,6 +102,14 @@ pub struct BenchmarkReport {
     pub timings: Vec<StageTiming>,
     /// Seed of the run, recorded in metrics.json when known.
     pub seed: Option<u64>,
+    /// Each sequence's description from its scenario file, shown in `report.md` (a user's own
+    /// scenarios are described by their own words, not the thesis').
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub descriptions: BTreeMap<String, String>,
+    /// Sequences with scene figures (`plots/<name>_scene.png`, `plots/<name>_cloud.png`) and
+    /// the sweep they show, linked from `report.md`.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub scene_figures: BTreeMap<String, usize>,
     /// Cross-validation tables, included in `report.md` when present.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cv: Option<crate::report::CvReport>,

@@ -271,7 +271,7 @@ fn method_flows(
 }
 
 /// A merged cluster motion as the estimate the tables score.
-fn to_estimate(motion: ClusterMotion) -> MotionEstimate {
+pub(crate) fn to_estimate(motion: ClusterMotion) -> MotionEstimate {
     let (s, c) = motion.heading_rad.sin_cos();
     MotionEstimate {
         heading_rad: motion.heading_rad,

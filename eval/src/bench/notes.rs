@@ -4,6 +4,17 @@ use patchflow_learn::{FeatureParams, MotionEstimator};
 
 use crate::bench::plan::BenchPlan;
 
+/// The training tracks, and which share of their sweeps was simulated.
+fn training_tracks(plan: &BenchPlan) -> String {
+    let names = plan.training_names().join(", ");
+    if plan.training_sweep_share < 1.0 {
+        let percent = (100.0 * plan.training_sweep_share).round();
+        format!("{names} (the first {percent:.0} % of each track's sweeps)")
+    } else {
+        names
+    }
+}
+
 /// The notes of a run; `load` is the machine's 1-minute load average at the start and the end of
 /// the evaluation, where the system reports it.
 pub(crate) fn notes(
@@ -18,7 +29,7 @@ pub(crate) fn notes(
         } else {
             ""
         },
-        plan.training_names().join(", "),
+        training_tracks(plan),
         plan.samples,
         2 * plan.samples,
         plan.pseudo_inputs,
@@ -26,6 +37,15 @@ pub(crate) fn notes(
         plan.seed,
         FeatureParams::default().speed_jitter_deg
     )];
+    let seeds = plan.training_seeds();
+    if seeds.len() > 1 {
+        let list: Vec<String> = seeds.iter().map(u64::to_string).collect();
+        notes.push(format!(
+            "Training seeds {}: the tables show seed {}; the section 'Spread over training seeds' gives each GP figure's mean ± std over all of them (each seed draws its own samples and fits its own GPs on the same simulated data).",
+            list.join(", "),
+            plan.seed
+        ));
+    }
     notes.push(
         "Why training differs from the thesis (ARCHITECTURE.md has the measurements that found it): at run time speed patches follow the estimated heading, and a speed GP trained only on exactly aligned patches read a car whose merged heading was 30-60° off as nearly still; and right-hand traffic puts most drawn samples on one side of the line of sight, which the GPs learned as a prior that misreads a target crossing from the other side. `patchflow train --thesis-training` trains without either addition."
             .to_owned(),

@@ -9,6 +9,9 @@ use crate::cross_validation::CvParams;
 /// The seed of every stage of the default benchmark, recorded in its outputs.
 pub const BENCH_SEED: u64 = 7;
 
+/// Share of each training track's sweeps that `--quick` simulates.
+pub const QUICK_SWEEP_SHARE: f64 = 1.0 / 3.0;
+
 /// The dense random-traffic scene the whole-scan perception is also measured on
 /// (`scenarios/dense_traffic.toml`; not a thesis situation, so it has no target).
 pub const DENSE_TRAFFIC_TOML: &str = include_str!("../../../scenarios/dense_traffic.toml");
@@ -35,6 +38,14 @@ pub struct BenchPlan {
     pub cv: CvParams,
     /// Seed of generation, sampling and training.
     pub seed: u64,
+    /// Training draws (samples and GPs) with seeds `seed`, `seed + 1`, …; the report gives the
+    /// mean ± std of the headline figures over them. The datasets are generated once.
+    pub seeds: usize,
+    /// Share of each training track's sweeps simulated (1 = all); `--quick` keeps every track but
+    /// simulates fewer sweeps of each.
+    pub training_sweep_share: f64,
+    /// Keep the generated datasets under `OUT/data`; by default each is deleted once used.
+    pub keep_data: bool,
     /// Whether this is the smaller `--quick` plan (noted in the report).
     pub quick: bool,
 }
@@ -74,18 +85,23 @@ impl BenchPlan {
                 ..CvParams::default()
             },
             seed: BENCH_SEED,
+            seeds: 3,
+            training_sweep_share: 1.0,
+            keep_data: false,
             quick: false,
         }
     }
 
-    /// `--quick`: every third training track, fewer samples, pseudo-inputs, iterations and folds.
+    /// `--quick`: every training track but a third of its sweeps, fewer samples, pseudo-inputs,
+    /// iterations and folds, one seed.
     pub fn quick() -> Self {
         let full = Self::full();
         Self {
-            training: full.training.into_iter().step_by(3).collect(),
-            samples: 800,
-            pseudo_inputs: 40,
-            max_iters: 120,
+            training_sweep_share: QUICK_SWEEP_SHARE,
+            seeds: 1,
+            samples: 1200,
+            pseudo_inputs: 60,
+            max_iters: 150,
             cv: CvParams {
                 folds: 2,
                 samples: 600,
@@ -97,6 +113,13 @@ impl BenchPlan {
             quick: true,
             ..full
         }
+    }
+
+    /// The training seeds, `seed` first.
+    pub fn training_seeds(&self) -> Vec<u64> {
+        (0..self.seeds.max(1) as u64)
+            .map(|k| self.seed + k)
+            .collect()
     }
 
     /// Names of the training tracks, for the report.
@@ -126,9 +149,11 @@ mod tests {
         assert_eq!(plan.training_names().len(), 9);
         assert_eq!(plan.situations.len(), 6);
         assert_eq!((plan.samples, plan.pseudo_inputs), (1600, 100));
+        assert_eq!(plan.training_seeds(), [7, 8, 9]);
         let quick = BenchPlan::quick();
-        assert_eq!(quick.training_names(), ["train01", "train04", "train07"]);
-        assert!(quick.quick && !plan.quick);
+        assert_eq!(quick.training_names(), plan.training_names());
+        assert!(quick.training_sweep_share < 1.0 && plan.training_sweep_share == 1.0);
+        assert!(quick.quick && !plan.quick && !plan.keep_data);
     }
 
     #[test]

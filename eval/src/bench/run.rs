@@ -1,23 +1,33 @@
 //! One benchmark run from scenarios to report, stage by stage (SPEC §7, `patchflow bench`).
 
 use std::path::Path;
+use std::time::Instant;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
+use patchflow_learn::{EstimatorParams, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 use crate::bench::notes::notes;
 use crate::bench::plan::BenchPlan;
+use crate::bench::run_files::{
+    append, insert_after_summary, model_file, remove_data, remove_empty_dir, run_entries,
+};
+use crate::bench::seed_spread::SeedSpread;
+use crate::bench::short_tracks::shortened_tracks;
 use crate::bench::stages::{
-    collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar, generate_with_progress,
+    collect_draws_with_bar, cross_validate_with_bar, evaluate_with_bar, generate_with_progress,
     occupancy_with_bar,
 };
+use crate::bench::target_runs::evaluate_targets;
 use crate::cpu_time::load_average;
 use crate::error::EvalError;
 use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
 use crate::perception_summary::PerceptionSummary;
-use crate::progress::{StageTimer, StageTiming, spinner};
-use crate::report::{CvReport, ReportFiles, write_cv_report, write_report};
+use crate::progress::{StageTimer, StageTiming, progress_line, spinner};
+use crate::report::{
+    CvReport, ReportFiles, add_to_metrics, write_cv_report, write_dataset_scene_figures,
+    write_report,
+};
 use crate::result::BenchmarkReport;
 
 /// What a benchmark run produced.
@@ -33,10 +43,14 @@ pub struct BenchOutcome {
     pub perception: Vec<PerceptionSummary>,
     /// The occupancy maps' scores (`OUT/occupancy.json`, `occupancy.md`), if the plan maps any.
     pub occupancy: Option<OccupancyReport>,
+    /// The headline figures' mean ± std over the training seeds.
+    pub spread: SeedSpread,
 }
 
-/// Runs a benchmark into `out`: the datasets under `out/data`, the models under `out/models`,
-/// the report files in `out`. `on_stage` hears of every stage as it finishes.
+/// Runs a benchmark into `out`: the datasets under `out/data` (deleted once used unless
+/// `plan.keep_data`), the models under `out/models`, the report files in `out`. Every stage's
+/// start and end is a line on stderr (a log shows progress without a terminal); `on_stage` hears
+/// of every stage as it finishes.
 ///
 /// ```no_run
 /// use patchflow_eval::{BenchPlan, run_bench};
@@ -51,10 +65,13 @@ pub fn run_bench(
     out: &Path,
     on_stage: &dyn Fn(&StageTiming),
 ) -> Result<BenchOutcome, EvalError> {
+    let run_start = Instant::now();
     let mut timer = StageTimer::new();
     let mut stage = |name: &str, work: &mut dyn FnMut() -> Result<(), EvalError>| {
+        progress_line(run_start, &format!("{name}: started"));
         timer.time(name, work)?;
         if let Some(t) = timer.timings().last() {
+            progress_line(run_start, &format!("{name}: done in {:.1} s", t.seconds));
             on_stage(t);
         }
         Ok::<(), EvalError>(())
@@ -62,24 +79,26 @@ pub fn run_bench(
     let data = out.join("data");
     let (mut train, mut situations) = (None, None);
     let (mut sets, mut estimators, mut cv, mut report) = (Vec::new(), Vec::new(), None, None);
+    let seeds = plan.training_seeds();
+    let (mut further, mut further_targets) = (Vec::new(), Vec::new());
 
-    // 1. Simulate the training tracks and the evaluation sequences (SPEC §3).
+    // 1. Simulate the training tracks (SPEC §3); the evaluation sequences follow training.
     stage("generate training tracks", &mut || {
-        train = Some(generate(&plan.training, &data.join("train"), plan.seed)?);
+        let scenarios = data.join("scenarios");
+        let tracks = shortened_tracks(&plan.training, plan.training_sweep_share, &scenarios)?;
+        train = Some(generate(&tracks, &data.join("train"), plan.seed)?);
         Ok(())
     })?;
-    stage("generate situations", &mut || {
-        situations = Some(generate(
-            &plan.situations,
-            &data.join("situations"),
-            plan.seed,
-        )?);
-        Ok(())
-    })?;
-    let (train, situations) = train.zip(situations).ok_or_else(|| missing("datasets"))?;
+    let train = train.ok_or_else(|| missing("training dataset"))?;
     // 2. Importance-sample map patches once per prior (thesis 3.1.2); prior 0.5 also trains.
+    //    The further seeds draw their own samples (prior 0.5) in the same pass over the maps.
+    let further_seeds = seeds.get(1..).unwrap_or_default();
+    let mut further_sets = Vec::new();
     stage("sample patches", &mut || {
-        sets = collect_samples_with_bar(&train, &plan.cv.priors, plan.samples, plan.seed)?;
+        let mut draws: Vec<(f64, u64)> = plan.cv.priors.iter().map(|&p| (p, plan.seed)).collect();
+        draws.extend(further_seeds.iter().map(|&seed| (0.5, seed)));
+        sets = collect_draws_with_bar(&train, &draws, plan.samples)?;
+        further_sets = sets.split_off(plan.cv.priors.len());
         Ok(())
     })?;
     let training_set = sets
@@ -88,28 +107,65 @@ pub fn run_bench(
         .ok_or_else(|| missing("a sample set with prior 0.5 (CvParams::priors)"))?;
     // 3. One estimator per GP kind on the same samples (thesis 3.1.3).
     stage("train SPGP and SPGP-HET", &mut || {
-        estimators = plan
-            .gps
-            .iter()
-            .map(|&gp| train_estimator(&train, training_set, plan, gp, out))
-            .collect::<Result<_, _>>()?;
+        estimators = train_estimators(&train, training_set, plan, plan.seed, out)?;
         Ok(())
     })?;
-    // 4. Cross-validation tables (thesis 4.3, Tables 4.1-4.4).
+    // 3b. The further training seeds' GPs, for the spread over seeds.
+    if !further_seeds.is_empty() {
+        stage("train further seeds", &mut || {
+            for (set, &seed) in further_sets.iter().zip(further_seeds) {
+                further.push(train_estimators(&train, set, plan, seed, out)?);
+            }
+            Ok(())
+        })?;
+    }
+    // 4. Simulate the evaluation sequences (SPEC §3). The training tracks are no longer needed:
+    //    without `keep_data` they go first, so the two datasets are never on disk together.
+    if !plan.keep_data {
+        remove_data(&data.join("train"))?;
+        remove_data(&data.join("scenarios"))?;
+    }
+    stage("generate situations", &mut || {
+        situations = Some(generate(
+            &plan.situations,
+            &data.join("situations"),
+            plan.seed,
+        )?);
+        Ok(())
+    })?;
+    let situations = situations.ok_or_else(|| missing("situations dataset"))?;
+    // 5. Cross-validation tables (thesis 4.3, Tables 4.1-4.4).
     let cv_sets: Vec<SampleSet> = sets.iter().map(|s| first(s, plan.cv.samples)).collect();
     stage("cross-validation", &mut || {
         cv = Some(cross_validate_with_bar(&cv_sets, &plan.cv)?);
         Ok(())
     })?;
-    // 5. Every method on every sequence (thesis 4.4 and the whole scene).
+    // 6. Every method on every sequence (thesis 4.4 and the whole scene); the further seeds'
+    //    GPs on the targets only (the baselines do not learn).
     let load_before = load_average();
     stage("evaluate situations", &mut || {
         report = Some(evaluate_with_bar(&situations, &estimators)?);
         Ok(())
     })?;
     let load = load_before.zip(load_average());
+    if !further.is_empty() {
+        stage("evaluate further seeds", &mut || {
+            further_targets = evaluate_targets(&situations, &further)?;
+            Ok(())
+        })?;
+    }
     let (cv, mut report) = cv.zip(report).ok_or_else(|| missing("results"))?;
-    // 6. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
+    // A bird's-eye view and a point cloud of each situation, from the data before it goes.
+    let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
+    stage("scene figures", &mut || {
+        report.scene_figures =
+            write_dataset_scene_figures(&situations, &names, &out.join("plots"))?;
+        Ok(())
+    })?;
+    if !plan.keep_data {
+        remove_data(&data.join("situations"))?;
+    }
+    // 7. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
     //    training run is generated beside it for methods that learn beforehand.
     let mut occupancy = None;
     if !plan.occupancy.is_empty() {
@@ -127,14 +183,27 @@ pub fn run_bench(
             occupancy = Some(occupancy_with_bar(&maps, plan.seed)?);
             Ok(())
         })?;
+        if !plan.keep_data {
+            remove_data(&data.join("occupancy"))?;
+        }
     }
-    // 7. The report.
+    if !plan.keep_data {
+        remove_empty_dir(&data)?;
+    }
+    // 8. The report, with the spread over the training seeds.
     report.seed = Some(plan.seed);
     report.notes = notes(plan, &estimators, load);
     report.cv = Some(cv.clone());
     report.timings = timer.timings().to_vec();
     let files = write_report(&report, out)?;
     write_cv_report(&cv, out)?;
+    let mut runs = vec![report.situations.clone()];
+    runs.extend(further_targets);
+    let spread = SeedSpread::of(&seeds, &runs)?;
+    add_to_metrics(&files.metrics_json, run_entries(plan, &spread))?;
+    if seeds.len() > 1 {
+        insert_after_summary(&files.report_md, &spread.markdown())?;
+    }
     if let Some(occupancy) = &occupancy {
         write_occupancy_report(occupancy, out)?;
         append(&files.report_md, &occupancy_section(occupancy))?;
@@ -146,15 +215,8 @@ pub fn run_bench(
         files,
         perception,
         occupancy,
+        spread,
     })
-}
-
-/// Appends `text` to the file at `path`, after a blank line.
-fn append(path: &Path, text: &str) -> Result<(), EvalError> {
-    let mut content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
-    content.push('\n');
-    content.push_str(text);
-    std::fs::write(path, content).map_err(|e| EvalError::io(path, e))
 }
 
 fn missing(what: &str) -> EvalError {
@@ -175,29 +237,36 @@ fn generate(sources: &[ScenarioSource], out: &Path, seed: u64) -> Result<Dataset
     Ok(Dataset::open(out)?)
 }
 
-fn train_estimator(
+/// One estimator per GP kind of the plan on `set`, trained with `seed` and saved to
+/// `OUT/models/` (the first seed's as `<gp>.json`, further seeds' as `<gp>-seed<N>.json`).
+fn train_estimators(
     dataset: &Dataset,
     set: &SampleSet,
     plan: &BenchPlan,
-    gp: GpKind,
+    seed: u64,
     out: &Path,
-) -> Result<MotionEstimator, EvalError> {
-    let params = EstimatorParams {
-        gp,
-        samples: plan.samples,
-        pseudo_inputs: plan.pseudo_inputs,
-        max_iters: plan.max_iters,
-        seed: plan.seed,
-        ..EstimatorParams::default()
-    };
-    let spinner = spinner(&format!("fitting 3 {gp} GPs"));
-    let estimator = MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset));
-    spinner.finish_and_clear();
-    let estimator = estimator?;
+) -> Result<Vec<MotionEstimator>, EvalError> {
     let models = out.join("models");
     std::fs::create_dir_all(&models).map_err(|e| EvalError::io(&models, e))?;
-    estimator.save(&models.join(format!("{gp}.json")))?;
-    Ok(estimator)
+    let mut estimators = Vec::with_capacity(plan.gps.len());
+    for &gp in &plan.gps {
+        let params = EstimatorParams {
+            gp,
+            samples: plan.samples,
+            pseudo_inputs: plan.pseudo_inputs,
+            max_iters: plan.max_iters,
+            seed,
+            ..EstimatorParams::default()
+        };
+        let spinner = spinner(&format!("fitting 3 {gp} GPs, seed {seed}"));
+        let estimator =
+            MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset));
+        spinner.finish_and_clear();
+        let estimator = estimator?;
+        estimator.save(&out.join(model_file(plan, gp, seed)))?;
+        estimators.push(estimator);
+    }
+    Ok(estimators)
 }
 
 /// The first `n` samples of a set (samples are in dataset order, so this is itself a sample).

@@ -20,7 +20,7 @@ use crate::occupancy::{
     OccupancyReport, dgpom_notes, evaluate_occupancy, learn_motion_map, occupancy_methods,
     occupancy_notes, occupancy_sequences, predict_ahead,
 };
-use crate::progress::progress_bar;
+use crate::progress::{ProgressLines, progress_bar, progress_line, stderr_is_terminal};
 use crate::report::CvReport;
 use crate::result::BenchmarkReport;
 
@@ -36,7 +36,17 @@ pub fn generate_with_progress(
     .unwrap_or_else(|_| ProgressStyle::default_bar())
     .progress_chars("=> ");
     let open: Mutex<HashMap<String, ProgressBar>> = Mutex::new(HashMap::new());
+    // Without a terminal the bars are hidden: a line per finished sequence shows the progress.
+    let (lines, start) = (!stderr_is_terminal(), std::time::Instant::now());
     let on_progress = |event: Progress| {
+        if let (true, Progress::SequenceDone { name, skipped }) = (lines, &event) {
+            let done = if *skipped {
+                "already complete"
+            } else {
+                "generated"
+            };
+            progress_line(start, &format!("  {name}: {done}"));
+        }
         let Ok(mut open) = open.lock() else { return };
         match event {
             Progress::Waiting { name } => {
@@ -83,17 +93,29 @@ pub fn collect_samples_with_bar(
     n: usize,
     seed: u64,
 ) -> Result<Vec<SampleSet>, EvalError> {
+    let draws: Vec<(f64, u64)> = priors.iter().map(|&prior| (prior, seed)).collect();
+    collect_draws_with_bar(dataset, &draws, n)
+}
+
+/// Importance-samples map patches for several `(prior, seed)` draws in one pass over the
+/// dataset (each prior's maps built once and shared by its seeds), with a progress bar.
+pub fn collect_draws_with_bar(
+    dataset: &Dataset,
+    draws: &[(f64, u64)],
+    n: usize,
+) -> Result<Vec<SampleSet>, EvalError> {
     let bar = progress_bar(0, "sampling patches");
-    let sets = SampleSet::collect_priors(
+    let lines = ProgressLines::new("sweeps sampled");
+    let sets = SampleSet::collect_draws(
         dataset,
         &FeatureParams::default(),
-        priors,
+        draws,
         FeatureKind::Patch,
         n,
-        seed,
         &|done, total| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
+            lines.update(done, total);
         },
     );
     bar.finish_and_clear();
@@ -106,9 +128,11 @@ pub fn cross_validate_with_bar(
     params: &CvParams,
 ) -> Result<CvReport, EvalError> {
     let bar = progress_bar(0, "cross-validation");
+    let lines = ProgressLines::new("cross-validation fits");
     let report = cross_validate_samples(sets, params, &|done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
+        lines.update(done, total);
     });
     bar.finish_and_clear();
     report
@@ -119,9 +143,14 @@ pub fn evaluate_with_bar(
     dataset: &Dataset,
     estimators: &[MotionEstimator],
 ) -> Result<BenchmarkReport, EvalError> {
-    let bar = progress_bar(scans_to_evaluate(dataset)?, "evaluating scans");
+    let total = scans_to_evaluate(dataset)?;
+    let bar = progress_bar(total, "evaluating scans");
+    let lines = ProgressLines::new("scans evaluated");
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let result = evaluate_dataset(dataset, estimators, &BaselineParams::default(), &|| {
-        bar.inc(1)
+        bar.inc(1);
+        let done = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        lines.update(done, total as usize);
     });
     bar.finish_and_clear();
     result

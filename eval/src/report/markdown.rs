@@ -34,15 +34,32 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, scores: &ReportScores) -
             .map(|s| format!(", seed {s}"))
             .unwrap_or_default()
     );
-    let _ = writeln!(
-        md,
-        "Columns marked **Hess 2008** are the thesis' own numbers, measured on real Urban Challenge \
-         data (Stanford's Junior), transcribed from its Tables 4.6-4.15. They are shown for \
-         orientation only: our numbers come from simulated situations after the same descriptions.\n"
-    );
+    if metrics
+        .iter()
+        .any(|(name, _, _)| thesis_situation(name).is_some())
+    {
+        let _ = writeln!(
+            md,
+            "Columns marked **Hess 2008** are the thesis' own numbers, measured on real Urban Challenge \
+             data (Stanford's Junior), transcribed from its Tables 4.6-4.15. They are shown for \
+             orientation only: our numbers come from simulated situations after the same descriptions.\n"
+        );
+    }
     summary_section(&mut md, metrics);
+    if !metrics.is_empty() {
+        let _ = writeln!(
+            md,
+            "![heading and speed RMSE per method and situation](plots/summary_rmse.png)\n\n\
+             *Heading (top) and speed (bottom) RMSE of the target per method and situation; \
+             pale bars are the BEST and AUTO variants.*\n"
+        );
+    }
     for ((name, scans, methods), situation) in metrics.iter().zip(&report.situations) {
-        situation_section(&mut md, name, *scans, methods);
+        let description = report.descriptions.get(name).map(String::as_str);
+        situation_section(&mut md, name, *scans, methods, description);
+        if let Some(sweep) = report.scene_figures.get(name) {
+            scene_figure_lines(&mut md, name, *sweep);
+        }
         breakdown_sections(&mut md, situation);
     }
     if let Some(cv) = &report.cv {
@@ -113,63 +130,100 @@ fn situation_section(
     name: &str,
     scans: usize,
     methods: &BTreeMap<Method, MethodMetrics>,
+    description: Option<&str>,
 ) {
     let thesis = thesis_situation(name);
     let _ = writeln!(md, "## {name} ({scans} scans)\n");
-    if let Some(t) = thesis {
-        let _ = writeln!(md, "After thesis 4.4: {}.\n", t.description);
+    match (thesis, description) {
+        (Some(t), _) => {
+            let _ = writeln!(md, "After thesis 4.4: {}.\n", t.description);
+        }
+        (None, Some(d)) => {
+            let _ = writeln!(md, "Scenario: {d}.\n");
+        }
+        (None, None) => {}
     }
-    let (heading_label, speed_label) =
-        thesis.map_or(("–", "–"), |t| (t.heading_table, t.speed_table));
-
+    // Thesis columns only where the thesis measured this situation.
+    let (heading_title, speed_title, thesis_head, thesis_rule) = match thesis {
+        Some(t) => (
+            format!("Heading (degrees; layout of thesis {})", t.heading_table),
+            format!("Speed (m/s; layout of thesis {})", t.speed_table),
+            " Hess 2008 RMSE | Hess 2008 ME |",
+            "---|---|",
+        ),
+        None => (
+            "Heading (degrees)".to_owned(),
+            "Speed (m/s)".to_owned(),
+            "",
+            "",
+        ),
+    };
+    let thesis_cells = |row: Option<crate::thesis_tables::ThesisRow>| match thesis {
+        Some(_) => format!(
+            " {} | {} |",
+            fmt_opt(row.map(|r| r.rmse), 2),
+            fmt_opt(row.map(|r| r.me), 2)
+        ),
+        None => String::new(),
+    };
+    let _ = writeln!(md, "### {heading_title}\n");
     let _ = writeln!(
         md,
-        "### Heading (degrees; layout of thesis {heading_label})\n"
-    );
-    let _ = writeln!(
-        md,
-        "| Method | RMSE | ME | scored scans | coverage | Hess 2008 RMSE | Hess 2008 ME |\n|---|---|---|---|---|---|---|"
+        "| Method | RMSE | ME | scored scans | coverage |{thesis_head}\n|---|---|---|---|---|{thesis_rule}"
     );
     for (method, m) in methods {
         let row = thesis.and_then(|t| thesis_row(&t.heading, *method));
         let _ = writeln!(
             md,
-            "| {method} | {} | {} | {} | {:.3} | {} | {} |",
+            "| {method} | {} | {} | {} | {:.3} |{}",
             fmt_opt(m.heading_rmse_deg, 2),
             fmt_opt(m.heading_me_deg, 2),
             m.heading_scored_scans,
             m.coverage,
-            fmt_opt(row.map(|r| r.rmse), 2),
-            fmt_opt(row.map(|r| r.me), 2),
+            thesis_cells(row),
         );
     }
-    let _ = writeln!(md, "\n### Speed (m/s; layout of thesis {speed_label})\n");
+    let _ = writeln!(md, "\n### {speed_title}\n");
     let _ = writeln!(
         md,
-        "| Method | RMSE | ME | EPE | coverage | Hess 2008 RMSE | Hess 2008 ME |\n|---|---|---|---|---|---|---|"
+        "| Method | RMSE | ME | EPE | coverage |{thesis_head}\n|---|---|---|---|---|{thesis_rule}"
     );
     for (method, m) in methods {
         let row = thesis.and_then(|t| thesis_row(&t.speed, *method));
         let _ = writeln!(
             md,
-            "| {method} | {} | {} | {} | {:.3} | {} | {} |",
+            "| {method} | {} | {} | {} | {:.3} |{}",
             fmt_opt(m.speed_rmse_mps, 2),
             fmt_opt(m.speed_me_mps, 2),
             fmt_opt(m.epe_mps, 2),
             m.coverage,
-            fmt_opt(row.map(|r| r.rmse), 2),
-            fmt_opt(row.map(|r| r.me), 2),
+            thesis_cells(row),
         );
     }
-    let (heading_fig, speed_fig) =
-        thesis.map_or(("–", "–"), |t| (t.heading_figure, t.speed_figure));
+    let cf = |figure: &str| format!(" (cf. thesis {figure})");
+    let (heading_fig, speed_fig) = thesis.map_or((String::new(), String::new()), |t| {
+        (cf(t.heading_figure), cf(t.speed_figure))
+    });
     let _ = writeln!(
         md,
-        "\n![{name} heading](plots/{name}_heading.png)\n\n*Heading over the scans, true and estimated (cf. thesis {heading_fig}).*\n"
+        "\n![{name} heading](plots/{name}_heading.png)\n\n*Heading over time, true and estimated{heading_fig}.*\n"
     );
     let _ = writeln!(
         md,
-        "![{name} speed](plots/{name}_speed.png)\n\n*Speed over the scans, true and estimated (cf. thesis {speed_fig}).*\n"
+        "![{name} speed](plots/{name}_speed.png)\n\n*Speed over time, true and estimated{speed_fig}.*\n"
+    );
+}
+
+fn scene_figure_lines(md: &mut String, name: &str, sweep: usize) {
+    let _ = writeln!(
+        md,
+        "![{name} scene](plots/{name}_scene.png)\n\n*Bird's-eye view: static structures, the ego \
+         path, every actor's path, the target in red; boxes and range rings at sweep {sweep}.*\n"
+    );
+    let _ = writeln!(
+        md,
+        "![{name} point cloud](plots/{name}_cloud.png)\n\n*Sweep {sweep} from above: points \
+         coloured by class, moving points by the direction of their true flow (colour wheel).*\n"
     );
 }
 
@@ -201,9 +255,15 @@ fn notes_section(md: &mut String, report: &BenchmarkReport) {
         "- Plots place each estimated heading at the true heading plus its wrapped error, so curves \
          do not jump at ±180°; speed plots clip estimates above the plot's top edge."
     );
-    let _ = writeln!(
-        md,
-        "- Thesis Tables 4.13 and 4.15 print an ME above the RMSE for some GP rows, which a mean \
-         absolute error cannot exceed; they are transcribed as printed."
-    );
+    if report
+        .situations
+        .iter()
+        .any(|s| thesis_situation(&s.name).is_some())
+    {
+        let _ = writeln!(
+            md,
+            "- Thesis Tables 4.13 and 4.15 print an ME above the RMSE for some GP rows, which a mean \
+             absolute error cannot exceed; they are transcribed as printed."
+        );
+    }
 }

@@ -1,24 +1,36 @@
 //! Report writers: `metrics.json`, `tables.csv`, `report.md` and plots for the benchmark; `cv.json`
 //! and `cv.md` for cross-validation.
 
+mod birds_eye;
 mod breakdown;
+mod chart;
+mod cloud_view;
 mod csv;
 mod cv;
 mod files;
 mod json;
+mod map_view;
 mod markdown;
+mod metrics_extras;
 mod object_plot;
 mod perception_markdown;
 mod plot;
+mod scene_figure;
 mod scene_markdown;
 mod scores;
+mod summary_plot;
 #[cfg(test)]
 mod synthetic;
 mod writer;
 
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
-pub(crate) use files::{create_dir, write_atomic};
+pub(crate) use files::{create_dir, fmt_opt, write_atomic};
 pub use json::{metrics_json, metrics_json_value};
+pub use map_view::write_map_figure;
+pub use metrics_extras::add_to_metrics;
 pub(crate) use plot::{FONT, ensure_font};
 pub use plot::{plot_heading, plot_speed};
+pub use scene_figure::{SceneFigures, write_dataset_scene_figures, write_scene_figures};
+#[cfg(test)]
+pub(crate) use synthetic::synthetic_report;
 pub use writer::{ReportFiles, write_report};

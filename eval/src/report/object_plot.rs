@@ -9,7 +9,8 @@ use crate::error::EvalError;
 use crate::method::Method;
 use crate::metrics::MIN_SCORED_SPEED_MPS;
 use crate::objects::ObjectScan;
-use crate::report::plot::{Axes, Curve, colour_of, draw};
+use crate::report::chart::{Axes, Curve, Decor, draw};
+use crate::report::plot::{colour_of, is_variant};
 
 /// The methods drawn: one GP variant of each kind and readout, the baselines, zero flow.
 const DRAWN: [Method; 9] = [
@@ -84,6 +85,7 @@ pub(crate) fn plot_object_epe(
                 .into_iter()
                 .map(|(x, (sum, n))| Some((x as f64 / 1e3, sum / n as f64)))
                 .collect(),
+            dashed: is_variant(method),
         })
         .collect();
     let (title, x, x_decimals) = match axis {
@@ -105,5 +107,13 @@ pub(crate) fn plot_object_epe(
         y_decimals: 2,
         min_pad: 0.02,
     };
-    draw(path, title, axes, Vec::new(), curves, Some(0.0))
+    draw(
+        path,
+        title,
+        axes,
+        Vec::new(),
+        curves,
+        Some(0.0),
+        &Decor::default(),
+    )
 }

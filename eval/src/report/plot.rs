@@ -1,5 +1,7 @@
-//! Heading and speed over the scans, true and estimated per method (like thesis Figures 4.3-4.17),
-//! drawn to PNG with plotters' pure-Rust bitmap backend and the bundled DejaVu Sans font.
+//! Heading and speed over time, true and estimated per method (like thesis Figures 4.3-4.17),
+//! drawn to PNG with plotters' pure-Rust bitmap backend and the bundled DejaVu Sans font: the
+//! key beside the data, BEST and AUTO variants dashed over their originals, scans without a GP
+//! estimate shaded, the target's range in a strip under the chart.
 //!
 //! Headings are unwrapped along the true curve and every estimate is drawn at the true heading
 //! plus its wrapped error, so neither curve jumps at ±180°. Speeds above the top edge
@@ -12,13 +14,14 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
 use crate::error::EvalError;
+use crate::method::Method;
 use crate::metrics::wrap_angle_rad;
+use crate::report::chart::{Axes, Curve, Decor, draw};
 use crate::result::SituationResult;
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVu-LICENSE.txt`).
 const FONT_TTF: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 pub(crate) const FONT: &str = "sans-serif";
-const SIZE_PX: (u32, u32) = (1000, 560);
 
 /// Colour per canonical method slot (tab10), then a few spares.
 const PALETTE: [RGBColor; 12] = [
@@ -50,44 +53,30 @@ pub(crate) fn ensure_font(path: &Path) -> Result<(), EvalError> {
     }
 }
 
-/// One curve: (x, value) runs without gaps, so lines break where a method has no estimate.
-pub(crate) struct Curve {
-    /// Legend label.
-    pub label: String,
-    /// Line colour.
-    pub colour: RGBColor,
-    /// Points; `None` breaks the line.
-    pub points: Vec<Option<(f64, f64)>>,
-}
-
-/// Axis descriptions and the resolution of the value axis.
-pub(crate) struct Axes<'a> {
-    /// Description of the x axis.
-    pub x: &'a str,
-    /// Decimals of the x tick labels.
-    pub x_decimals: usize,
-    /// Description of the y axis.
-    pub y: &'a str,
-    /// Decimals of the y tick labels.
-    pub y_decimals: usize,
-    /// Smallest padding above and below the data, in y units.
-    pub min_pad: f64,
-}
-
 /// The colour of a method in every plot.
-pub(crate) fn colour_of(method: crate::method::Method) -> RGBColor {
+pub(crate) fn colour_of(method: Method) -> RGBColor {
     PALETTE[method.slot() % PALETTE.len()]
 }
 
-/// The axes of the plots over the scans, values in whole units.
-fn scan_axes(y: &str) -> Axes<'_> {
+/// Seconds between scans: the situations' lidar turns at 10 Hz (SPEC §3).
+const SCAN_PERIOD_SECS: f64 = 0.1;
+
+/// The axes of the plots over time, values in whole units.
+fn time_axes(y: &str) -> Axes<'_> {
     Axes {
-        x: "scan",
+        x: "time (s, scans at 10 Hz)",
         x_decimals: 0,
         y,
         y_decimals: 0,
         min_pad: 1.0,
     }
+}
+
+/// Whether a method is a variant drawn dashed over its original (BEST over ALL, AUTO over the
+/// oracle association).
+pub(crate) fn is_variant(method: Method) -> bool {
+    let name = method.name();
+    name.ends_with("-BEST") || name.ends_with("-AUTO")
 }
 
 /// Draws `plots/<situation>_heading.png`: true and estimated heading in degrees over the scans.
@@ -116,10 +105,11 @@ pub fn plot_heading(situation: &SituationResult, path: &Path) -> Result<(), Eval
     draw(
         path,
         &format!("{}: heading", situation.name),
-        scan_axes("heading (°)"),
+        time_axes("heading (°)"),
         truth_points,
         curves,
         None,
+        &decor(situation),
     )
 }
 
@@ -142,18 +132,51 @@ pub fn plot_speed(situation: &SituationResult, path: &Path) -> Result<(), EvalEr
     draw(
         path,
         &format!("{}: speed", situation.name),
-        scan_axes("speed (m/s)"),
+        time_axes("speed (m/s)"),
         truth_points,
         curves,
         Some(0.0),
+        &decor(situation),
     )
 }
 
+/// Seconds since scan 0 of the truth entry `index`.
 fn scan_of(situation: &SituationResult, index: usize) -> f64 {
-    situation
+    let scan = situation
         .truth
         .get(index)
-        .map_or(index as f64, |t| t.scan as f64)
+        .map_or(index as f64, |t| t.scan as f64);
+    scan * SCAN_PERIOD_SECS
+}
+
+/// Grey bands over the scans without an estimate of the headline GP method, and the target's
+/// range in a strip under the chart.
+fn decor(situation: &SituationResult) -> Decor {
+    let headline = [Method::SpgpHetAll, Method::SpgpAll, Method::FullGpAll]
+        .into_iter()
+        .find(|m| situation.methods.contains_key(m));
+    let half = SCAN_PERIOD_SECS / 2.0;
+    let bands = match headline.and_then(|m| situation.methods.get(&m)) {
+        Some(estimates) => estimates
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.is_none())
+            .map(|(i, _)| scan_of(situation, i))
+            .map(|x| (x - half, x + half))
+            .collect(),
+        None => Vec::new(),
+    };
+    let range: Vec<(f64, f64)> = situation
+        .truth
+        .iter()
+        .enumerate()
+        .filter_map(|(i, t)| t.range_m.map(|r| (scan_of(situation, i), r)))
+        .collect();
+    Decor {
+        bands,
+        band_label: headline.map_or_else(String::new, |m| format!("no {m} estimate")),
+        strip: (!range.is_empty()).then(|| ("target range (m)".to_owned(), range)),
+    }
 }
 
 fn method_curves(
@@ -174,121 +197,8 @@ fn method_curves(
                 colour: colour_of(*method),
                 label: method.name().to_owned(),
                 points,
+                dashed: is_variant(*method),
             }
         })
         .collect()
-}
-
-/// Draws curves (and a black truth curve, if any) to a PNG.
-pub(crate) fn draw(
-    path: &Path,
-    title: &str,
-    axes: Axes<'_>,
-    truth: Vec<Option<(f64, f64)>>,
-    curves: Vec<Curve>,
-    y_floor: Option<f64>,
-) -> Result<(), EvalError> {
-    ensure_font(path)?;
-    let plot_err = |e: &dyn std::fmt::Display| EvalError::Plot {
-        path: path.to_owned(),
-        message: e.to_string(),
-    };
-    let all = truth
-        .iter()
-        .chain(curves.iter().flat_map(|c| c.points.iter()))
-        .flatten();
-    let (mut x_min, mut x_max) = (0.0f64, 1.0f64);
-    let (mut y_min, mut y_max) = (f64::INFINITY, f64::NEG_INFINITY);
-    for (x, y) in all {
-        x_min = x_min.min(*x);
-        x_max = x_max.max(*x);
-        y_min = y_min.min(*y);
-        y_max = y_max.max(*y);
-    }
-    if !y_min.is_finite() {
-        (y_min, y_max) = (0.0, 1.0);
-    }
-    // Extra room at the top keeps the legend (upper right) off the curves.
-    let pad = ((y_max - y_min) * 0.08).max(axes.min_pad);
-    let legend_room = (y_max - y_min).max(axes.min_pad) * 0.35;
-    let y_range = y_floor.map_or(y_min - pad, |f| f.min(y_min))..(y_max + pad + legend_room);
-
-    let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| plot_err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, (FONT, 24))
-        .margin(14)
-        .x_label_area_size(44)
-        .y_label_area_size(64)
-        .build_cartesian_2d(x_min.min(0.0)..x_max + 1.0, y_range)
-        .map_err(|e| plot_err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc(axes.x)
-        .y_desc(axes.y)
-        .x_label_formatter(&|x| format!("{x:.*}", axes.x_decimals))
-        .y_label_formatter(&|y| format!("{y:.*}", axes.y_decimals))
-        .label_style((FONT, 15))
-        .axis_desc_style((FONT, 17))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(|e| plot_err(&e))?;
-
-    let truth_curve = Curve {
-        label: "truth".into(),
-        colour: BLACK,
-        points: truth,
-    };
-    if truth_curve.points.iter().any(Option::is_some) {
-        draw_curve(&mut chart, &truth_curve, 3).map_err(|e| plot_err(&e))?;
-    }
-    for curve in &curves {
-        draw_curve(&mut chart, curve, 2).map_err(|e| plot_err(&e))?;
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font((FONT, 14))
-        .draw()
-        .map_err(|e| plot_err(&e))?;
-    root.present().map_err(|e| plot_err(&e))
-}
-
-type Chart<'a> = ChartContext<
-    'a,
-    BitMapBackend<'a>,
-    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
->;
-
-fn draw_curve(
-    chart: &mut Chart<'_>,
-    curve: &Curve,
-    width: u32,
-) -> Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>> {
-    let style = ShapeStyle {
-        color: curve.colour.to_rgba(),
-        filled: true,
-        stroke_width: width,
-    };
-    // Lines over runs without gaps.
-    for run in curve.points.split(Option::is_none) {
-        let run: Vec<(f64, f64)> = run.iter().flatten().copied().collect();
-        if run.len() >= 2 {
-            chart.draw_series(LineSeries::new(run, style))?;
-        }
-    }
-    // Markers (and the legend entry) on every point.
-    let points: Vec<(f64, f64)> = curve.points.iter().flatten().copied().collect();
-    let colour = curve.colour;
-    chart
-        .draw_series(
-            points
-                .into_iter()
-                .map(move |p| Circle::new(p, width + 1, colour.filled())),
-        )?
-        .label(curve.label.clone())
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(3)));
-    Ok(())
 }

@@ -73,6 +73,8 @@ pub(crate) fn synthetic_report() -> BenchmarkReport {
         seed: Some(7),
         cv: None,
         scenes: Vec::new(),
+        descriptions: Default::default(),
+        scene_figures: Default::default(),
     }
 }
 

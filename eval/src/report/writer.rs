@@ -1,6 +1,6 @@
 //! Writes a whole benchmark report into a folder: `metrics.json`, `tables.csv`, `report.md`,
 //! `perception.json` (the scan timings, which differ run to run), and the plots
-//! `plots/<situation>_heading.png`, `plots/<situation>_speed.png` and, when sequences were
+//! `plots/<situation>_heading.png`, `plots/<situation>_speed.png`, `plots/summary_rmse.png` and, when sequences were
 //! evaluated as whole scenes, `plots/objects_epe_by_range.png` and `plots/objects_epe_by_points.png`.
 
 use std::collections::BTreeSet;
@@ -16,6 +16,7 @@ use crate::report::markdown::report_markdown;
 use crate::report::object_plot::{ObjectAxis, plot_object_epe};
 use crate::report::plot::{plot_heading, plot_speed};
 use crate::report::scores::ReportScores;
+use crate::report::summary_plot::plot_summary;
 use crate::result::BenchmarkReport;
 
 /// The files a report consists of.
@@ -29,7 +30,7 @@ pub struct ReportFiles {
     pub report_md: PathBuf,
     /// `DIR/perception.json`: per sequence and over all scans, median and worst of every stage.
     pub perception_json: PathBuf,
-    /// `DIR/plots/*.png`, heading then speed per situation, then the two object plots.
+    /// `DIR/plots/*.png`, heading then speed per situation, the summary, then the two object plots.
     pub plots: Vec<PathBuf>,
 }
 
@@ -83,6 +84,11 @@ pub fn write_report(report: &BenchmarkReport, dir: &Path) -> Result<ReportFiles,
         plot_speed(situation, &pair[1])?;
     }
     let mut files = files;
+    if !report.situations.is_empty() {
+        let path = plots_dir.join("summary_rmse.png");
+        plot_summary(&scores.situations, &path)?;
+        files.plots.push(path);
+    }
     if !report.scenes.is_empty() {
         let perception = PerceptionSummary::of_scenes(&report.scenes);
         let text = serde_json::to_string_pretty(&perception).map_err(|source| EvalError::Json {

@@ -14,7 +14,11 @@ fn the_writer_produces_every_file_for_a_two_situation_result() {
             path.display()
         );
     }
-    assert_eq!(files.plots.len(), 4);
+    assert_eq!(
+        files.plots.len(),
+        5,
+        "heading and speed per situation, the summary"
+    );
     for png in &files.plots {
         let bytes = std::fs::read(png).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", png.display());
@@ -170,4 +174,47 @@ fn per_target_tables_do_not_change_when_whole_scene_results_are_added() {
         md[start..end].to_owned()
     };
     assert_eq!(section(&plain.report_md), section(&with.report_md));
+}
+
+#[test]
+fn a_report_of_own_scenarios_has_their_descriptions_and_no_thesis_placeholders() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut report = synthetic_report();
+    report.situations = vec![
+        crate::report::synthetic::synthetic_situation("my_roundabout", 20, 3),
+        crate::report::synthetic::synthetic_situation("situation4", 24, 2),
+    ];
+    report
+        .descriptions
+        .insert("my_roundabout".into(), "a van circles a roundabout".into());
+    let files = write_report(&report, dir.path()).unwrap();
+    let md = std::fs::read_to_string(&files.report_md).unwrap();
+    let own = &md[md.find("## my_roundabout").unwrap()..md.find("## situation4").unwrap()];
+    assert!(
+        own.contains("Scenario: a van circles a roundabout."),
+        "{own}"
+    );
+    for placeholder in ["Hess 2008", "layout of thesis", "| – | – |", "cf. thesis"] {
+        assert!(!own.contains(placeholder), "{placeholder} in {own}");
+    }
+    // The thesis situation beside it keeps its thesis columns.
+    assert!(
+        md.contains("### Heading (degrees; layout of thesis Table 4.12)"),
+        "{md}"
+    );
+}
+
+#[test]
+fn a_report_of_own_scenarios_alone_does_not_mention_the_thesis_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut report = synthetic_report();
+    report.situations = vec![crate::report::synthetic::synthetic_situation(
+        "crossing", 20, 3,
+    )];
+    let files = write_report(&report, dir.path()).unwrap();
+    let md = std::fs::read_to_string(&files.report_md).unwrap();
+    assert!(
+        !md.contains("Hess 2008") && !md.contains("Tables 4.13"),
+        "{md}"
+    );
 }

@@ -24,7 +24,7 @@ pub(crate) type Run = (usize, std::ops::Range<usize>);
 type Position = (usize, u32, usize);
 /// The rank of a candidate in a draw.
 pub(crate) type Rank = (DrawKey, Reverse<Position>);
-/// How many candidates were seen and, per prior, the best of them so far.
+/// How many candidates were seen and, per draw, the best of them so far.
 pub(crate) type Draws = (usize, Vec<TopN<Rank, Sample>>);
 
 /// Both tasks' candidate counts and, per prior, the `n` best of both.
@@ -39,9 +39,11 @@ pub(crate) fn merge((na, a): Draws, (nb, b): Draws) -> Draws {
 pub(crate) struct Sampler<'a> {
     pub(crate) readers: &'a [SequenceReader],
     pub(crate) params: &'a FeatureParams,
+    /// The distinct priors, whose maps are built once per sweep pair.
     pub(crate) priors: &'a [f64],
+    /// The draws: index into `priors` and seed of each.
+    pub(crate) draws: &'a [(usize, u64)],
     pub(crate) kind: FeatureKind,
-    pub(crate) seed: u64,
     pub(crate) gabor: GaborBank,
 }
 
@@ -71,19 +73,29 @@ impl Sampler<'_> {
             for (i, _) in moving_points(first, &curr_sweep) {
                 draws.0 += 1;
                 let point = first.points()[i].index;
-                let u = hashed_uniform(
-                    self.seed,
-                    &[name_key, u64::from(curr_sweep.index), point as u64],
-                );
                 let position = (*seq, curr_sweep.index, point);
-                for (f, draw) in features.iter().zip(&mut draws.1) {
-                    // 3.1.2: the weight is the motion the heading patch shows (Eq. 3.1).
-                    let heading = f.heading_patch(i);
-                    let weight = heading.mean_abs_difference();
-                    let rank = (DrawKey::new(weight, u), Reverse(position));
+                // 3.1.2: the weight is the motion the heading patch shows (Eq. 3.1), per prior.
+                let headings: Vec<(Patch, f64)> = features
+                    .iter()
+                    .map(|f| {
+                        let heading = f.heading_patch(i);
+                        let weight = heading.mean_abs_difference();
+                        (heading, weight)
+                    })
+                    .collect();
+                for (&(p, seed), draw) in self.draws.iter().zip(&mut draws.1) {
+                    let (Some(f), Some((heading, weight))) = (features.get(p), headings.get(p))
+                    else {
+                        continue;
+                    };
+                    let u = hashed_uniform(
+                        seed,
+                        &[name_key, u64::from(curr_sweep.index), point as u64],
+                    );
+                    let rank = (DrawKey::new(*weight, u), Reverse(position));
                     if draw.accepts(&rank)
                         && let Some(sample) =
-                            sample_at(f, &curr_sweep, i, &heading, weight, self, name)
+                            sample_at(f, &curr_sweep, i, (heading, *weight), seed, self, name)
                     {
                         draw.push(rank, sample);
                     }
@@ -126,8 +138,8 @@ fn sample_at(
     features: &SweepFeatures,
     curr: &Sweep,
     i: usize,
-    heading: &Patch,
-    weight: f64,
+    (heading, weight): (&Patch, f64),
+    seed: u64,
     sampler: &Sampler<'_>,
     sequence: &str,
 ) -> Option<Sample> {
@@ -141,7 +153,7 @@ fn sample_at(
     // (FeatureParams::speed_jitter_deg), so the speed GP learns patches as it will meet them.
     let alignment_error_rad = sampler.params.speed_jitter_deg.to_radians()
         * hashed_normal(
-            sampler.seed ^ SPEED_JITTER_STREAM,
+            seed ^ SPEED_JITTER_STREAM,
             &[name_hash(sequence), u64::from(curr.index), point as u64],
         );
     Some(Sample {

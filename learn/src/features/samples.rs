@@ -106,15 +106,41 @@ impl SampleSet {
         seed: u64,
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Vec<Self>> {
-        if priors.is_empty() {
+        let draws: Vec<(f64, u64)> = priors.iter().map(|&prior| (prior, seed)).collect();
+        Self::collect_draws(dataset, params, &draws, kind, n, progress)
+    }
+
+    /// One sample set per `(prior, seed)` draw, all in one pass over the dataset as in
+    /// [`SampleSet::collect_priors`]: the maps of each distinct prior are built once per sweep
+    /// pair and serve every seed, so further seeds cost only their own draws. A draw's set
+    /// equals the one `collect_priors` gives for that prior and seed alone.
+    pub fn collect_draws(
+        dataset: &Dataset,
+        params: &FeatureParams,
+        draws: &[(f64, u64)],
+        kind: FeatureKind,
+        n: usize,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Vec<Self>> {
+        if draws.is_empty() {
             return Ok(Vec::new());
         }
-        for &prior in priors {
+        let mut priors: Vec<f64> = Vec::new();
+        let mut draw_of: Vec<(usize, u64)> = Vec::with_capacity(draws.len());
+        for &(prior, seed) in draws {
             FeatureParams {
                 prior,
                 ..params.clone()
             }
             .validate()?;
+            let p = match priors.iter().position(|q| q.to_bits() == prior.to_bits()) {
+                Some(p) => p,
+                None => {
+                    priors.push(prior);
+                    priors.len() - 1
+                }
+            };
+            draw_of.push((p, seed));
         }
         let readers = dataset
             .sequences()
@@ -136,13 +162,13 @@ impl SampleSet {
         let sampler = Sampler {
             readers: &readers,
             params,
-            priors,
+            priors: &priors,
+            draws: &draw_of,
             kind,
-            seed,
             gabor: GaborBank::new(&params.gabor, params.cell_m),
         };
-        let empty = || (0, priors.iter().map(|_| TopN::new(n)).collect::<Vec<_>>());
-        let (pool_size, draws) = runs
+        let empty = || (0, draws.iter().map(|_| TopN::new(n)).collect::<Vec<_>>());
+        let (pool_size, kept_draws) = runs
             .par_iter()
             .try_fold(empty, |draws, run| sampler.run(run, draws, &tick))
             .try_reduce(empty, |a, b| Ok(merge(a, b)))?;
@@ -152,10 +178,10 @@ impl SampleSet {
                 dataset.root().display()
             )));
         }
-        Ok(draws
+        Ok(kept_draws
             .into_iter()
-            .zip(priors)
-            .map(|(draw, &prior)| {
+            .zip(draws)
+            .map(|(draw, &(prior, _))| {
                 let mut kept: Vec<(Rank, Sample)> = draw.into_items().collect();
                 // Dataset order (sequence, sweep, point).
                 kept.sort_unstable_by_key(|(rank, _)| (rank.1).0);
@@ -250,6 +276,29 @@ pub(crate) mod tests {
         assert_ne!(
             both[0].samples, both[1].samples,
             "the priors change the features"
+        );
+    }
+
+    #[test]
+    fn draws_of_several_seeds_equal_draws_collected_one_seed_at_a_time() {
+        let dir = tempfile::tempdir().unwrap();
+        write_dataset(dir.path(), 4);
+        let dataset = Dataset::open(dir.path()).unwrap();
+        let params = FeatureParams::default();
+        let kind = FeatureKind::Gabor;
+        let draws = [(0.5, 3), (0.01, 3), (0.5, 4)];
+        let sets =
+            SampleSet::collect_draws(&dataset, &params, &draws, kind, 40, &|_, _| {}).unwrap();
+        assert_eq!(sets.len(), 3);
+        for (set, &(prior, seed)) in sets.iter().zip(&draws) {
+            let one =
+                SampleSet::collect(&dataset, &FeatureParams::with_prior(prior), kind, 40, seed)
+                    .unwrap();
+            assert_eq!(set, &one, "prior {prior}, seed {seed}");
+        }
+        assert_ne!(
+            sets[0].samples, sets[2].samples,
+            "the seeds draw differently"
         );
     }
 

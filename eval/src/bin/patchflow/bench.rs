@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use patchflow_eval::{BenchPlan, BenchmarkReport, Method, run_bench};
+use patchflow_eval::{BenchPlan, BenchmarkReport, Method, SeedSpread, run_bench};
 
 /// Arguments of `patchflow bench`.
 #[derive(Debug, clap::Args)]
@@ -11,22 +11,33 @@ pub struct Args {
     /// Output folder.
     #[arg(long, default_value = "results/bench")]
     pub out: PathBuf,
-    /// A smaller run (three training tracks, fewer samples, pseudo-inputs and folds) for a quick look.
+    /// A smaller run (a third of every training track's sweeps, fewer samples, pseudo-inputs
+    /// and folds, one training seed) for a quick look.
     #[arg(long)]
     pub quick: bool,
+    /// Training seeds (7, 8, …): the report gives each headline figure's mean ± std over them
+    /// [default: 3, with --quick 1].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=20))]
+    pub seeds: Option<u64>,
+    /// Keep the generated datasets under OUT/data (about 7 GB) instead of deleting each once used.
+    #[arg(long)]
+    pub keep_data: bool,
 }
 
 /// Runs `patchflow bench`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let plan = if args.quick {
+    let mut plan = if args.quick {
         BenchPlan::quick()
     } else {
         BenchPlan::full()
     };
-    let outcome = run_bench(&plan, &args.out, &|t| {
-        println!("{:>28}: {:7.1} s", t.stage, t.seconds);
-    })?;
-    print_headline(&outcome.report)?;
+    if let Some(seeds) = args.seeds {
+        plan.seeds = seeds as usize;
+    }
+    plan.keep_data = args.keep_data;
+    // Every stage's start and end is printed to stderr by the driver.
+    let outcome = run_bench(&plan, &args.out, &|_| {})?;
+    print_headline(&outcome.report, &outcome.spread)?;
     if let Some(occupancy) = &outcome.occupancy {
         crate::occupancy::print_table(occupancy);
     }
@@ -37,26 +48,43 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Prints one line per situation: heading and speed RMSE and coverage of the headline methods.
-fn print_headline(report: &BenchmarkReport) -> anyhow::Result<()> {
+/// Prints one line per situation: heading and speed RMSE and coverage of the headline methods,
+/// the GPs' as mean ± std over the training seeds when there are several.
+fn print_headline(report: &BenchmarkReport, spread: &SeedSpread) -> anyhow::Result<()> {
     let methods = [Method::SpgpHetAll, Method::SpgpAll, Method::Kf, Method::Icp];
     println!(
         "\n{:<12} {}",
         "situation",
-        methods.map(|m| format!("{m:>28}")).join("")
+        methods.map(|m| format!("{m:>40}")).join("")
     );
     println!(
         "{:<12} {}",
         "",
         methods
-            .map(|_| format!("{:>28}", "heading° / speed m/s / cov"))
+            .map(|_| format!("{:>40}", "heading° / speed m/s / cov"))
             .join("")
     );
     for situation in &report.situations {
         let metrics = situation.metrics()?;
-        let cells = methods.map(|m| match metrics.get(&m) {
-            Some(x) => format!(
-                "{:>28}",
+        let spread_of = |m: &Method| {
+            let (_, methods) = spread
+                .situations
+                .iter()
+                .find(|(n, _)| *n == situation.name)?;
+            methods.get(m).filter(|s| s.heading_rmse_deg.std.is_some())
+        };
+        let cells = methods.map(|m| match (spread_of(&m), metrics.get(&m)) {
+            (Some(s), _) => format!(
+                "{:>40}",
+                format!(
+                    "{} / {} / {}",
+                    s.heading_rmse_deg.cell(1),
+                    s.speed_rmse_mps.cell(2),
+                    s.coverage.cell(2)
+                )
+            ),
+            (None, Some(x)) => format!(
+                "{:>40}",
                 format!(
                     "{} / {} / {:.2}",
                     x.heading_rmse_deg.map_or("-".into(), |v| format!("{v:.1}")),
@@ -64,7 +92,7 @@ fn print_headline(report: &BenchmarkReport) -> anyhow::Result<()> {
                     x.coverage
                 )
             ),
-            None => format!("{:>28}", "-"),
+            (None, None) => format!("{:>40}", "-"),
         });
         println!("{:<12} {}", situation.name, cells.join(""));
     }

@@ -4,7 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::{PerceptionSummary, evaluate_with_bar, write_report};
+use patchflow_eval::{
+    PerceptionSummary, add_to_metrics, evaluate_with_bar, write_dataset_scene_figures, write_report,
+};
 use patchflow_learn::MotionEstimator;
 
 /// Arguments of `patchflow evaluate`.
@@ -31,11 +33,41 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     let dataset = Dataset::open(&args.data)?;
-    let report = evaluate_with_bar(&dataset, &estimators)?;
+    let mut report = evaluate_with_bar(&dataset, &estimators)?;
+    let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
+    report.scene_figures = write_dataset_scene_figures(&dataset, &names, &args.out.join("plots"))?;
     let files = write_report(&report, &args.out)?;
+    add_to_metrics(&files.metrics_json, provenance(&args.model, &estimators))?;
     if let Some(all) = PerceptionSummary::of_scenes(&report.scenes).last() {
         println!("perception: {}", all.line());
     }
     println!("wrote {}", files.report_md.display());
     Ok(())
+}
+
+/// What produced the numbers: the model files as given, each model's training seed and data.
+fn provenance(
+    paths: &[PathBuf],
+    estimators: &[MotionEstimator],
+) -> serde_json::Map<String, serde_json::Value> {
+    let models: Vec<serde_json::Value> = paths
+        .iter()
+        .zip(estimators)
+        .map(|(path, e)| {
+            let training = e.training();
+            serde_json::json!({
+                "file": path.display().to_string(),
+                "gp": e.gp_kind().to_string(),
+                "seed": training.seed,
+                "samples": training.samples,
+                "pseudo_inputs": training.pseudo_inputs,
+                "training_sequences": training.sequences,
+            })
+        })
+        .collect();
+    let seeds: Vec<u64> = estimators.iter().map(|e| e.training().seed).collect();
+    let mut entries = serde_json::Map::new();
+    entries.insert("models".into(), serde_json::json!(models));
+    entries.insert("seeds".into(), serde_json::json!(seeds));
+    entries
 }

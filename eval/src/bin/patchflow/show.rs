@@ -1,10 +1,13 @@
-//! `patchflow show`: a PNG of one sweep's reflection and difference maps with clusters and true boxes.
+//! `patchflow show`: one sweep's reflection and difference maps with clusters, true boxes and
+//! colour keys (`FILE.png`), and beside it the sequence's bird's-eye view (`FILE_scene.png`) and
+//! the sweep's point cloud from above (`FILE_cloud.png`), all on world metre axes with a key.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_learn::{FeatureParams, SweepFeatures, write_png};
+use patchflow_eval::{write_map_figure, write_scene_figures};
+use patchflow_learn::{FeatureParams, SweepFeatures};
 
 /// Arguments of `patchflow show`.
 #[derive(Debug, clap::Args)]
@@ -18,7 +21,7 @@ pub struct Args {
     /// Sweep index (must be at least 1: the difference needs the previous sweep).
     #[arg(long, default_value_t = 1)]
     pub scan: usize,
-    /// PNG file to write.
+    /// PNG file of the maps; the scene and point-cloud views go beside it (`_scene`, `_cloud`).
     #[arg(long)]
     pub out: PathBuf,
 }
@@ -51,12 +54,32 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let curr = sequence.read_sweep(args.scan)?;
     let features = SweepFeatures::compute(&prev, &curr, &FeatureParams::default())
         .with_context(|| format!("{}: sweep {}", sequence.dir().display(), args.scan))?;
-    write_png(&features, &curr, &args.out)?;
-    println!(
-        "wrote {} ({} sliced points, {} clusters)",
-        args.out.display(),
+    let title = format!(
+        "{name}, sweep {} (t = {:.1} s): {} sliced points in {} clusters",
+        args.scan,
+        curr.stamp_secs,
         features.len(),
         features.clusters().len()
+    );
+    write_map_figure(&features, &curr, &title, &args.out)?;
+    let beside = |suffix: &str| {
+        let stem = args
+            .out
+            .file_stem()
+            .map_or_else(|| "show".into(), |s| s.to_string_lossy());
+        args.out.with_file_name(format!("{stem}_{suffix}.png"))
+    };
+    let figures = write_scene_figures(
+        &sequence,
+        Some(args.scan),
+        &beside("scene"),
+        &beside("cloud"),
+    )?;
+    println!(
+        "wrote {}, {} and {}",
+        args.out.display(),
+        figures.birds_eye.display(),
+        figures.cloud.display()
     );
     Ok(())
 }

@@ -1,0 +1,159 @@
+//! The per-target tables alone (thesis 4.4's protocol: the target's cluster, predicted at every
+//! one of its points, merged ALL and BEST) for the further training seeds of a benchmark: only
+//! the GP methods depend on training, so a seed needs neither the baselines nor the whole scene.
+
+use std::collections::BTreeMap;
+
+use patchflow_dataset::{Dataset, SequenceReader};
+use patchflow_learn::{
+    ClusterEstimate, FeatureParams, MergeRule, MotionEstimator, Scan, ScanStream,
+};
+use rayon::prelude::*;
+
+use crate::dataset_evaluation::sequences_to_evaluate;
+use crate::error::EvalError;
+use crate::estimate::MotionEstimate;
+use crate::method::{GpReadout, Method};
+use crate::oracle::{target_at, target_cluster};
+use crate::result::SituationResult;
+use crate::scene_evaluation::to_estimate;
+
+/// Every GP read-out's estimate of the target at every scan of every situation (sequences with a
+/// target) of `dataset`, in dataset order, for each of several trained runs (`runs[k]` holds one
+/// run's estimators, one per GP kind); the runs share each scan's maps. The estimates equal
+/// those of the whole evaluation ([`crate::evaluate_dataset`]) for the same estimators.
+pub(crate) fn evaluate_targets(
+    dataset: &Dataset,
+    runs: &[Vec<MotionEstimator>],
+) -> Result<Vec<Vec<SituationResult>>, EvalError> {
+    let names = sequences_to_evaluate(dataset)?;
+    let sequences = names
+        .par_iter()
+        .map(|name| evaluate_target(&dataset.sequence(name)?, runs))
+        .collect::<Result<Vec<_>, EvalError>>()?;
+    let mut per_run = vec![Vec::new(); runs.len()];
+    for results in sequences.into_iter().flatten() {
+        for (run, result) in per_run.iter_mut().zip(results) {
+            run.push(result);
+        }
+    }
+    Ok(per_run)
+}
+
+/// One sequence's target for every run, or `None` when the sequence marks no target.
+fn evaluate_target(
+    sequence: &SequenceReader,
+    runs: &[Vec<MotionEstimator>],
+) -> Result<Option<Vec<SituationResult>>, EvalError> {
+    let name = sequence.info().name.clone();
+    if sequence.len() < 2 || sequence.read_sweep(0)?.target().is_none() {
+        return Ok(None);
+    }
+    // Each distinct set of feature parameters gets its maps once per scan.
+    let mut params: Vec<FeatureParams> = Vec::new();
+    let mut group_of: Vec<Vec<usize>> = Vec::with_capacity(runs.len());
+    for run in runs {
+        let mut groups = Vec::with_capacity(run.len());
+        for e in run {
+            match params.iter().position(|p| p == e.feature_params()) {
+                Some(g) => groups.push(g),
+                None => {
+                    params.push(e.feature_params().clone());
+                    groups.push(params.len() - 1);
+                }
+            }
+        }
+        group_of.push(groups);
+    }
+    let mut truth = Vec::new();
+    let mut methods: Vec<BTreeMap<Method, Vec<Option<MotionEstimate>>>> =
+        vec![BTreeMap::new(); runs.len()];
+    let mut stream = ScanStream::new(sequence, params)?;
+    while let Some((index, sweep)) = stream.read_next()? {
+        let features = stream.features_of(&sweep)?;
+        let scan = Scan {
+            index,
+            sweep,
+            features,
+        };
+        truth.push(target_at(&scan, &scan.features[0], &name)?);
+        for ((run, groups), columns) in runs.iter().zip(&group_of).zip(&mut methods) {
+            for (estimator, &group) in run.iter().zip(groups) {
+                let own = &scan.features[group];
+                let estimate = match target_cluster(own, &scan.sweep) {
+                    Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
+                    None => ClusterEstimate::default(),
+                };
+                for (rule, motion) in [
+                    (MergeRule::All, estimate.all),
+                    (MergeRule::Best, estimate.best),
+                ] {
+                    let method = Method::gp(estimator.gp_kind(), GpReadout::Merged(rule));
+                    let column = columns.entry(method).or_default();
+                    column.push(motion.map(to_estimate));
+                }
+            }
+        }
+    }
+    let results = methods
+        .into_iter()
+        .map(|methods| {
+            let result = SituationResult {
+                name: name.clone(),
+                scans: truth.len(),
+                truth: truth.clone(),
+                methods,
+            };
+            result.validate().map(|()| result)
+        })
+        .collect::<Result<Vec<_>, EvalError>>()?;
+    Ok(Some(results))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use patchflow_learn::{EstimatorParams, GpKind};
+    use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
+
+    use crate::baselines::BaselineParams;
+    use crate::dataset_evaluation::evaluate_dataset;
+
+    #[test]
+    fn the_target_alone_gets_the_same_gp_estimates_as_the_whole_evaluation() {
+        let dir = tempfile::tempdir().unwrap();
+        let tiny = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
+        let options = GenerateOptions {
+            out: dir.path().to_owned(),
+            seed: 5,
+            shard: Shard::ALL,
+            overwrite: false,
+        };
+        generate_dataset(&[ScenarioSource::File(tiny.into())], &options, &|_| {}).unwrap();
+        let dataset = Dataset::open(dir.path()).unwrap();
+        let params = EstimatorParams {
+            gp: GpKind::Spgp,
+            samples: 40,
+            pseudo_inputs: 5,
+            max_iters: 10,
+            ..EstimatorParams::default()
+        };
+        let estimator = MotionEstimator::train(&dataset, &params).unwrap();
+        let estimators = [estimator];
+        let whole =
+            evaluate_dataset(&dataset, &estimators, &BaselineParams::default(), &|| {}).unwrap();
+        let runs = [estimators.to_vec(), estimators.to_vec()];
+        let targets = evaluate_targets(&dataset, &runs).unwrap();
+        assert_eq!(targets.len(), 2, "one result per run");
+        assert_eq!(targets[0], targets[1], "the same estimators twice");
+        assert_eq!(targets[0].len(), 1);
+        let (alone, full) = (&targets[0][0], &whole.situations[0]);
+        assert_eq!((&alone.name, alone.scans), (&full.name, full.scans));
+        assert_eq!(alone.truth, full.truth);
+        assert_eq!(alone.methods.len(), 2, "SPGP-ALL and SPGP-BEST");
+        for (method, estimates) in &alone.methods {
+            assert_eq!(Some(estimates), full.methods.get(method), "{method}");
+        }
+        assert!(alone.methods[&Method::SpgpAll].iter().any(Option::is_some));
+    }
+}
