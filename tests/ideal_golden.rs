@@ -12,7 +12,7 @@ use std::path::Path;
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
 /// Put in front of each scenario text: selects the rung under test.
-const RUNG: &str = "";
+const RUNG: &str = "realism = \"ideal\"\n";
 
 /// FNV-1a over a file's bytes: stable across platforms, no dependency.
 fn fnv1a(bytes: &[u8]) -> u64 {
@@ -51,6 +51,7 @@ fn generate(name: &str, text: &str) -> Vec<(String, u64)> {
         out: dir.path().join("data"),
         seed: 7,
         shard: Shard::ALL,
+        realism: None,
     };
     generate_dataset(&[ScenarioSource::File(file)], &options, &|_| {}).unwrap();
     digests(&dir.path().join("data/sequences").join(name))

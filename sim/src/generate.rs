@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use patchflow_dataset::{Manifest, SequenceWriter};
 
 use crate::error::{Result, SimError};
-use crate::scenario::{EMBEDDED_SCENARIOS, Scenario};
+use crate::scenario::{EMBEDDED_SCENARIOS, Realism, Scenario};
 use crate::simulation::Simulation;
 
 /// Where a scenario comes from.
@@ -28,10 +28,15 @@ impl ScenarioSource {
 
     /// Loads and validates it.
     pub fn load(&self) -> Result<Scenario> {
+        self.load_at_rung(None)
+    }
+
+    /// Loads and validates it with its realism rung replaced by `rung`, if given.
+    pub fn load_at_rung(&self, rung: Option<Realism>) -> Result<Scenario> {
         match self {
-            Self::File(path) => Scenario::from_file(path),
+            Self::File(path) => Scenario::from_file_at_rung(path, rung),
             Self::Embedded(name, text) => {
-                Scenario::from_toml(text, &format!("<embedded {name}.toml>"), name)
+                Scenario::from_toml_at_rung(text, &format!("<embedded {name}.toml>"), name, rung)
             }
         }
     }
@@ -83,6 +88,8 @@ pub struct GenerateOptions {
     pub seed: u64,
     /// Which part of the work to do.
     pub shard: Shard,
+    /// Realism rung replacing every scenario's own (`generate --realism NAME`); `None` keeps theirs.
+    pub realism: Option<Realism>,
 }
 
 /// What a running generation reports, for progress display.
@@ -123,7 +130,7 @@ pub fn generate_dataset(
 ) -> Result<Manifest> {
     let mut scenarios = sources
         .iter()
-        .map(ScenarioSource::load)
+        .map(|s| s.load_at_rung(options.realism))
         .collect::<Result<Vec<_>>>()?;
     scenarios.sort_by(|a, b| a.name.cmp(&b.name));
     if let Some(w) = scenarios.windows(2).find(|w| w[0].name == w[1].name) {

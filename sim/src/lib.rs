@@ -27,8 +27,9 @@ pub use motion::{
 };
 pub use patchflow_dataset as dataset;
 pub use scenario::{
-    ActorConfig, CarModel, EMBEDDED_SCENARIOS, ElevationSpacing, LidarConfig, Scenario,
-    StructureConfig, StructureKind, TrafficConfig,
+    ActorConfig, CarModel, EMBEDDED_SCENARIOS, ElevationSpacing, LidarConfig, PoseErrorConfig,
+    PoseErrorKnobs, Realism, RoadConfig, Scenario, SensorConfig, SensorKnobs, StructureConfig,
+    StructureKind, TrafficConfig, WorldConfig, WorldKnobs,
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;

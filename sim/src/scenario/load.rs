@@ -22,6 +22,11 @@ type Problem = (Vec<Seg<'static>>, String);
 impl Scenario {
     /// Reads, validates and resolves a scenario file; errors name the file and the line.
     pub fn from_file(path: &Path) -> Result<Self> {
+        Self::from_file_at_rung(path, None)
+    }
+
+    /// Like [`Scenario::from_file`], with the realism rung replaced by `rung` if given.
+    pub fn from_file_at_rung(path: &Path, rung: Option<super::Realism>) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
             path: path.to_owned(),
             source,
@@ -30,7 +35,7 @@ impl Scenario {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        Self::from_toml(&text, &path.display().to_string(), &stem)
+        Self::from_toml_at_rung(&text, &path.display().to_string(), &stem, rung)
     }
 
     /// Parses and validates scenario text. `file` names it in errors; `default_name` is used when
@@ -43,12 +48,26 @@ impl Scenario {
     /// assert_eq!(scenario.lidar.channels, 64);
     /// ```
     pub fn from_toml(text: &str, file: &str, default_name: &str) -> Result<Self> {
+        Self::from_toml_at_rung(text, file, default_name, None)
+    }
+
+    /// Like [`Scenario::from_toml`], with the realism rung replaced by `rung` if given (as
+    /// `generate --realism NAME` does); knobs the file sets on their own still apply.
+    pub fn from_toml_at_rung(
+        text: &str,
+        file: &str,
+        default_name: &str,
+        rung: Option<super::Realism>,
+    ) -> Result<Self> {
         let mut scenario: Scenario = toml::from_str(text).map_err(|e| {
             let offset = e.span().map(|s| s.start).unwrap_or(0);
             SimError::at_offset(file, text, offset, e.message().trim().to_owned())
         })?;
         if scenario.name.is_empty() {
             scenario.name = default_name.to_owned();
+        }
+        if let Some(rung) = rung {
+            scenario.realism = rung;
         }
         scenario.resolve();
         if let Some((at, reason)) = scenario.problems().into_iter().next() {
@@ -72,6 +91,9 @@ impl Scenario {
         for structure in &mut self.structures {
             structure.resolve();
         }
+        self.world.resolve(self.realism);
+        self.sensor.resolve(self.realism);
+        self.pose_error.resolve(self.realism);
     }
 
     /// Every problem of the resolved scenario, in file order.
@@ -181,6 +203,24 @@ impl Scenario {
         }
         for (field, reason) in self.traffic.problems() {
             out.push((vec![Seg::Key("traffic"), Seg::Key(field)], reason));
+        }
+        let tables = [
+            ("world", self.world.problems()),
+            ("sensor", self.sensor.problems()),
+            ("pose_error", self.pose_error.problems()),
+        ];
+        for (table, problems) in tables {
+            for (field, reason) in problems {
+                out.push((vec![Seg::Key(table), Seg::Key(field)], reason));
+            }
+        }
+        for (i, road) in self.roads.iter().enumerate() {
+            for (field, reason) in road.problems() {
+                out.push((
+                    vec![Seg::Key("roads"), Seg::Index(i), Seg::Key(field)],
+                    reason,
+                ));
+            }
         }
         out
     }
@@ -301,6 +341,37 @@ mod tests {
         let (line, reason) = error_of(&format!("{BASE}[lidar]\nchannels = 16\nrate_hz = 0.0\n"));
         assert_eq!(line, 7);
         assert!(reason.contains("rate_hz"), "{reason}");
+    }
+
+    #[test]
+    fn a_realism_knob_out_of_range_names_its_line_value_and_bound() {
+        let (line, reason) = error_of(&format!("{BASE}[world]\nclutter = 1.0\ncamber = 0.7\n"));
+        assert_eq!(line, 7);
+        assert_eq!(reason, "camber = 0.7 is above 0.1");
+    }
+
+    #[test]
+    fn an_unknown_rung_is_rejected_with_its_line() {
+        let (line, reason) = error_of(&format!("realism = \"perfect\"\n{BASE}"));
+        assert_eq!(line, 1);
+        assert!(reason.contains("perfect"), "{reason}");
+    }
+
+    #[test]
+    fn the_default_rung_is_urban_and_a_knob_set_alone_overrides_it() {
+        let s = Scenario::from_toml(
+            &format!("{BASE}[sensor]\nmixed_pixels = 0.0\n"),
+            "ok.toml",
+            "ok",
+        )
+        .unwrap();
+        assert_eq!(s.realism, super::super::Realism::Urban);
+        assert_eq!(s.sensor.knobs().mixed_pixels, 0.0);
+        assert_eq!(s.world.knobs().camber, 0.02);
+        let ideal =
+            Scenario::from_toml_at_rung(BASE, "ok.toml", "ok", Some(super::super::Realism::Ideal))
+                .unwrap();
+        assert!(ideal.world.knobs().flat_ground() && ideal.pose_error.knobs().exact());
     }
 
     #[test]

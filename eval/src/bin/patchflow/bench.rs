@@ -164,6 +164,7 @@ fn generate(names: &[&'static str], out: &Path) -> anyhow::Result<Dataset> {
         out: out.to_owned(),
         seed: SEED,
         shard: Shard::ALL,
+        realism: None,
     };
     crate::generate::generate_with_progress(&sources, &options)?;
     Ok(Dataset::open(out)?)

@@ -7,7 +7,7 @@ use std::sync::Mutex;
 use anyhow::Context;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use patchflow_dataset::Manifest;
-use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset};
+use patchflow_sim::{GenerateOptions, Progress, Realism, ScenarioSource, Shard, generate_dataset};
 
 /// Arguments of `patchflow generate`.
 #[derive(Debug, clap::Args)]
@@ -23,6 +23,16 @@ pub struct Args {
     /// Take every N-th unit of work starting at I (0-based), as `I/N`.
     #[arg(long)]
     pub shard: Option<String>,
+    /// Realism rung for every scenario (`ideal`, `urban`, `harsh`), replacing the one each file
+    /// names (default: the file's own, `urban` if it names none); knobs a file sets alone still apply.
+    #[arg(long, value_parser = parse_realism)]
+    pub realism: Option<Realism>,
+}
+
+fn parse_realism(name: &str) -> Result<Realism, String> {
+    Realism::parse(name).ok_or_else(|| {
+        format!("unknown realism rung {name:?}: expected one of ideal, urban, harsh")
+    })
 }
 
 /// Runs `patchflow generate`.
@@ -44,6 +54,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         out: args.out.clone(),
         seed: args.seed,
         shard,
+        realism: args.realism,
     };
     let manifest = generate_with_progress(&sources, &options)?;
     let points: u64 = manifest.sequences.iter().map(|s| s.points).sum();
