@@ -194,6 +194,10 @@ pub fn generate_sequence(
     let poses: Vec<_> = (0..scenario.sweeps)
         .map(|i| sim.world_from_sensor(i))
         .collect();
+    let estimated: Vec<_> = (0..scenario.sweeps)
+        .map(|i| sim.estimated_world_from_sensor(i))
+        .collect();
+    writer.write_estimated_poses(&estimated)?;
     let stamps: Vec<f64> = (0..scenario.sweeps)
         .map(|i| sim.stamp_secs(i) - scenario.start_secs)
         .collect();

@@ -12,10 +12,12 @@ mod error;
 mod generate;
 mod lidar;
 mod motion;
+mod pose_error;
 mod scenario;
 mod scene;
 mod seed;
 mod simulation;
+mod world;
 
 pub use error::{Result, SimError};
 pub use generate::{

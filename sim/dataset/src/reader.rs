@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use crate::manifest::read_marker;
 use crate::pose::parse_kitti_pose;
-use crate::writer::sweep_path;
+use crate::writer::{ESTIMATED_POSES, sweep_path};
 use crate::{DatasetError, Manifest, ObjectTruth, PointLabel, Pose, Result, SequenceInfo, Sweep};
 
 /// An opened dataset folder.
@@ -63,6 +63,8 @@ pub struct SequenceReader {
     dir: PathBuf,
     info: SequenceInfo,
     poses: Vec<Pose>,
+    /// The ego's own estimates (`poses_estimated.txt`), if the sequence has them.
+    estimated_poses: Option<Vec<Pose>>,
     stamps_secs: Vec<f64>,
 }
 
@@ -96,10 +98,12 @@ impl SequenceReader {
                 return Err(DatasetError::corrupt(path, reason));
             }
         }
+        let estimated_poses = read_estimated_poses(dir, info.sweeps as usize)?;
         Ok(Self {
             dir: dir.to_owned(),
             info,
             poses,
+            estimated_poses,
             stamps_secs,
         })
     }
@@ -124,9 +128,16 @@ impl SequenceReader {
         self.poses.is_empty()
     }
 
-    /// `world_from_sensor` of every sweep.
+    /// `world_from_sensor` of every sweep: the truth (`poses.txt`), for truth labels and metrics.
     pub fn poses(&self) -> &[Pose] {
         &self.poses
+    }
+
+    /// The ego's own estimate of `world_from_sensor` for every sweep (`poses_estimated.txt`), for
+    /// perception and estimators (what a real car knows); the truth for datasets written before
+    /// the estimate existed.
+    pub fn estimated_poses(&self) -> &[Pose] {
+        self.estimated_poses.as_deref().unwrap_or(&self.poses)
     }
 
     /// Reference time of every sweep, seconds since the sequence started.
@@ -159,6 +170,12 @@ impl SequenceReader {
             .collect();
         let flow = read_f32s_n(&sweep_path(&self.dir, "flow", i, "bin"), 3, n)?;
         let time = read_f32s_n(&sweep_path(&self.dir, "time", i, "bin"), 1, n)?;
+        let ring_path = sweep_path(&self.dir, "ring", i, "bin");
+        let rings = if ring_path.is_file() {
+            read_rings(&ring_path, n)?
+        } else {
+            Vec::new()
+        };
         let objects_path = sweep_path(&self.dir, "objects", i, "json");
         let text = std::fs::read_to_string(&objects_path)
             .map_err(|e| DatasetError::io(&objects_path, e))?;
@@ -168,6 +185,7 @@ impl SequenceReader {
             index: i,
             stamp_secs: self.stamps_secs[index],
             world_from_sensor: self.poses[index],
+            estimated_world_from_sensor: self.estimated_poses.as_ref().map(|e| e[index]),
             points_in_sensor: velodyne
                 .chunks_exact(4)
                 .map(|c| [c[0], c[1], c[2]])
@@ -176,9 +194,48 @@ impl SequenceReader {
             labels,
             flow_in_world_mps: flow.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
             time_in_sweep_secs: time,
+            rings,
             objects,
         })
     }
+}
+
+/// The estimated poses of a sequence folder, `None` if it has no `poses_estimated.txt`.
+fn read_estimated_poses(dir: &Path, sweeps: usize) -> Result<Option<Vec<Pose>>> {
+    let path = dir.join(ESTIMATED_POSES);
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let poses = read_lines(&path)?
+        .iter()
+        .enumerate()
+        .map(|(i, line)| {
+            parse_kitti_pose(line).ok_or_else(|| {
+                DatasetError::corrupt(&path, format!("line {}: not a 3 x 4 pose", i + 1))
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    if poses.len() != sweeps {
+        let reason = format!(
+            "{} lines, but the sequence has {sweeps} sweeps",
+            poses.len()
+        );
+        return Err(DatasetError::corrupt(&path, reason));
+    }
+    Ok(Some(poses))
+}
+
+/// A ring file: one little-endian uint16 per point, exactly `n`.
+fn read_rings(path: &Path, n: usize) -> Result<Vec<u16>> {
+    let bytes = std::fs::read(path).map_err(|e| DatasetError::io(path, e))?;
+    if bytes.len() != 2 * n {
+        let reason = format!("{} bytes for {n} points (2 bytes each)", bytes.len());
+        return Err(DatasetError::corrupt(path, reason));
+    }
+    Ok(bytes
+        .chunks_exact(2)
+        .map(|c| u16::from_le_bytes([c[0], c[1]]))
+        .collect())
 }
 
 fn read_lines(path: &Path) -> Result<Vec<String>> {
@@ -254,6 +311,8 @@ mod tests {
             ],
             flow_in_world_mps: vec![[0.0, 0.0, 0.0], [5.0, -1.0, 0.0]],
             time_in_sweep_secs: vec![0.0125, 0.0875],
+            rings: vec![63, 2],
+            estimated_world_from_sensor: None,
             objects: vec![ObjectTruth {
                 id: 3,
                 name: "target".into(),
@@ -299,6 +358,7 @@ mod tests {
             assert_eq!(got.labels, expected.labels);
             assert_eq!(got.flow_in_world_mps, expected.flow_in_world_mps);
             assert_eq!(got.time_in_sweep_secs, expected.time_in_sweep_secs);
+            assert_eq!(got.rings, expected.rings);
             assert_eq!(got.objects, expected.objects);
             assert!(
                 (got.world_from_sensor.translation.vector
@@ -307,6 +367,65 @@ mod tests {
                     < 1e-9
             );
         }
+    }
+
+    #[test]
+    fn without_an_estimate_file_the_estimated_poses_are_the_truth() {
+        let dir = tempfile::tempdir().unwrap();
+        write_sequence(dir.path(), &[sample_sweep(0), sample_sweep(1)]);
+        let seq = Dataset::open(dir.path()).unwrap().sequence("seq").unwrap();
+        assert_eq!(seq.estimated_poses(), seq.poses());
+        let sweep = seq.read_sweep(1).unwrap();
+        assert_eq!(sweep.estimated_world_from_sensor, None);
+        assert_eq!(sweep.estimated_pose(), sweep.world_from_sensor);
+    }
+
+    #[test]
+    fn an_estimate_file_is_read_beside_the_truth() {
+        let dir = tempfile::tempdir().unwrap();
+        let sweeps = [sample_sweep(0), sample_sweep(1)];
+        let writer = SequenceWriter::open(dir.path(), "seq").unwrap();
+        for sweep in &sweeps {
+            writer.write_sweep(sweep).unwrap();
+        }
+        let truth: Vec<Pose> = sweeps.iter().map(|s| s.world_from_sensor).collect();
+        let estimate: Vec<Pose> = truth
+            .iter()
+            .map(|p| {
+                Pose::new(
+                    p.translation.vector + Vector3::new(0.3, -0.2, 0.0),
+                    Vector3::new(0.0, 0.0, 0.31),
+                )
+            })
+            .collect();
+        writer.write_estimated_poses(&estimate).unwrap();
+        let stamps: Vec<f64> = sweeps.iter().map(|s| s.stamp_secs).collect();
+        writer
+            .finish("demo", 7, 10.0, &truth, &stamps, "test")
+            .unwrap();
+        let seq = Dataset::open(dir.path()).unwrap().sequence("seq").unwrap();
+        let sweep = seq.read_sweep(1).unwrap();
+        let got = sweep.estimated_pose().translation.vector;
+        assert!((got - estimate[1].translation.vector).norm() < 1e-9);
+        assert!(
+            (sweep.world_from_sensor.translation.vector - truth[1].translation.vector).norm()
+                < 1e-9
+        );
+    }
+
+    #[test]
+    fn a_ring_file_of_the_wrong_length_is_an_error_naming_it() {
+        let dir = tempfile::tempdir().unwrap();
+        write_sequence(dir.path(), &[sample_sweep(0)]);
+        let ring = dir.path().join("sequences/seq/ring/000000.bin");
+        std::fs::write(&ring, [0u8; 3]).unwrap();
+        let err = Dataset::open(dir.path())
+            .unwrap()
+            .sequence("seq")
+            .unwrap()
+            .read_sweep(0)
+            .unwrap_err();
+        assert!(err.to_string().contains("ring/000000.bin"), "{err}");
     }
 
     #[test]

@@ -4,7 +4,10 @@ mod beams;
 mod block_caster;
 mod firing_table;
 mod intensity;
+mod mixed_pixels;
+mod real_return;
 mod scan;
+mod sensor_model;
 mod spinning_lidar;
 
 pub use beams::elevations_deg;

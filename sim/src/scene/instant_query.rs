@@ -11,7 +11,7 @@
 use rapier3d::parry::partitioning::Bvh;
 use rapier3d::parry::query::details::NormalConstraints;
 use rapier3d::parry::shape::{CompositeShape, CompositeShapeRef, Shape, TypedCompositeShape};
-use rapier3d::prelude::{ColliderHandle, ColliderSet, Pose, Ray};
+use rapier3d::prelude::{ColliderHandle, ColliderSet, Pose, Ray, Vector};
 
 use super::{Scene, SceneInstant, Surface};
 
@@ -57,13 +57,45 @@ impl InstantQuery<'_> {
         self.surface_at(self.scene.surface(handle)?)
     }
 
-    /// `surface` itself for fixed colliders, or the same actor's surface placed at the instant.
+    /// `surface` itself for fixed colliders, or the same moving collider's surface placed at
+    /// the instant.
     #[inline]
     fn surface_at<'s>(&'s self, surface: &'s Surface) -> Option<&'s Surface> {
-        match surface.actor {
-            Some(actor) => self.instant.actor_surface(actor),
+        match surface.mover {
+            Some(k) => self.instant.mover_surface(k as usize),
             None => Some(surface),
         }
+    }
+
+    /// The surface first hit by `ray` within `max_toi`, the hit's time of impact and the hit
+    /// collider's arena index (for [`InstantQuery::normal`]).
+    #[inline]
+    pub fn cast_ray_to_hit(&self, ray: &Ray, max_toi: f32) -> Option<(&Surface, f32, u32)> {
+        let (id, toi) = CompositeShapeRef(self).cast_local_ray(ray, max_toi, true)?;
+        Some((self.surface_at(self.scene.surface_at(id)?)?, toi, id))
+    }
+
+    /// Unit normal, world frame, of collider `id` (at the instant) where `ray` meets it near
+    /// `toi`, as parry's own ray cast on that one shape reports it.
+    pub fn normal(&self, id: u32, ray: &Ray, toi: f32) -> Option<Vector> {
+        let mut normal = None;
+        self.map_typed_part_at(id, |pose, shape, _| {
+            let pose = pose.copied().unwrap_or(Pose::IDENTITY);
+            normal = shape
+                .cast_ray_and_get_normal(&pose, ray, toi + 0.01, true)
+                .map(|hit| hit.normal);
+        });
+        normal
+    }
+
+    /// Time of impact where `ray`, starting inside collider `id` (a porous volume), leaves it.
+    pub fn exit_toi(&self, id: u32, ray: &Ray, max_toi: f32) -> Option<f32> {
+        let mut exit = None;
+        self.map_typed_part_at(id, |pose, shape, _| {
+            let pose = pose.copied().unwrap_or(Pose::IDENTITY);
+            exit = shape.cast_ray(&pose, ray, max_toi, false);
+        });
+        exit
     }
 
     /// The scene queried.
@@ -102,9 +134,9 @@ impl TypedCompositeShape for InstantQuery<'_> {
         mut f: impl FnMut(Option<&Pose>, &Self::PartShape, Option<&Self::PartNormalConstraints>) -> T,
     ) -> Option<T> {
         let mover_pose = match self.scene.mover_of_collider(shape_id) {
-            // Mover 0 is the ego car, which its own lidar never sees.
-            Some(0) => return None,
-            Some(k) => Some(self.instant.mover_pose(k)?),
+            // The ego car's own lidar never sees it.
+            Some((_, true)) => return None,
+            Some((k, false)) => Some(self.instant.mover_pose(k)?),
             None => None,
         };
         let (collider, _) = self.colliders.get_unknown_gen(shape_id)?;

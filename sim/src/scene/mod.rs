@@ -14,4 +14,4 @@ pub use rapier_scene::Scene;
 pub use ray_tree::QueryTree;
 pub use scene_actor::SceneActor;
 pub use scene_instant::SceneInstant;
-pub use surface::Surface;
+pub use surface::{Glass, Material, Surface, SurfaceKind};

@@ -19,9 +19,8 @@ impl Scene {
         SceneInstant::new(
             t_secs,
             (&self.ego, &self.actors),
-            (&self.bodies, &self.colliders),
+            &self.movers,
             &self.surfaces,
-            &self.actor_surfaces,
         )
     }
 
@@ -42,10 +41,16 @@ impl Scene {
         }
     }
 
-    /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
+    /// The mover index of the collider at arena index `index` and whether it is the ego car's.
     #[inline]
-    pub(super) fn mover_of_collider(&self, index: u32) -> Option<usize> {
-        self.ray_tree.mover_of(index)
+    pub(super) fn mover_of_collider(&self, index: u32) -> Option<(usize, bool)> {
+        let k = self.ray_tree.mover_of(index)?;
+        Some((k, self.movers.get(k).is_some_and(|m| m.actor.is_none())))
+    }
+
+    /// The street world's ground, if the scene has one.
+    pub fn ground(&self) -> Option<&crate::world::GroundField> {
+        self.ground.as_deref()
     }
 
     /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego
