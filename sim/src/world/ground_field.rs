@@ -117,10 +117,14 @@ impl GroundRecipe<'_> {
         }
         let t = ((d - w - band) / TERRAIN_RAMP_M).min(1.0);
         let ramp = t * t * (3.0 - 2.0 * t);
-        let relief = ValueNoise::new(sub_seed(self.seed, 4), 30.0, 3).at(p[0], p[1]);
+        // Hummocks on two scales and grass tufts: at grazing incidence the beams land on the
+        // faces of world-fixed bumps, not on rings that move with the sensor.
+        let relief = 0.6 * ValueNoise::new(sub_seed(self.seed, 4), 30.0, 2).at(p[0], p[1])
+            + 0.4 * ValueNoise::new(sub_seed(self.seed, 5), 6.0, 2).at(p[0], p[1]);
+        let tufts = ValueNoise::new(sub_seed(self.seed, 6), 1.5, 2).at(p[0], p[1]);
         let z = sidewalk * (1.0 - ramp)
-            + (base + k.terrain_relief_m * relief) * ramp
-            + 2.0 * k.roughness_m * rough;
+            + (base + k.terrain_relief_m * relief + 4.0 * k.roughness_m * tufts) * ramp
+            + k.roughness_m * rough;
         if patch > 0.25 {
             (z, GroundMaterial::Gravel, 0.25 + 0.1 * rough)
         } else {

@@ -13,6 +13,7 @@ mod noise;
 mod piece;
 mod street_furniture;
 mod street_map;
+mod terrain_scatter;
 
 use std::sync::Arc;
 
@@ -82,6 +83,15 @@ impl StreetWorld {
                     pieces.extend(builder.clutter(interval, &mut clearance));
                 }
             }
+        }
+        if knobs.clutter > 0.0 {
+            let scatter_seed = sub_seed(world_seed, 0x5CA7);
+            pieces.extend(terrain_scatter::scatter(
+                &field,
+                knobs.clutter,
+                scatter_seed,
+                &mut clearance,
+            ));
         }
         let ground = (!knobs.flat_ground()).then(|| Arc::new(field));
         Self { ground, pieces }

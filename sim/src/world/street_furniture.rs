@@ -113,7 +113,8 @@ impl SideBuilder<'_> {
         let (w, band) = (self.street.half_width_m, k.sidewalk_width_m.max(1.0));
         let per_100m = (to - from) / 100.0;
         let mut out = Vec::new();
-        let kinds: [(Item, f64); 8] = [
+        let kinds: [(Item, f64); 9] = [
+            (Item::Hedge, 6.0 * k.clutter),
             (Item::ParkedCar, k.parked_cars_per_100m),
             (Item::Tree, 4.0 * k.clutter),
             (Item::Bush, 4.0 * k.clutter),
@@ -141,12 +142,13 @@ impl SideBuilder<'_> {
                 };
                 let across = match item {
                     Item::ParkedCar => w - 1.1,
-                    Item::Tree => w + band + rng.random_range(-0.9..2.5),
+                    Item::Tree => w + rng.random_range(0.8..band.max(1.0) + 2.5),
                     Item::Bush => w + band + rng.random_range(0.6..4.0),
                     Item::StreetLight | Item::TrafficLight => w + 0.6,
                     Item::Sign => w + 0.4,
                     Item::Bollard => w + 0.35,
                     Item::Bin => w + band - 0.4,
+                    Item::Hedge => w + band + 0.6,
                 };
                 if item == Item::ParkedCar && (s - from < 3.0 || to - s < 3.0) {
                     continue;
@@ -213,6 +215,21 @@ impl SideBuilder<'_> {
                 }]
             }
             Item::StreetLight => vec![column(3.6, 0.09, base - 0.1, SemanticClass::Pole, 0.5)],
+            Item::Hedge => {
+                let length = rng.random_range(3.0..10.0);
+                let height = rng.random_range(0.9..1.8);
+                vec![
+                    Piece::block(
+                        p,
+                        base - 0.1,
+                        [length, 0.9, height + 0.1],
+                        yaw,
+                        SemanticClass::Vegetation,
+                        0.45,
+                    )
+                    .with_material(Material::foliage(0.25)),
+                ]
+            }
             Item::Bollard => vec![column(0.5, 0.09, base - 0.1, SemanticClass::Pole, 0.45)],
             Item::Bin => vec![column(
                 0.55,
@@ -287,6 +304,7 @@ enum Item {
     Bollard,
     Bin,
     TrafficLight,
+    Hedge,
 }
 
 impl Item {
@@ -297,6 +315,7 @@ impl Item {
             Self::Tree => 0.6,
             Self::Bush => 1.0,
             Self::Bin => 0.35,
+            Self::Hedge => 5.0,
             Self::StreetLight | Self::Sign | Self::Bollard | Self::TrafficLight => 0.2,
         }
     }
@@ -306,6 +325,7 @@ impl Item {
         match self {
             Self::ParkedCar => 1.0,
             Self::Tree => 0.3,
+            Self::Hedge => 0.5,
             other => other.radius_m(),
         }
     }
