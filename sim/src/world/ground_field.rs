@@ -14,7 +14,7 @@ use crate::scenario::WorldKnobs;
 use crate::seed::sub_seed;
 
 /// Cells per block side of the coarse level.
-const BLOCK: usize = 8;
+const BLOCK: usize = 4;
 /// Width of the terrain's rise from the sidewalk's edge to its full relief, metres.
 const TERRAIN_RAMP_M: f64 = 5.0;
 

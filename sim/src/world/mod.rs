@@ -11,6 +11,7 @@ mod ground_field;
 mod ground_shape;
 mod noise;
 mod piece;
+mod plane_hull;
 mod street_furniture;
 mod street_map;
 mod terrain_scatter;
@@ -24,6 +25,7 @@ pub use ground_field::GroundField;
 pub(crate) use ground_field::GroundMaterial;
 pub use ground_shape::GroundShape;
 pub(crate) use piece::{Piece, PieceShape};
+pub use plane_hull::PlaneHull;
 
 use crate::motion::Trajectory;
 use crate::scenario::{ActorConfig, Scenario, StructureKind};

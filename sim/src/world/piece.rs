@@ -5,6 +5,7 @@
 use patchflow_dataset::SemanticClass;
 use rapier3d::prelude::{SharedShape, Vector};
 
+use super::plane_hull::PlaneHull;
 use crate::scene::Material;
 
 /// The geometry of a piece, in its own frame (z up; a cylinder's axis along its local y).
@@ -14,9 +15,9 @@ pub(crate) enum PieceShape {
     Cuboid([f32; 3]),
     /// A ball of this radius.
     Ball(f32),
-    /// A cylinder: half height along local y, radius.
+    /// A cylinder (an octagonal prism): half height along local y, radius.
     Cylinder(f32, f32),
-    /// An upright cylinder (axis along z): half height, radius.
+    /// An upright cylinder (an octagonal prism, axis along z): half height, radius.
     Column(f32, f32),
     /// The convex hull of these points.
     Hull(Vec<[f32; 3]>),
@@ -81,15 +82,9 @@ impl Piece {
         match &self.shape {
             PieceShape::Cuboid(h) => Some(SharedShape::cuboid(h[0], h[1], h[2])),
             PieceShape::Ball(r) => Some(SharedShape::ball(*r)),
-            PieceShape::Cylinder(h, r) => Some(SharedShape::cylinder(*h, *r)),
-            PieceShape::Column(h, r) => Some(SharedShape::cylinder(*h, *r)),
-            PieceShape::Hull(points) => {
-                let points: Vec<Vector> = points
-                    .iter()
-                    .map(|p| Vector::new(p[0], p[1], p[2]))
-                    .collect();
-                SharedShape::convex_hull(&points)
-            }
+            PieceShape::Cylinder(h, r) => PlaneHull::prism(1, *h, *r).map(SharedShape::new),
+            PieceShape::Column(h, r) => PlaneHull::prism(2, *h, *r).map(SharedShape::new),
+            PieceShape::Hull(points) => PlaneHull::from_points(points).map(SharedShape::new),
             PieceShape::Mesh(vertices, triangles) => {
                 let vertices: Vec<Vector> = vertices
                     .iter()
@@ -100,12 +95,8 @@ impl Piece {
         }
     }
 
-    /// Extra rotation of the shape in its frame: an upright column is parry's y-axis cylinder
-    /// turned a quarter about x.
+    /// Extra rotation of the shape in its frame (none: every shape is built upright).
     pub(crate) fn tilt_rad(&self) -> [f32; 3] {
-        match self.shape {
-            PieceShape::Column(..) => [std::f32::consts::FRAC_PI_2, 0.0, 0.0],
-            _ => [0.0; 3],
-        }
+        [0.0; 3]
     }
 }
