@@ -43,6 +43,7 @@ impl Drift {
     }
 
     /// The largest value the component can reach.
+    #[cfg(test)]
     fn bound(&self) -> f64 {
         self.terms.iter().map(|t| t.0.abs()).sum()
     }
@@ -70,11 +71,6 @@ impl PoseError {
         }
     }
 
-    /// True if the estimate is the truth.
-    pub(crate) fn is_exact(&self) -> bool {
-        self.exact
-    }
-
     /// The ego's estimated state at `t_secs` given its true state then (the same state when exact).
     pub(crate) fn estimate(&self, truth: &MotionState, t_secs: f64) -> MotionState {
         if self.exact {
@@ -88,6 +84,7 @@ impl PoseError {
     }
 
     /// Largest position error along one axis and largest yaw error, (metres, radians).
+    #[cfg(test)]
     pub(crate) fn bounds(&self) -> (f64, f64) {
         (self.x.bound().max(self.y.bound()), self.yaw.bound())
     }

@@ -30,7 +30,6 @@ pub(super) const MIN_RANGE_M: f32 = 0.05;
 #[derive(Debug, Clone, Copy)]
 pub(super) struct EgoStates {
     pub block: MotionState,
-    pub reference: MotionState,
     pub block_estimate: MotionState,
     pub reference_estimate: MotionState,
 }

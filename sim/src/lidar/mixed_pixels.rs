@@ -8,6 +8,7 @@ use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
 use rayon::prelude::*;
 
+use super::scan::ReturnsView;
 use crate::seed::sub_seed;
 
 /// Smallest depth step that counts as an edge, metres.
@@ -15,15 +16,21 @@ const MIN_GAP_M: f32 = 0.3;
 /// Largest depth step over which the two surfaces still fall within one pulse, metres.
 const MAX_GAP_M: f32 = 10.0;
 
-/// Moves mixed returns in place. `points`, `rings` hold each column's returns at the front of
-/// its `channels` slots (`counts` per column), `ranges` is the range image (NaN: no return) and
-/// `origin_of(j)` the sensor origin of column `j` in the frame the points are written in.
+/// Moves mixed returns in place; `origin_of(j)` is the sensor origin of column `j` in the frame
+/// the points are written in.
 pub(super) fn mix_edges(
-    (points, rings, counts, ranges, channels): (&mut [[f32; 3]], &[u16], &[u32], &[f32], usize),
+    view: ReturnsView<'_>,
     probability: f32,
     origin_of: &(dyn Fn(usize) -> [f32; 3] + Sync),
     key: u64,
 ) {
+    let ReturnsView {
+        points,
+        rings,
+        counts,
+        ranges,
+        channels,
+    } = view;
     if probability <= 0.0 || channels == 0 {
         return;
     }
@@ -76,12 +83,14 @@ mod tests {
         let mut moved = 0;
         for key in 0..200 {
             let mut p = points.clone();
-            mix_edges(
-                (&mut p, &rings, &counts, &ranges, 1),
-                1.0,
-                &|_| [0.0; 3],
-                key,
-            );
+            let view = ReturnsView {
+                points: &mut p,
+                rings: &rings,
+                counts: &counts,
+                ranges: &ranges,
+                channels: 1,
+            };
+            mix_edges(view, 1.0, &|_| [0.0; 3], key);
             assert_eq!(p[0], points[0], "the nearer surface never moves");
             assert_eq!(p[2], points[2], "no edge next to column 2");
             if p[1] != points[1] {

@@ -13,7 +13,10 @@ use rapier3d::prelude::{Ray, Vector};
 use super::block_caster::{BlockCaster, MIN_RANGE_M, rotate_z};
 use super::intensity::intensity;
 use super::scan::Return;
+use rapier3d::parry::shape::FeatureId;
+
 use crate::scene::{Glass, SurfaceKind};
+use crate::world::GLASS_FEATURE;
 
 /// Most surfaces a beam passes (foliage) before it is given up.
 const MAX_PASSES: usize = 3;
@@ -60,9 +63,16 @@ impl BlockCaster<'_> {
                     }
                 }
                 SurfaceKind::Shape => {
-                    let n = self.query.normal(id, &segment, toi).unwrap_or(-dir);
+                    let (n, feature) = self
+                        .query
+                        .normal(id, &segment, toi)
+                        .unwrap_or((-dir, FeatureId::Unknown));
                     cos = n.dot(dir).abs();
-                    glass |= surface.material.glass == Glass::Sides && n.z.abs() < 0.7;
+                    glass |= match surface.material.glass {
+                        Glass::Sides => n.z.abs() < 0.7,
+                        Glass::Windows => feature == GLASS_FEATURE,
+                        Glass::All | Glass::None => false,
+                    };
                 }
             }
             if surface.material.porous_m > 0.0 {

@@ -97,6 +97,20 @@ fn tail<T>(slots: &mut [T], start: usize) -> &mut [T] {
     &mut slots[start..]
 }
 
+/// The cast returns of a sweep, column by column, for a pass that moves them in place.
+pub(super) struct ReturnsView<'a> {
+    /// Each column's returns at the front of its `channels` slots.
+    pub points: &'a mut [[f32; 3]],
+    /// The ring of each slot.
+    pub rings: &'a [u16],
+    /// Returns per column.
+    pub counts: &'a [u32],
+    /// The range image (NaN: no return), column by column, highest channel first.
+    pub ranges: &'a [f32],
+    /// Slots per column.
+    pub channels: usize,
+}
+
 /// One slot per ray of a sweep, plus the number of returns of each column (scratch space).
 #[derive(Debug, Clone, Default)]
 pub(super) struct ScanSlots {
@@ -166,14 +180,14 @@ impl ScanSlots {
     }
 
     /// The points, rings and returns per column, for passes that rework the returns in place.
-    pub(super) fn returns_mut(&mut self) -> (&mut [[f32; 3]], &[u16], &[u32], &[f32], usize) {
-        (
-            &mut self.points,
-            &self.rings,
-            &self.returns_per_column,
-            &self.ranges,
-            self.channels,
-        )
+    pub(super) fn returns_mut(&mut self) -> ReturnsView<'_> {
+        ReturnsView {
+            points: &mut self.points,
+            rings: &self.rings,
+            counts: &self.returns_per_column,
+            ranges: &self.ranges,
+            channels: self.channels,
+        }
     }
 
     /// Gathers the returns in column order (each field by its own task, the tasks paired so two

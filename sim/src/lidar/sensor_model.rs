@@ -58,11 +58,6 @@ impl SensorModel {
         self.knobs.ideal()
     }
 
-    /// The knobs.
-    pub(crate) fn knobs(&self) -> &SensorKnobs {
-        &self.knobs
-    }
-
     /// Elevation error of channel `c` (highest first), radians.
     pub(crate) fn elevation_error_rad(&self, c: usize) -> f64 {
         self.elevation_errors_rad.get(c).copied().unwrap_or(0.0)

@@ -125,7 +125,6 @@ impl Lidar {
                 let ego = scene.ego().trajectory.state_at(t);
                 let states = EgoStates {
                     block: ego,
-                    reference: ego_ref,
                     block_estimate: self.pose_error.estimate(&ego, t),
                     reference_estimate: ego_ref_estimate,
                 };

@@ -10,7 +10,9 @@
 
 use rapier3d::parry::partitioning::Bvh;
 use rapier3d::parry::query::details::NormalConstraints;
-use rapier3d::parry::shape::{CompositeShape, CompositeShapeRef, Shape, TypedCompositeShape};
+use rapier3d::parry::shape::{
+    CompositeShape, CompositeShapeRef, FeatureId, Shape, TypedCompositeShape,
+};
 use rapier3d::prelude::{ColliderHandle, ColliderSet, Pose, Ray, Vector};
 
 use super::{Scene, SceneInstant, Surface};
@@ -76,14 +78,14 @@ impl InstantQuery<'_> {
     }
 
     /// Unit normal, world frame, of collider `id` (at the instant) where `ray` meets it near
-    /// `toi`, as parry's own ray cast on that one shape reports it.
-    pub fn normal(&self, id: u32, ray: &Ray, toi: f32) -> Option<Vector> {
+    /// `toi`, and the hit feature, as parry's own ray cast on that one shape reports them.
+    pub fn normal(&self, id: u32, ray: &Ray, toi: f32) -> Option<(Vector, FeatureId)> {
         let mut normal = None;
         self.map_typed_part_at(id, |pose, shape, _| {
             let pose = pose.copied().unwrap_or(Pose::IDENTITY);
             normal = shape
                 .cast_ray_and_get_normal(&pose, ray, toi + 0.01, true)
-                .map(|hit| hit.normal);
+                .map(|hit| (hit.normal, hit.feature));
         });
         normal
     }

@@ -28,6 +28,8 @@ pub enum Glass {
     All,
     /// Faces steeper than 45° (a car cabin: windows all round, a painted roof).
     Sides,
+    /// Where the shape reports a glass feature (a building's recessed windows).
+    Windows,
 }
 
 /// How a surface treats the beam beyond its reflectivity.
@@ -53,6 +55,12 @@ impl Material {
     /// A car cabin: glass sides, painted roof.
     pub const CABIN: Self = Self {
         glass: Glass::Sides,
+        porous_m: 0.0,
+    };
+
+    /// A building: glass in its window openings.
+    pub const WINDOWS: Self = Self {
+        glass: Glass::Windows,
         porous_m: 0.0,
     };
 

@@ -4,13 +4,21 @@
 use crate::motion::Trajectory;
 use crate::scenario::{ActorConfig, StructureConfig};
 
+/// A structure's footprint: centre, half extents, (cos, sin) of its yaw.
+#[derive(Debug, Clone, Copy)]
+struct Footprint {
+    centre: [f64; 2],
+    half: [f64; 2],
+    yaw_cos_sin: (f64, f64),
+}
+
 /// Free space bookkeeping for clutter placement.
 #[derive(Debug, Default)]
 pub(crate) struct Clearance {
     /// Segments swept by an actor's centre, with the actor's half width, metres.
     corridors: Vec<([f64; 2], [f64; 2], f64)>,
-    /// Footprints of the scenario's structures: centre, half extents, (cos, sin) of yaw.
-    footprints: Vec<([f64; 2], [f64; 2], (f64, f64))>,
+    /// Footprints of the scenario's structures.
+    footprints: Vec<Footprint>,
     /// Clutter placed so far: centre and radius.
     placed: Vec<([f64; 2], f64)>,
 }
@@ -45,8 +53,11 @@ impl Clearance {
             let size = s.size_m.unwrap_or([1.0; 3]);
             let (sin, cos) = s.yaw_deg.to_radians().sin_cos();
             for c in s.centres_m() {
-                out.footprints
-                    .push((c, [size[0] / 2.0, size[1] / 2.0], (cos, sin)));
+                out.footprints.push(Footprint {
+                    centre: c,
+                    half: [size[0] / 2.0, size[1] / 2.0],
+                    yaw_cos_sin: (cos, sin),
+                });
             }
         }
         out
@@ -65,7 +76,8 @@ impl Clearance {
             .corridors
             .iter()
             .all(|&(a, b, w)| segment_distance(p, a, b) > w + lateral_m + margin_m);
-        let structure_free = self.footprints.iter().all(|&(c, h, (cos, sin))| {
+        let structure_free = self.footprints.iter().all(|f| {
+            let (c, h, (cos, sin)) = (f.centre, f.half, f.yaw_cos_sin);
             let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
             let (u, v) = (cos * dx + sin * dy, -sin * dx + cos * dy);
             u.abs() > h[0] + radius_m + margin_m || v.abs() > h[1] + radius_m + margin_m

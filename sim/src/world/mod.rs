@@ -7,6 +7,7 @@
 mod body_shapes;
 mod clearance;
 mod facade;
+mod facade_shape;
 mod ground_field;
 mod ground_shape;
 mod noise;
@@ -21,11 +22,10 @@ use std::sync::Arc;
 use patchflow_dataset::SemanticClass;
 
 pub(crate) use body_shapes::body_parts;
+pub use facade_shape::GLASS_FEATURE;
 pub use ground_field::GroundField;
-pub(crate) use ground_field::GroundMaterial;
 pub use ground_shape::GroundShape;
 pub(crate) use piece::{Piece, PieceShape};
-pub use plane_hull::PlaneHull;
 
 use crate::motion::Trajectory;
 use crate::scenario::{ActorConfig, Scenario, StructureKind};

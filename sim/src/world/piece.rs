@@ -3,8 +3,9 @@
 //! reflectivity and material.
 
 use patchflow_dataset::SemanticClass;
-use rapier3d::prelude::{SharedShape, Vector};
+use rapier3d::prelude::SharedShape;
 
+use super::facade_shape::{FacadeGrid, FacadeShape};
 use super::plane_hull::PlaneHull;
 use crate::scene::Material;
 
@@ -21,8 +22,8 @@ pub(crate) enum PieceShape {
     Column(f32, f32),
     /// The convex hull of these points.
     Hull(Vec<[f32; 3]>),
-    /// A triangle mesh (vertices, triangles), e.g. from an OBJ file.
-    Mesh(Vec<[f32; 3]>, Vec<[u32; 3]>),
+    /// A building with recessed windows: half extents and façade grid.
+    Facade([f32; 3], FacadeGrid),
 }
 
 /// A part of the world.
@@ -77,7 +78,7 @@ impl Piece {
         matches!(self.shape, PieceShape::Cuboid(_))
     }
 
-    /// The parry shape, or `None` for a degenerate hull or mesh.
+    /// The parry shape, or `None` for a degenerate hull.
     pub(crate) fn shared_shape(&self) -> Option<SharedShape> {
         match &self.shape {
             PieceShape::Cuboid(h) => Some(SharedShape::cuboid(h[0], h[1], h[2])),
@@ -85,12 +86,8 @@ impl Piece {
             PieceShape::Cylinder(h, r) => PlaneHull::prism(1, *h, *r).map(SharedShape::new),
             PieceShape::Column(h, r) => PlaneHull::prism(2, *h, *r).map(SharedShape::new),
             PieceShape::Hull(points) => PlaneHull::from_points(points).map(SharedShape::new),
-            PieceShape::Mesh(vertices, triangles) => {
-                let vertices: Vec<Vector> = vertices
-                    .iter()
-                    .map(|p| Vector::new(p[0], p[1], p[2]))
-                    .collect();
-                SharedShape::trimesh(vertices, triangles.clone()).ok()
+            PieceShape::Facade(half, grid) => {
+                Some(SharedShape::new(FacadeShape::new(*half, *grid)))
             }
         }
     }
