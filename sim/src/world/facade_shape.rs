@@ -53,22 +53,23 @@ impl FacadeShape {
         }
     }
 
-    /// True if face coordinate `s` (along the face, from its start) and height `z` (from the
-    /// foot) lie in a window opening of a face `length` long.
-    fn in_opening(&self, s: f32, z: f32, length: f32) -> bool {
+    /// The window opening (bay, storey) holding face coordinate `s` (along the face, from its
+    /// start) and height `z` (from the foot) on a face `length` long, if any.
+    fn opening(&self, s: f32, z: f32, length: f32) -> Option<(i32, i32)> {
         let g = &self.grid;
         let height = 2.0 * self.half.z;
         if z < g.plinth_m.max(g.sill_m) || z > height - g.parapet_m || s < 0.0 || s > length {
-            return false;
+            return None;
         }
         let bays = (length / g.bay_m).round().max(1.0);
         let bay = length / bays;
-        let in_bay = s - (s / bay).floor() * bay;
-        let in_floor = z - (z / g.floor_m).floor() * g.floor_m;
-        in_bay > g.pier_m / 2.0
+        let (k, f) = ((s / bay).floor(), (z / g.floor_m).floor());
+        let (in_bay, in_floor) = (s - k * bay, z - f * g.floor_m);
+        let inside = in_bay > g.pier_m / 2.0
             && in_bay < bay - g.pier_m / 2.0
             && in_floor > g.sill_m
-            && in_floor < g.floor_m - g.lintel_m
+            && in_floor < g.floor_m - g.lintel_m;
+        inside.then_some((k as i32, f as i32))
     }
 
     /// Slab clip of the ray with a box of half extents `h`: entry, exit, entry axis.
@@ -126,9 +127,9 @@ impl RayCast for FacadeShape {
             (p[along] + self.half[along], p.z + self.half.z)
         };
         let (s0, z0) = face(t0);
-        if !self.in_opening(s0, z0, length) {
+        let Some(opening) = self.opening(s0, z0, length) else {
             return Some(wall);
-        }
+        };
         // Through the opening to the glass, set back by the recess.
         let mut inner = self.half;
         inner[axis] -= self.grid.recess_m;
@@ -136,7 +137,7 @@ impl RayCast for FacadeShape {
             return Some(wall);
         };
         let (s1, z1) = face(g0);
-        if g_axis == axis && g0 <= max_toi && self.in_opening(s1, z1, length) {
+        if g_axis == axis && g0 <= max_toi && self.opening(s1, z1, length) == Some(opening) {
             return Some(RayIntersection::new(
                 g0,
                 self.face_normal(ray, axis),
@@ -149,7 +150,7 @@ impl RayCast for FacadeShape {
         for k in 1..=steps {
             let t = t0 + (g0.max(t0) - t0) * k as f32 / steps as f32;
             let (s, z) = face(t);
-            if !self.in_opening(s, z, length) {
+            if self.opening(s, z, length) != Some(opening) {
                 t_edge = t;
                 break;
             }
@@ -256,15 +257,16 @@ mod tests {
 
     #[test]
     fn a_grazing_ray_into_an_opening_meets_its_reveal() {
-        let b = building();
-        let dir = Vector::new(1.0, 0.05, 0.0).normalize();
-        let hit = b.cast_local_ray_and_get_normal(
-            &Ray::new(Vector::new(1.0 - 10.0 - 10.0, -6.5, -3.0), dir),
-            100.0,
-            true,
-        );
-        if let Some(hit) = hit {
-            assert!(hit.time_of_impact > 0.0);
-        }
+        // Enters the face y = −6 at x = −8.5 (in the first opening, x from −9.7 to −7.44) and
+        // would reach the glass at x = −6.0, past the opening's edge: it meets the reveal there.
+        let dir = Vector::new(1.0, 0.1, 0.0).normalize();
+        let ray = Ray::new(Vector::new(-13.5, -6.5, -3.0), dir);
+        let hit = building()
+            .cast_local_ray_and_get_normal(&ray, 100.0, true)
+            .unwrap();
+        assert_eq!(hit.feature, WALL_FEATURE);
+        assert!((hit.normal - Vector::new(-1.0, 0.0, 0.0)).length() < 1e-6);
+        let x = ray.point_at(hit.time_of_impact).x;
+        assert!((-7.8..=-7.0).contains(&x), "reveal met at x = {x}");
     }
 }

@@ -185,3 +185,7 @@ fn lidar_reach(scenario: &Scenario) -> ([f64; 2], [f64; 2]) {
     }
     (min, max)
 }
+
+#[cfg(test)]
+#[path = "world_tests.rs"]
+mod tests;
