@@ -9,6 +9,7 @@ mod clearance;
 mod facade;
 mod facade_shape;
 mod ground_field;
+mod ground_recipe;
 mod ground_shape;
 mod noise;
 mod piece;
