@@ -2,7 +2,8 @@
 
 use super::*;
 use crate::Scenario;
-use crate::scenario::Realism;
+use crate::scenario::{Realism, WorldKnobs};
+use crate::world::street_map::StreetMap;
 
 const STREET: &str =
     "sweeps = 1\n[ego]\npath_m = [[0.0, -1.75], [100.0, -1.75]]\nspeed_mps = 5.0\n";
