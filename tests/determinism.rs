@@ -21,6 +21,7 @@ fn generate(out: &Path, seed: u64) {
         seed,
         shard: Shard::ALL,
         realism: None,
+        overwrite: false,
     };
     generate_dataset(&[tiny()], &options, &|_| {}).unwrap();
 }

@@ -52,6 +52,7 @@ fn generate(name: &str, text: &str) -> Vec<(String, u64)> {
         seed: 7,
         shard: Shard::ALL,
         realism: None,
+        overwrite: false,
     };
     generate_dataset(&[ScenarioSource::File(file)], &options, &|_| {}).unwrap();
     digests(&dir.path().join("data/sequences").join(name))

@@ -21,6 +21,7 @@ fn generate(dir: &Path, text: &str, rung: Option<Realism>) -> Dataset {
         seed: 3,
         shard: Shard::ALL,
         realism: rung,
+        overwrite: false,
     };
     generate_dataset(&[ScenarioSource::File(file)], &options, &|_| {}).unwrap();
     Dataset::open(&dir.join("data")).unwrap()
@@ -108,4 +109,42 @@ fn the_same_seed_and_rung_give_identical_bytes_on_the_harsh_rung() {
         let read = |dir: &Path| std::fs::read(dir.join("data/sequences/tiny").join(file)).unwrap();
         assert_eq!(read(a.path()), read(b.path()), "{file}");
     }
+}
+
+#[test]
+fn the_same_scenario_on_another_rung_is_refused_without_overwrite_and_regenerated_with_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "sweeps = 1\n[lidar]\nchannels = 8\nazimuth_steps = 90\nblocks = 9\n[ego]\npath_m = [[0.0, 0.0], [40.0, 0.0]]\nspeed_mps = 2.0\n";
+    let file = dir.path().join("rungs.toml");
+    std::fs::write(&file, text).unwrap();
+    let run = |rung: Option<Realism>, overwrite: bool| {
+        let options = GenerateOptions {
+            out: dir.path().join("data"),
+            seed: 3,
+            shard: Shard::ALL,
+            realism: rung,
+            overwrite,
+        };
+        generate_dataset(&[ScenarioSource::File(file.clone())], &options, &|_| {})
+    };
+    run(None, false).unwrap();
+    // The resolved scenario (whose SHA-256 the marker records) names its rung.
+    let stored = dir.path().join("data/sequences/rungs/scenario.toml");
+    assert!(
+        std::fs::read_to_string(&stored)
+            .unwrap()
+            .contains("realism = \"urban\"")
+    );
+    let err = run(Some(Realism::Ideal), false).unwrap_err().to_string();
+    assert!(
+        err.contains("refusing") && err.contains("--overwrite") && err.contains("rungs"),
+        "{err}"
+    );
+    run(Some(Realism::Urban), false).unwrap();
+    run(Some(Realism::Ideal), true).unwrap();
+    assert!(
+        std::fs::read_to_string(&stored)
+            .unwrap()
+            .contains("realism = \"ideal\"")
+    );
 }

@@ -2,11 +2,15 @@
 
 use std::path::{Path, PathBuf};
 
-use patchflow_dataset::{Manifest, SequenceWriter};
+use patchflow_dataset::{FolderLock, Manifest, SequenceWriter};
 
 use crate::error::{Result, SimError};
-use crate::scenario::{EMBEDDED_SCENARIOS, Realism, Scenario};
+use crate::provenance::{Provenance, provenance};
+use crate::scenario::{EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes, sweep_memory_bytes};
 use crate::simulation::Simulation;
+
+/// Program and version recorded in every marker; a sequence written by another is not resumed.
+const GENERATOR: &str = concat!("patchflow-sim ", env!("CARGO_PKG_VERSION"));
 
 /// Where a scenario comes from.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -90,11 +94,19 @@ pub struct GenerateOptions {
     pub shard: Shard,
     /// Realism rung replacing every scenario's own (`generate --realism NAME`); `None` keeps theirs.
     pub realism: Option<Realism>,
+    /// Delete and regenerate the sequences this run covers, instead of refusing to touch those
+    /// another request (another seed, scenario text or version) wrote.
+    pub overwrite: bool,
 }
 
 /// What a running generation reports, for progress display.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Progress {
+    /// Another run is writing this sequence; this one waits for it to finish.
+    Waiting {
+        /// Sequence name.
+        name: String,
+    },
     /// A sequence starts: its name and sweep count.
     SequenceStarted {
         /// Sequence name.
@@ -120,9 +132,11 @@ pub enum Progress {
     },
 }
 
-/// Generates the dataset: validates every scenario first (errors name the file and line), sorts
-/// them by name, takes this shard's share, skips finished sequences and finished sweeps of an
-/// unfinished one, then rewrites `manifest.json` from the completion markers.
+/// Generates the dataset: validates every scenario first (errors name the file and line), checks
+/// that a sweep fits in the machine's memory, sorts them by name, takes this shard's share,
+/// skips finished sequences and finished sweeps of an unfinished one (of the same request;
+/// another request's sequence is an error unless `overwrite`), then rewrites `manifest.json`
+/// from the completion markers.
 pub fn generate_dataset(
     sources: &[ScenarioSource],
     options: &GenerateOptions,
@@ -139,49 +153,102 @@ pub fn generate_dataset(
             w[0].name
         )));
     }
+    for scenario in &scenarios {
+        check_memory(scenario)?;
+    }
     std::fs::create_dir_all(&options.out).map_err(|source| SimError::Io {
         path: options.out.clone(),
         source,
     })?;
     for (i, scenario) in scenarios.iter().enumerate() {
         if options.shard.takes(i) {
-            generate_sequence(scenario, &options.out, options.seed, progress)?;
+            let seed = options.seed;
+            generate_sequence(scenario, &options.out, seed, options.overwrite, progress)?;
         }
     }
+    // Shards finishing at once rewrite the manifest one at a time.
+    let _lock = FolderLock::acquire(&options.out, &|| {})?;
     let manifest = Manifest::scan(&options.out)?;
     manifest.write(&options.out)?;
     Ok(manifest)
 }
 
-/// Generates (or completes) one sequence.
+/// Refuses a scenario whose sweep needs more memory than the machine has available.
+fn check_memory(scenario: &Scenario) -> Result<()> {
+    let needed = sweep_memory_bytes(scenario);
+    match available_memory_bytes() {
+        Some(available) if needed > available => Err(SimError::Options(format!(
+            "scenario {:?}: one sweep of {} × {} rays and the world it is cast into need about {} of memory, but the machine has {} available",
+            scenario.name,
+            scenario.lidar.channels,
+            scenario.lidar.azimuth_steps,
+            gigabytes(needed),
+            gigabytes(available)
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Memory the machine has available (Linux `MemAvailable`); `None` where it cannot be read.
+fn available_memory_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib.saturating_mul(1024))
+}
+
+/// Generates (or completes) one sequence, holding its folder's lock: a finished sequence of the
+/// same request is skipped, an unfinished one resumed; one of another request is an error naming
+/// the difference, or with `overwrite` deleted and generated anew.
 pub fn generate_sequence(
     scenario: &Scenario,
     root: &Path,
     seed: u64,
+    overwrite: bool,
     progress: &dyn Fn(Progress),
 ) -> Result<()> {
     let name = scenario.name.clone();
-    if SequenceWriter::is_complete(root, &name) {
-        progress(Progress::SequenceDone {
-            name,
-            skipped: true,
-        });
-        return Ok(());
+    let dir = root.join("sequences").join(&name);
+    let on_wait = || progress(Progress::Waiting { name: name.clone() });
+    let lock = FolderLock::acquire(&dir, &on_wait)?;
+    let text = format!(
+        "# resolved scenario {name}, generated with seed {seed}\n{}",
+        scenario.to_toml()
+    );
+    match (provenance(&dir, &text, seed, GENERATOR), overwrite) {
+        (_, true) => lock.clear()?,
+        (Provenance::Same { finished: true }, false) => {
+            progress(Progress::SequenceDone {
+                name,
+                skipped: true,
+            });
+            return Ok(());
+        }
+        (Provenance::Fresh | Provenance::Same { finished: false }, false) => {}
+        (Provenance::Different(reason), false) => {
+            return Err(SimError::Options(format!(
+                "{}: refusing to mix this run into sequence {name:?}: {reason}; pass --overwrite to regenerate it, or write to another folder",
+                dir.display()
+            )));
+        }
     }
     progress(Progress::SequenceStarted {
         name: name.clone(),
         sweeps: scenario.sweeps,
     });
     let writer = SequenceWriter::open(root, &name)?;
-    let resolved = scenario.to_toml();
-    writer.write_scenario(&format!(
-        "# resolved scenario {name}, generated with seed {seed}\n{resolved}"
-    ))?;
+    writer.write_scenario(&text)?;
     let mut sim = Simulation::new(scenario, seed)?;
     for index in 0..scenario.sweeps {
         let mut points = 0;
         if !writer.has_sweep(index) {
             let sweep = sim.sweep(index);
+            if sweep.is_empty() {
+                return Err(SimError::Options(format!(
+                    "{}: sweep {index} has no points: the lidar hit nothing (is the ego off the ground, or the sensor inside a structure?)",
+                    dir.display()
+                )));
+            }
             points = sweep.len();
             writer.write_sweep(&sweep)?;
         }
@@ -201,15 +268,15 @@ pub fn generate_sequence(
     let stamps: Vec<f64> = (0..scenario.sweeps)
         .map(|i| sim.stamp_secs(i) - scenario.start_secs)
         .collect();
-    let generator = concat!("patchflow-sim ", env!("CARGO_PKG_VERSION"));
     writer.finish(
         &name,
         seed,
         scenario.lidar.rate_hz,
         &poses,
         &stamps,
-        generator,
+        GENERATOR,
     )?;
+    drop(lock);
     progress(Progress::SequenceDone {
         name,
         skipped: false,

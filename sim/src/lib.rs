@@ -13,6 +13,7 @@ mod generate;
 mod lidar;
 mod motion;
 mod pose_error;
+mod provenance;
 mod scenario;
 mod scene;
 mod seed;

@@ -31,8 +31,10 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Builds the scene of a validated scenario; random traffic is drawn from `seed`.
+    /// Builds the scene of a scenario (checked again here, for scenarios built in code); random
+    /// traffic is drawn from `seed`.
     pub fn new(scenario: &Scenario, seed: u64) -> Result<Self> {
+        scenario.validate()?;
         let mut actors: Vec<ActorConfig> = scenario.actors.clone();
         let horizon_secs = scenario.sweep_start_secs(scenario.sweeps) + 1.0;
         actors.extend(random_traffic(

@@ -22,6 +22,7 @@ pub fn generate_scene(
         seed,
         shard: patchflow_sim::Shard::ALL,
         realism: None,
+        overwrite: false,
     };
     patchflow_sim::generate_dataset(
         &[patchflow_sim::ScenarioSource::File(scenario)],

@@ -84,6 +84,25 @@ impl From<FeatureRecord> for FeatureParams {
     }
 }
 
+/// Largest model file read: 512 MiB, above three full GPs at their sample limit.
+const MAX_MODEL_BYTES: u64 = 512 << 20;
+
+/// A GP's JSON without its fit's wall-clock seconds: identical runs give identical files.
+fn without_timing(mut gp: Value) -> Value {
+    if let Some(report) = gp.get_mut("fit_report").and_then(Value::as_object_mut) {
+        report.remove("seconds");
+    }
+    gp
+}
+
+/// The inverse of [`without_timing`] for GP code that still expects the field (0 s).
+fn with_timing(mut gp: Value) -> Value {
+    if let Some(report) = gp.get_mut("fit_report").and_then(Value::as_object_mut) {
+        report.entry("seconds").or_insert(Value::from(0.0));
+    }
+    gp
+}
+
 fn feature_name(kind: FeatureKind) -> &'static str {
     match kind {
         FeatureKind::Patch => "patch",
@@ -102,9 +121,9 @@ impl MotionEstimator {
             feature: feature_name(self.feature).to_owned(),
             features: FeatureRecord::from(&self.features),
             training: self.training.clone(),
-            heading_sin: self.heading_sin.to_json_value()?,
-            heading_cos: self.heading_cos.to_json_value()?,
-            speed: self.speed.to_json_value()?,
+            heading_sin: without_timing(self.heading_sin.to_json_value()?),
+            heading_cos: without_timing(self.heading_cos.to_json_value()?),
+            speed: without_timing(self.speed.to_json_value()?),
         };
         let model_err = |reason: String| LearnError::Model {
             path: path.to_path_buf(),
@@ -130,10 +149,7 @@ impl MotionEstimator {
             path: path.to_path_buf(),
             reason,
         };
-        let bytes = std::fs::read(path).map_err(|source| LearnError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let bytes = patchflow_dataset::read_limited(path, MAX_MODEL_BYTES)?;
         let value: Value = serde_json::from_slice(&bytes)
             .map_err(|e| model_err(format!("not valid JSON: {e}")))?;
         let format = value.get("format").and_then(Value::as_str).unwrap_or("");
@@ -160,22 +176,44 @@ impl MotionEstimator {
         let estimator = Self {
             gp: file.gp,
             feature,
-            heading_sin: GpModel::from_json_value(file.heading_sin, path)?,
-            heading_cos: GpModel::from_json_value(file.heading_cos, path)?,
-            speed: GpModel::from_json_value(file.speed, path)?,
+            heading_sin: GpModel::from_json_value(with_timing(file.heading_sin), path)?,
+            heading_cos: GpModel::from_json_value(with_timing(file.heading_cos), path)?,
+            speed: GpModel::from_json_value(with_timing(file.speed), path)?,
             features,
             training: file.training,
         };
-        let d = feature.names().len();
-        for gp in estimator.gps() {
-            if gp.input_names().len() != d {
-                return Err(model_err(format!(
-                    "a GP reads {} inputs, the {} feature has {d}",
+        estimator.check_content().map_err(model_err)?;
+        Ok(estimator)
+    }
+
+    /// The labels written in the file must agree with what the GPs are: `gp` with each GP's
+    /// kind (so a file cannot be edited to report one method's results under another's name),
+    /// `feature` with their input columns, and the targets in their order.
+    fn check_content(&self) -> std::result::Result<(), String> {
+        let names = self.feature.names();
+        for (gp, target) in self.gps().into_iter().zip(["sin_rel", "cos_rel", "speed"]) {
+            if gp.kind() != self.gp {
+                return Err(format!(
+                    "the file says gp {}, but its {target} GP is {}",
+                    self.gp,
+                    gp.kind()
+                ));
+            }
+            if gp.input_names() != names.as_slice() {
+                return Err(format!(
+                    "the {target} GP reads {} inputs that are not the {} feature's {} columns",
                     gp.input_names().len(),
-                    file.feature
-                )));
+                    feature_name(self.feature),
+                    names.len()
+                ));
+            }
+            if gp.target_name() != target {
+                return Err(format!(
+                    "expected the {target} GP, found one predicting {:?}",
+                    gp.target_name()
+                ));
             }
         }
-        Ok(estimator)
+        Ok(())
     }
 }

@@ -63,7 +63,9 @@ pub struct TrainingRecord {
     pub pseudo_inputs: usize,
     /// Seed of sampling and initialisation.
     pub seed: u64,
-    /// Wall time of the whole training, seconds.
+    /// Wall time of the whole training, seconds. Not written to the model file, so that identical
+    /// runs give byte-identical files; 0 in a loaded model.
+    #[serde(skip)]
     pub seconds: f64,
 }
 

@@ -28,7 +28,7 @@ pub use csv::{Alignment, META_COLUMNS};
 pub use difference_map::MapPair;
 pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
 pub use grid::{GridMap, GridWindow};
-pub use params::{FeatureParams, GaborParams};
+pub use params::{FeatureParams, GaborParams, MAX_MAP_SIDE_CELLS};
 pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
 pub use render::{render_png, write_png};
 pub use samples::{Sample, SampleSet};

@@ -60,7 +60,20 @@ impl Default for FeatureParams {
     }
 }
 
+/// Most cells along a side of the map window: 2,000 (25 times the thesis' 800 × 800 cells in
+/// area) keep the maps of one sweep pair near 0.26 GB.
+pub const MAX_MAP_SIDE_CELLS: f64 = 2000.0;
+
+/// Memory per map cell while a sweep pair's maps are built, bytes: hits and misses of both
+/// sweeps (f32), reflection and difference values (f64), and the spread's scratch rows, rounded up.
+const MAP_BYTES_PER_CELL: f64 = 64.0;
+
 impl FeatureParams {
+    /// Cells along a side of the map window.
+    pub fn map_side_cells(&self) -> f64 {
+        (2.0 * self.half_extent_m / self.cell_m).ceil()
+    }
+
     /// The defaults with another map prior (the thesis compares 0.5 and 0.01).
     pub fn with_prior(prior: f64) -> Self {
         Self {
@@ -90,11 +103,28 @@ impl FeatureParams {
         if self.slice_min_m >= self.slice_max_m {
             return bad("slice_min_m must be below slice_max_m");
         }
-        if self.cell_m <= 0.0 || self.half_extent_m < self.cell_m {
-            return bad("cell_m must be positive and half_extent_m at least one cell");
+        if !(0.01..=2.0).contains(&self.cell_m) {
+            return bad(&format!(
+                "cell_m = {} m is outside 0.01 to 2 m (the thesis uses 0.10 m)",
+                self.cell_m
+            ));
         }
-        if self.half_extent_m / self.cell_m > 20_000.0 {
-            return bad("the map window is larger than 40,000 cells a side");
+        if !(1.0..=500.0).contains(&self.half_extent_m) {
+            return bad(&format!(
+                "half_extent_m = {} m is outside 1 to 500 m (maps cover at least 40 m around the ego)",
+                self.half_extent_m
+            ));
+        }
+        let side = self.map_side_cells();
+        if side > MAX_MAP_SIDE_CELLS {
+            let gb = |cells: f64| cells * MAP_BYTES_PER_CELL / 1e9;
+            return bad(&format!(
+                "cell_m = {} m and half_extent_m = {} m give maps of {side:.0} × {side:.0} cells, about {:.1} GB per sweep pair; at most {MAX_MAP_SIDE_CELLS} cells a side ({:.2} GB)",
+                self.cell_m,
+                self.half_extent_m,
+                gb(side * side),
+                gb(MAX_MAP_SIDE_CELLS * MAX_MAP_SIDE_CELLS)
+            ));
         }
         if !(0.0..=1.0).contains(&self.prior) {
             return bad("prior must lie in [0, 1]");
@@ -181,6 +211,19 @@ mod tests {
     fn a_prior_outside_the_unit_interval_is_rejected() {
         assert!(FeatureParams::with_prior(1.5).validate().is_err());
         FeatureParams::with_prior(0.01).validate().unwrap();
+    }
+
+    #[test]
+    fn a_map_too_fine_for_memory_is_refused_with_the_estimate() {
+        let p = FeatureParams {
+            cell_m: 0.011,
+            ..FeatureParams::default()
+        };
+        let err = p.validate().unwrap_err().to_string();
+        assert!(
+            err.contains("7273 × 7273 cells") && err.contains("GB"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -12,22 +12,28 @@
 //! ```
 
 mod error;
+mod folder_lock;
+mod limits;
 mod manifest;
 mod object;
 mod pose;
 mod reader;
+mod record_files;
 mod semantic;
 mod sweep;
+mod sweep_checks;
 mod writer;
 
 pub use error::{DatasetError, Result};
+pub use folder_lock::{FolderLock, LOCK_FILE};
+pub use limits::{MAX_POINTS_PER_SWEEP, MAX_SWEEPS, read_limited};
 pub use manifest::{FORMAT_NAME, FORMAT_VERSION, Manifest, SequenceInfo};
 pub use object::{ActorClass, ObjectTruth};
 pub use pose::{format_kitti_pose, parse_kitti_pose};
 pub use reader::{Dataset, SequenceReader};
 pub use semantic::{PointLabel, SemanticClass};
 pub use sweep::Sweep;
-pub use writer::{SequenceWriter, write_atomic};
+pub use writer::{SequenceWriter, sha256_hex, write_atomic};
 
 /// Rigid transform type used for every pose (`world_from_sensor` and friends), f64 in the world frame.
 pub type Pose = nalgebra::Isometry3<f64>;

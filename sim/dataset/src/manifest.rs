@@ -8,6 +8,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::limits::{MAX_JSON_BYTES, read_limited};
 use crate::writer::write_atomic;
 use crate::{DatasetError, Result};
 
@@ -27,6 +28,10 @@ pub struct SequenceInfo {
     pub name: String,
     /// Name of the scenario it was generated from.
     pub scenario: String,
+    /// SHA-256 of the sequence's `scenario.toml` (the resolved scenario and the seed): what
+    /// produced the data. Empty in markers written before it was recorded.
+    #[serde(default)]
+    pub scenario_sha256: String,
     /// Seed of every random stream of the run.
     pub seed: u64,
     /// Number of sweeps.
@@ -62,7 +67,12 @@ impl Manifest {
                 let entry = entry.map_err(|e| DatasetError::io(&seq_root, e))?;
                 let marker = entry.path().join("sequence.json");
                 if marker.is_file() {
-                    sequences.push(read_marker(&marker)?);
+                    let info = read_marker(&marker)?;
+                    if entry.file_name().to_str() != Some(info.name.as_str()) {
+                        let reason = format!("names sequence {:?}, not its folder", info.name);
+                        return Err(DatasetError::corrupt(&marker, reason));
+                    }
+                    sequences.push(info);
                 }
             }
         }
@@ -77,9 +87,9 @@ impl Manifest {
     /// Reads and checks `root/manifest.json`.
     pub fn read(root: &Path) -> Result<Self> {
         let path = root.join("manifest.json");
-        let text = std::fs::read_to_string(&path).map_err(|e| DatasetError::io(&path, e))?;
-        let manifest: Self =
-            serde_json::from_str(&text).map_err(|e| DatasetError::corrupt(&path, e.to_string()))?;
+        let bytes = read_limited(&path, MAX_JSON_BYTES)?;
+        let manifest: Self = serde_json::from_slice(&bytes)
+            .map_err(|e| DatasetError::corrupt(&path, e.to_string()))?;
         check_format(&path, &manifest.format, manifest.version)?;
         Ok(manifest)
     }
@@ -92,9 +102,9 @@ impl Manifest {
 
 /// Reads and checks one `sequence.json` marker.
 pub(crate) fn read_marker(path: &Path) -> Result<SequenceInfo> {
-    let text = std::fs::read_to_string(path).map_err(|e| DatasetError::io(path, e))?;
+    let bytes = read_limited(path, MAX_JSON_BYTES)?;
     let info: SequenceInfo =
-        serde_json::from_str(&text).map_err(|e| DatasetError::corrupt(path, e.to_string()))?;
+        serde_json::from_slice(&bytes).map_err(|e| DatasetError::corrupt(path, e.to_string()))?;
     check_format(path, &info.format, info.version)?;
     Ok(info)
 }

@@ -68,3 +68,35 @@ pub struct ObjectTruth {
     /// Number of lidar points on this actor in this sweep.
     pub point_count: u32,
 }
+
+impl ObjectTruth {
+    /// What is wrong with this record, if anything: an id of 0 (the static world's instance) or
+    /// a value that is not finite.
+    pub fn problem(&self) -> Option<String> {
+        if self.id == 0 {
+            return Some(format!(
+                "object {:?} has id 0, which is the static world",
+                self.name
+            ));
+        }
+        let values = self
+            .centre_m
+            .iter()
+            .chain(&self.size_m)
+            .chain(&self.velocity_mps)
+            .chain([
+                &self.yaw_rad,
+                &self.speed_mps,
+                &self.heading_rad,
+                &self.yaw_rate_radps,
+            ]);
+        let finite = values.clone().all(|v| v.is_finite());
+        let sized = self.size_m.iter().all(|v| *v > 0.0) && self.speed_mps >= 0.0;
+        (!finite || !sized).then(|| {
+            format!(
+                "object {} ({:?}) has a value that is not finite, a size that is not positive or a negative speed",
+                self.id, self.name
+            )
+        })
+    }
+}

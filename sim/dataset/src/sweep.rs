@@ -1,6 +1,6 @@
 //! One lidar sweep: points in the sensor frame with per-point labels, flow and timing, plus object truth.
 
-use crate::{ObjectTruth, PointLabel, Pose};
+use crate::{MAX_POINTS_PER_SWEEP, ObjectTruth, PointLabel, Pose};
 
 /// One labelled sweep as stored on disk (SPEC §4).
 ///
@@ -75,6 +75,42 @@ impl Sweep {
     pub fn estimated_pose(&self) -> Pose {
         self.estimated_world_from_sensor
             .unwrap_or(self.world_from_sensor)
+    }
+
+    /// Checks that the sweep fits the format's limits and every value is finite (a NaN or an
+    /// infinity on disk is a silently wrong result for every reader); returns the first problem.
+    pub fn check_values(&self) -> Result<(), String> {
+        if self.len() > MAX_POINTS_PER_SWEEP {
+            return Err(format!(
+                "{} points; a sweep holds at most {MAX_POINTS_PER_SWEEP}",
+                self.len()
+            ));
+        }
+        fn first_bad(name: &str, values: impl Iterator<Item = f32>, per: usize) -> Option<String> {
+            let mut values = values;
+            values
+                .position(|v| !v.is_finite())
+                .map(|k| format!("{name} of point {} is not finite", k / per))
+        }
+        let problem = first_bad(
+            "a coordinate",
+            self.points_in_sensor.iter().flatten().copied(),
+            3,
+        )
+        .or_else(|| first_bad("the intensity", self.intensities.iter().copied(), 1))
+        .or_else(|| {
+            first_bad(
+                "the flow",
+                self.flow_in_world_mps.iter().flatten().copied(),
+                3,
+            )
+        })
+        .or_else(|| first_bad("the time", self.time_in_sweep_secs.iter().copied(), 1))
+        .or_else(|| self.objects.iter().find_map(ObjectTruth::problem));
+        match problem {
+            Some(reason) => Err(reason),
+            None => Ok(()),
+        }
     }
 
     /// Point `i` transformed into the world frame.

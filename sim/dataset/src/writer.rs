@@ -3,7 +3,11 @@
 //! interrupted run leaves no half-written file and can be resumed sweep by sweep.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
+use sha2::{Digest, Sha256};
+
+use crate::limits::{MAX_TEXT_BYTES, read_limited};
 use crate::manifest::{read_marker, write_json};
 use crate::pose::format_kitti_pose;
 use crate::{DatasetError, FORMAT_NAME, FORMAT_VERSION, Pose, Result, SequenceInfo, Sweep};
@@ -24,16 +28,26 @@ P3: 7.188560e+02 0.000000e+00 6.071928e+02 -3.372877e+02 0.000000e+00 7.188560e+
 Tr: 1.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 1.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 1.000000e+00 0.000000e+00
 ";
 
-/// Writes `f` to `path` atomically: a temporary file beside it, then a rename.
+/// Writes `bytes` to `path` atomically: a temporary file beside it, then a rename.
 ///
 /// A crash leaves either the old file, the new file, or a stray `*.tmp`; never a truncated file
-/// under the real name.
+/// under the real name. The temporary name is unique to this process and call, so two writers
+/// never share one; on an error it is removed, and [`crate::FolderLock::acquire`] removes any a
+/// crashed run left behind.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
     let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
+    let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
+    tmp.push(format!(".{}-{unique}.tmp", std::process::id()));
     let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes).map_err(|e| DatasetError::io(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| DatasetError::io(path, e))
+    let written = std::fs::write(&tmp, bytes)
+        .map_err(|e| DatasetError::io(&tmp, e))
+        .and_then(|()| std::fs::rename(&tmp, path).map_err(|e| DatasetError::io(path, e)));
+    if written.is_err() {
+        // Best effort: the error being reported is the write's, not this clean-up's.
+        let _ = std::fs::remove_file(&tmp);
+    }
+    written
 }
 
 /// Writer for `DIR/sequences/<name>/`.
@@ -79,6 +93,7 @@ impl SequenceWriter {
         let objects_path = self.sweep_path("objects", sweep.index, "json");
         sweep
             .check_lengths()
+            .and_then(|()| sweep.check_values())
             .map_err(|reason| DatasetError::Invalid {
                 path: objects_path.clone(),
                 reason,
@@ -126,8 +141,9 @@ impl SequenceWriter {
         write_atomic(&self.dir.join(ESTIMATED_POSES), text.as_bytes())
     }
 
-    /// Writes `poses.txt`, `times.txt`, `calib.txt`, then the `sequence.json` marker. `poses[i]`
-    /// and `stamps_secs[i]` belong to sweep `i`; every sweep must have been written.
+    /// Writes `poses.txt`, `times.txt`, `calib.txt`, then the `sequence.json` marker, which
+    /// records the SHA-256 of `scenario.toml` (written before, see [`Self::write_scenario`]).
+    /// `poses[i]` and `stamps_secs[i]` belong to sweep `i`; every sweep must have been written.
     pub fn finish(
         self,
         scenario: &str,
@@ -168,6 +184,12 @@ impl SequenceWriter {
         write_atomic(&self.dir.join("poses.txt"), poses_txt.as_bytes())?;
         write_atomic(&self.dir.join("times.txt"), times_txt.as_bytes())?;
         write_atomic(&self.dir.join("calib.txt"), CALIB_TXT.as_bytes())?;
+        // A sequence written by a library user without a scenario records no hash.
+        let scenario_path = self.dir.join("scenario.toml");
+        let scenario_sha256 = match scenario_path.is_file() {
+            true => sha256_hex(&read_limited(&scenario_path, MAX_TEXT_BYTES)?),
+            false => String::new(),
+        };
         let name = self
             .dir
             .file_name()
@@ -178,6 +200,7 @@ impl SequenceWriter {
             version: FORMAT_VERSION,
             name,
             scenario: scenario.to_owned(),
+            scenario_sha256,
             seed,
             sweeps: poses.len() as u32,
             points,
@@ -193,7 +216,39 @@ impl SequenceWriter {
     }
 }
 
+/// SHA-256 of `bytes` as 64 lower-case hex digits (what `sha256sum` prints).
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
 /// `dir/folder/NNNNNN.ext`.
 pub(crate) fn sweep_path(dir: &Path, folder: &str, index: u32, ext: &str) -> PathBuf {
     dir.join(folder).join(format!("{index:06}.{ext}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_atomic_write_leaves_no_temporary_file() {
+        let dir = tempfile::tempdir().unwrap();
+        // Renaming a file onto a folder fails after the temporary file was written.
+        let target = dir.path().join("000000.bin");
+        std::fs::create_dir(&target).unwrap();
+        assert!(write_atomic(&target, b"data").is_err());
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().collect();
+        assert_eq!(left.len(), 1, "{left:?}");
+    }
+
+    #[test]
+    fn the_scenario_hash_is_what_sha256sum_prints() {
+        assert_eq!(
+            sha256_hex(b"abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+    }
 }

@@ -3,7 +3,13 @@
 use patchflow_dataset::ActorClass;
 use serde::{Deserialize, Serialize};
 
+use super::bounds::{
+    Bound, COORD_M, MAX_PATH_POINTS, SIZE_M, TIME_SECS, TURN_RADIUS_M, check_count,
+};
 use super::schema::reflectivity_problem;
+
+/// Acceleration and braking limit of any actor.
+const ACCEL_MPS2: Bound = Bound::new(0.01, 10.0, "m/s²", "from a crawl to a sports car's braking");
 
 /// Car body styles; they set the default box size of a car.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -154,9 +160,14 @@ impl ActorConfig {
                 ),
             ));
         }
-        if self.path_m.iter().flatten().any(|v| !finite(*v)) {
-            out.push(("path_m", "path points must be finite numbers".to_owned()));
-        }
+        out.extend(check_count(
+            "path_m",
+            self.path_m.len() as u64,
+            2,
+            MAX_PATH_POINTS,
+            "waypoints of one path",
+        ));
+        out.extend(COORD_M.check_each("path_m", self.path_m.iter().flatten()));
         if self
             .path_m
             .windows(2)
@@ -164,10 +175,8 @@ impl ActorConfig {
         {
             out.push(("path_m", "two consecutive path points coincide".to_owned()));
         }
-        if let Some(size) = self.size_m
-            && size.iter().any(|v| !finite(*v) || *v <= 0.0)
-        {
-            out.push(("size_m", format!("sizes must be positive, got {size:?}")));
+        if let Some(size) = &self.size_m {
+            out.extend(SIZE_M.check_each("size_m", size));
         }
         let speed_ok = |v: f64| finite(v) && v >= 0.0 && v <= limits.max_speed_mps;
         if !speed_ok(self.speed_mps) {
@@ -190,6 +199,14 @@ impl ActorConfig {
                 ),
             ));
         }
+        out.extend(check_count(
+            "speed_changes",
+            self.speed_changes.len() as u64,
+            0,
+            MAX_PATH_POINTS,
+            "speed changes of one actor",
+        ));
+        out.extend(TIME_SECS.check_each("speed_changes", self.speed_changes.iter().map(|c| &c[0])));
         for (i, change) in self.speed_changes.iter().enumerate() {
             if !speed_ok(change[1]) || !finite(change[0]) {
                 out.push(("speed_changes", format!("speed change {i} needs a finite time and a speed of 0 to {} m/s, got {change:?}", limits.max_speed_mps)));
@@ -206,13 +223,12 @@ impl ActorConfig {
                 "speed changes must come after start_secs, in increasing time".to_owned(),
             ));
         }
-        if !finite(self.start_secs) {
-            out.push((
-                "start_secs",
-                "start_secs must be a finite number".to_owned(),
-            ));
-        }
+        out.extend(TIME_SECS.check("start_secs", self.start_secs));
         if let Some(r) = self.turn_radius_m
+            && r > TURN_RADIUS_M.max
+        {
+            out.extend(TURN_RADIUS_M.check("turn_radius_m", r));
+        } else if let Some(r) = self.turn_radius_m
             && (!finite(r) || r < limits.min_turn_radius_m)
         {
             out.push((
@@ -223,13 +239,8 @@ impl ActorConfig {
                 ),
             ));
         }
-        if let Some(a) = self.accel_mps2
-            && (!finite(a) || a <= 0.0 || a > 10.0)
-        {
-            out.push((
-                "accel_mps2",
-                format!("acceleration limit must be in (0, 10] m/s², got {a}"),
-            ));
+        if let Some(a) = self.accel_mps2 {
+            out.extend(ACCEL_MPS2.check("accel_mps2", a));
         }
         out.extend(reflectivity_problem(self.reflectivity));
         out

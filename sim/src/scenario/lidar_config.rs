@@ -2,6 +2,11 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::bounds::{
+    ATTENUATION_PER_M, DROPOUT, ELEVATION_DEG, MAX_RANGE_M, MOUNT_HEIGHT_M, RANGE_NOISE_STD_M,
+    RATE_HZ, check_count,
+};
+
 /// How the channels' elevations are spread between `upper_deg` and `lower_deg`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -72,95 +77,53 @@ impl LidarConfig {
         1.0 / self.rate_hz
     }
 
-    /// Reasons this configuration is impossible, each with the offending field's name.
+    /// Reasons this configuration is impossible, each with the offending field's name; every
+    /// number is held to its [`bounds`](super::bounds) (rays per sweep are checked with the
+    /// other derived sizes).
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
-        let mut out = Vec::new();
-        let mut check = |field: &'static str, ok: bool, reason: String| {
-            if !ok {
-                out.push((field, reason));
-            }
-        };
-        check(
-            "channels",
-            (1..=512).contains(&self.channels),
-            format!("channels must be 1 to 512, got {}", self.channels),
-        );
-        check(
-            "upper_deg",
-            self.upper_deg.is_finite() && self.upper_deg.abs() < 90.0,
-            format!(
-                "upper_deg must be a finite angle within ±90°, got {}",
-                self.upper_deg
+        let mut out: Vec<(&'static str, String)> = [
+            check_count(
+                "channels",
+                self.channels.into(),
+                1,
+                512,
+                "lasers stacked in the head",
             ),
-        );
-        check(
-            "lower_deg",
-            self.lower_deg.is_finite()
-                && self.lower_deg.abs() < 90.0
-                && self.lower_deg <= self.upper_deg,
-            format!(
-                "lower_deg must be finite, within ±90° and not above upper_deg, got {}",
-                self.lower_deg
+            ELEVATION_DEG.check("upper_deg", self.upper_deg),
+            ELEVATION_DEG.check("lower_deg", self.lower_deg),
+            RATE_HZ.check("rate_hz", self.rate_hz),
+            check_count(
+                "azimuth_steps",
+                self.azimuth_steps.into(),
+                8,
+                100_000,
+                "columns per turn",
             ),
-        );
-        check(
-            "rate_hz",
-            self.rate_hz.is_finite() && self.rate_hz > 0.0 && self.rate_hz <= 100.0,
-            format!("rate_hz must be in (0, 100], got {}", self.rate_hz),
-        );
-        check(
-            "azimuth_steps",
-            (8..=100_000).contains(&self.azimuth_steps),
-            format!(
-                "azimuth_steps must be 8 to 100000, got {}",
-                self.azimuth_steps
+            MAX_RANGE_M.check("max_range_m", self.max_range_m),
+            MOUNT_HEIGHT_M.check("mount_height_m", self.mount_height_m),
+            RANGE_NOISE_STD_M.check("range_noise_std_m", self.range_noise_std_m),
+            DROPOUT.check("dropout_probability", self.dropout_probability),
+            ATTENUATION_PER_M.check("attenuation_per_m", self.attenuation_per_m),
+            check_count(
+                "blocks",
+                self.blocks.into(),
+                1,
+                self.azimuth_steps.into(),
+                "at most one block per azimuth step",
             ),
-        );
-        check(
-            "max_range_m",
-            self.max_range_m.is_finite() && self.max_range_m > 0.0,
-            format!("max_range_m must be positive, got {}", self.max_range_m),
-        );
-        check(
-            "mount_height_m",
-            self.mount_height_m.is_finite() && self.mount_height_m > 0.0,
-            format!(
-                "mount_height_m must be positive, got {}",
-                self.mount_height_m
-            ),
-        );
-        check(
-            "range_noise_std_m",
-            self.range_noise_std_m.is_finite() && self.range_noise_std_m >= 0.0,
-            format!(
-                "range_noise_std_m must be zero or positive, got {}",
-                self.range_noise_std_m
-            ),
-        );
-        check(
-            "dropout_probability",
-            (0.0..1.0).contains(&self.dropout_probability),
-            format!(
-                "dropout_probability must be in [0, 1), got {}",
-                self.dropout_probability
-            ),
-        );
-        check(
-            "attenuation_per_m",
-            self.attenuation_per_m.is_finite() && self.attenuation_per_m >= 0.0,
-            format!(
-                "attenuation_per_m must be zero or positive, got {}",
-                self.attenuation_per_m
-            ),
-        );
-        check(
-            "blocks",
-            self.blocks >= 1 && self.blocks <= self.azimuth_steps,
-            format!(
-                "blocks must be 1 to azimuth_steps ({}), got {}",
-                self.azimuth_steps, self.blocks
-            ),
-        );
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        if out.is_empty() && self.lower_deg > self.upper_deg {
+            out.push((
+                "lower_deg",
+                format!(
+                    "lower_deg = {} is above upper_deg = {}",
+                    self.lower_deg, self.upper_deg
+                ),
+            ));
+        }
         out
     }
 }

@@ -6,18 +6,22 @@ use std::path::Path;
 use toml::de::{DeTable, DeValue};
 
 use super::Scenario;
+use super::bounds::{
+    MAX_ACTORS, MAX_SCENARIO_BYTES, MAX_SWEEPS, REFLECTIVITY, TIME_SECS, check_count,
+};
+use super::derived_limits::derived_problems;
 use crate::error::{Result, SimError};
 use crate::motion::Trajectory;
 
 /// One step of the way from the document root to a value, to find the line a problem is on.
 #[derive(Debug, Clone, Copy)]
-enum Seg<'a> {
+pub(super) enum Seg<'a> {
     Key(&'a str),
     Index(usize),
 }
 
 /// A problem found after parsing: where it is (keys and array indices) and what it is.
-type Problem = (Vec<Seg<'static>>, String);
+pub(super) type Problem = (Vec<Seg<'static>>, String);
 
 impl Scenario {
     /// Reads, validates and resolves a scenario file; errors name the file and the line.
@@ -27,9 +31,11 @@ impl Scenario {
 
     /// Like [`Scenario::from_file`], with the realism rung replaced by `rung` if given.
     pub fn from_file_at_rung(path: &Path, rung: Option<super::Realism>) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            path: path.to_owned(),
-            source,
+        let bytes = patchflow_dataset::read_limited(path, MAX_SCENARIO_BYTES)?;
+        let text = String::from_utf8(bytes).map_err(|_| SimError::Scenario {
+            file: path.display().to_string(),
+            line: 1,
+            reason: "not UTF-8 text".to_owned(),
         })?;
         let stem = path
             .file_stem()
@@ -64,6 +70,10 @@ impl Scenario {
             SimError::at_offset(file, text, offset, e.message().trim().to_owned())
         })?;
         if scenario.name.is_empty() {
+            if let Some(offset) = key_offset(text, "name") {
+                let reason = "name = \"\" is empty; names are 1-64 letters, digits, '_' or '-'";
+                return Err(SimError::at_offset(file, text, offset, reason));
+            }
             scenario.name = default_name.to_owned();
         }
         if let Some(rung) = rung {
@@ -114,26 +124,26 @@ impl Scenario {
                 ),
             ));
         }
-        if !(1..=100_000).contains(&self.sweeps) {
-            out.push((
-                vec![Seg::Key("sweeps")],
-                format!("sweeps must be 1 to 100000, got {}", self.sweeps),
-            ));
-        }
-        if !self.start_secs.is_finite() {
-            out.push((
-                vec![Seg::Key("start_secs")],
-                "start_secs must be finite".to_owned(),
-            ));
-        }
-        if !(0.0..=1.0).contains(&self.ground_reflectivity) {
-            out.push((
-                vec![Seg::Key("ground_reflectivity")],
-                format!(
-                    "ground_reflectivity must be in [0, 1], got {}",
-                    self.ground_reflectivity
-                ),
-            ));
+        let top = [
+            check_count(
+                "sweeps",
+                self.sweeps.into(),
+                1,
+                MAX_SWEEPS,
+                "sweeps of one sequence",
+            ),
+            TIME_SECS.check("start_secs", self.start_secs),
+            REFLECTIVITY.check("ground_reflectivity", self.ground_reflectivity),
+            check_count(
+                "actors",
+                self.actors.len() as u64,
+                0,
+                MAX_ACTORS,
+                "listed actors",
+            ),
+        ];
+        for (field, reason) in top.into_iter().flatten() {
+            out.push((vec![Seg::Key(field)], reason));
         }
         for (field, reason) in self.lidar.problems() {
             out.push((vec![Seg::Key("lidar"), Seg::Key(field)], reason));
@@ -162,9 +172,6 @@ impl Scenario {
                 path.push(Seg::Key(field));
                 out.push((path, format!("{}: {reason}", actor.name)));
             }
-        }
-        if self.actors.len() > 60_000 {
-            out.push((vec![Seg::Key("actors")], "at most 60000 actors".to_owned()));
         }
         let targets: Vec<usize> = (0..self.actors.len())
             .filter(|&i| self.actors[i].target)
@@ -222,8 +229,47 @@ impl Scenario {
                 ));
             }
         }
+        // Sizes derived from several fields, once each field is within its own bounds.
+        if out.is_empty() {
+            out.extend(derived_problems(self));
+        }
         out
     }
+
+    /// Checks a scenario built in code (not read from a file) as a file would be checked; the
+    /// first problem is reported with the field's path.
+    pub fn validate(&self) -> Result<()> {
+        match self.problems().into_iter().next() {
+            None => Ok(()),
+            Some((at, reason)) => Err(SimError::Options(format!(
+                "scenario {:?}: {}: {reason}",
+                self.name,
+                path_text(&at)
+            ))),
+        }
+    }
+}
+
+/// `lidar.rate_hz`, `actors[2].path_m`: where a problem is, for scenarios without a file.
+fn path_text(path: &[Seg]) -> String {
+    let mut out = String::new();
+    for seg in path {
+        match seg {
+            Seg::Key(k) if out.is_empty() => out.push_str(k),
+            Seg::Key(k) => out.push_str(&format!(".{k}")),
+            Seg::Index(i) => out.push_str(&format!("[{i}]")),
+        }
+    }
+    out
+}
+
+/// Byte offset of the top-level `key` in `text`, if the text sets it.
+fn key_offset(text: &str, key: &str) -> Option<usize> {
+    let root = DeTable::parse(text).ok()?;
+    root.get_ref()
+        .iter()
+        .find(|(k, _)| k.get_ref() == key)
+        .map(|(k, _)| k.span().start)
 }
 
 /// Byte offset of the value at `path` in `text`: the deepest part of the path that exists
@@ -259,147 +305,5 @@ fn locate(text: &str, path: &[Seg]) -> usize {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    const BASE: &str = "sweeps = 3\n[ego]\npath_m = [[0.0, 0.0], [80.0, 0.0]]\nspeed_mps = 5.0\n";
-
-    fn error_of(text: &str) -> (usize, String) {
-        match Scenario::from_toml(text, "bad.toml", "bad") {
-            Err(SimError::Scenario { file, line, reason }) => {
-                assert_eq!(file, "bad.toml");
-                (line, reason)
-            }
-            other => panic!("expected a scenario error, got {other:?}"),
-        }
-    }
-
-    fn with_actor(body: &str) -> String {
-        format!("{BASE}\n[[actors]]\nname = \"a\"\n{body}\n")
-    }
-
-    #[test]
-    fn a_minimal_scenario_gets_every_default() {
-        let s = Scenario::from_toml(BASE, "ok.toml", "ok").unwrap();
-        assert_eq!(s.lidar.azimuth_steps, 1800);
-        assert_eq!(s.ego.turn_radius_m, Some(8.0));
-        assert_eq!(s.ego.size_m, Some([4.7, 1.8, 1.45]));
-    }
-
-    #[test]
-    fn an_unknown_field_is_rejected_with_its_line() {
-        let (line, reason) = error_of(&format!("{BASE}colour = \"red\"\n"));
-        assert_eq!(line, 5);
-        assert!(reason.contains("colour"), "{reason}");
-    }
-
-    #[test]
-    fn a_negative_speed_is_rejected_with_its_line() {
-        let (line, reason) = error_of(&with_actor(
-            "path_m = [[0.0, 5.0], [50.0, 5.0]]\nspeed_mps = -3.0",
-        ));
-        assert_eq!(line, 9);
-        assert!(reason.contains("speed"), "{reason}");
-    }
-
-    #[test]
-    fn a_path_with_one_point_is_rejected_with_its_line() {
-        let (line, reason) = error_of(&with_actor("path_m = [[0.0, 5.0]]\nspeed_mps = 3.0"));
-        assert_eq!(line, 8);
-        assert!(reason.contains("two points"), "{reason}");
-    }
-
-    #[test]
-    fn a_nan_is_rejected_with_its_line() {
-        let (line, reason) = error_of(&with_actor(
-            "path_m = [[0.0, 5.0], [nan, 5.0]]\nspeed_mps = 3.0",
-        ));
-        assert_eq!(line, 8);
-        assert!(reason.contains("finite"), "{reason}");
-    }
-
-    #[test]
-    fn a_turn_radius_below_the_class_minimum_is_rejected_with_its_line() {
-        let (line, reason) = error_of(&with_actor(
-            "path_m = [[0.0, 5.0], [50.0, 5.0], [50.0, 50.0]]\nspeed_mps = 3.0\nturn_radius_m = 3.0",
-        ));
-        assert_eq!(line, 10);
-        assert!(reason.contains("minimum"), "{reason}");
-    }
-
-    #[test]
-    fn a_corner_too_tight_for_its_radius_is_rejected_at_the_path() {
-        let (line, reason) = error_of(&with_actor(
-            "path_m = [[0.0, 5.0], [10.0, 5.0], [10.0, 50.0]]\nspeed_mps = 3.0\nturn_radius_m = 20.0",
-        ));
-        assert_eq!(line, 8);
-        assert!(reason.contains("corner"), "{reason}");
-    }
-
-    #[test]
-    fn a_bad_lidar_value_points_at_the_lidar_table() {
-        let (line, reason) = error_of(&format!("{BASE}[lidar]\nchannels = 16\nrate_hz = 0.0\n"));
-        assert_eq!(line, 7);
-        assert!(reason.contains("rate_hz"), "{reason}");
-    }
-
-    #[test]
-    fn a_realism_knob_out_of_range_names_its_line_value_and_bound() {
-        let (line, reason) = error_of(&format!("{BASE}[world]\nclutter = 1.0\ncamber = 0.7\n"));
-        assert_eq!(line, 7);
-        assert_eq!(reason, "camber = 0.7 is above 0.1");
-    }
-
-    #[test]
-    fn an_unknown_rung_is_rejected_with_its_line() {
-        let (line, reason) = error_of(&format!("realism = \"perfect\"\n{BASE}"));
-        assert_eq!(line, 1);
-        assert!(reason.contains("perfect"), "{reason}");
-    }
-
-    #[test]
-    fn the_default_rung_is_urban_and_a_knob_set_alone_overrides_it() {
-        let s = Scenario::from_toml(
-            &format!("{BASE}[sensor]\nmixed_pixels = 0.0\n"),
-            "ok.toml",
-            "ok",
-        )
-        .unwrap();
-        assert_eq!(s.realism, super::super::Realism::Urban);
-        assert_eq!(s.sensor.knobs().mixed_pixels, 0.0);
-        assert_eq!(s.world.knobs().camber, 0.02);
-        let ideal =
-            Scenario::from_toml_at_rung(BASE, "ok.toml", "ok", Some(super::super::Realism::Ideal))
-                .unwrap();
-        assert!(ideal.world.knobs().flat_ground() && ideal.pose_error.knobs().exact());
-    }
-
-    #[test]
-    fn a_syntax_error_names_its_line() {
-        let (line, _) = error_of("sweeps = 3\n[ego\n");
-        assert_eq!(line, 2);
-    }
-
-    #[test]
-    fn two_targets_are_rejected() {
-        let text = format!(
-            "{}\n[[actors]]\nname = \"b\"\ntarget = true\npath_m = [[0.0, 9.0], [50.0, 9.0]]\nspeed_mps = 3.0\n",
-            with_actor("target = true\npath_m = [[0.0, 5.0], [50.0, 5.0]]\nspeed_mps = 3.0")
-        );
-        let (line, reason) = error_of(&text);
-        assert_eq!(line, 14);
-        assert!(reason.contains("one actor"), "{reason}");
-    }
-
-    #[test]
-    fn the_resolved_scenario_reads_back_equal() {
-        let s = Scenario::from_toml(
-            &with_actor("path_m = [[0.0, 5.0], [50.0, 5.0]]\nspeed_mps = 3.0"),
-            "ok.toml",
-            "ok",
-        )
-        .unwrap();
-        let back = Scenario::from_toml(&s.to_toml(), "resolved.toml", "x").unwrap();
-        assert_eq!(back, s);
-    }
-}
+#[path = "load_tests.rs"]
+mod tests;

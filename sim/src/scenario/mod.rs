@@ -2,6 +2,8 @@
 //! scenario set, and seeded random traffic.
 
 mod actor_config;
+mod bounds;
+mod derived_limits;
 mod embedded;
 mod lidar_config;
 mod load;
@@ -13,8 +15,10 @@ mod sensor_config;
 mod structure_config;
 mod traffic;
 mod world_config;
+mod world_limits;
 
 pub use actor_config::{ActorConfig, CarModel};
+pub(crate) use derived_limits::{GROUND_HALF_M, gigabytes, sweep_memory_bytes};
 pub use embedded::EMBEDDED_SCENARIOS;
 pub use lidar_config::{ElevationSpacing, LidarConfig};
 pub use pose_error_config::{PoseErrorConfig, PoseErrorKnobs};
@@ -25,3 +29,4 @@ pub use sensor_config::{SensorConfig, SensorKnobs};
 pub use structure_config::{StructureConfig, StructureKind};
 pub use traffic::random_traffic;
 pub use world_config::{WorldConfig, WorldKnobs};
+pub(crate) use world_limits::{GROUND_CELL_M, MAX_GROUND_CELLS, lidar_reach};

@@ -4,7 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::realism::{Realism, range_problem};
+use super::bounds::Bound;
+use super::realism::Realism;
 
 /// Pose-error knobs, as written in a scenario file.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -83,12 +84,26 @@ impl PoseErrorConfig {
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
         let k = self.knobs();
         [
-            range_problem("position_std_m", k.position_std_m, 0.0, 10.0),
-            range_problem("yaw_std_deg", k.yaw_std_deg, 0.0, 10.0),
-            range_problem("drift_secs", k.drift_secs, 1.0, 3600.0),
+            POSITION_STD_M.check("position_std_m", k.position_std_m),
+            YAW_STD_DEG.check("yaw_std_deg", k.yaw_std_deg),
+            DRIFT_SECS.check("drift_secs", k.drift_secs),
         ]
         .into_iter()
         .flatten()
         .collect()
     }
 }
+
+// Documented in scenarios/README.md ("The realism ladder"); change both together.
+
+/// Horizontal position error (std per axis).
+const POSITION_STD_M: Bound = Bound::new(
+    0.0,
+    10.0,
+    "m",
+    "from RTK to a poor GPS fix in a street canyon",
+);
+/// Heading error (std).
+const YAW_STD_DEG: Bound = Bound::new(0.0, 10.0, "°", "from a good INS to a bare compass");
+/// Drift time of the error.
+const DRIFT_SECS: Bound = Bound::new(1.0, 3600.0, "s", "a second to an hour");

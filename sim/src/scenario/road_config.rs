@@ -5,7 +5,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::realism::range_problem;
+use super::bounds::{COORD_M, MAX_PATH_POINTS, check_count};
+use super::world_config::ROAD_HALF_WIDTH_M;
 
 /// A street centre line.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -21,22 +22,23 @@ pub struct RoadConfig {
 impl RoadConfig {
     /// Every problem, with the field's name.
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
-        let mut out = Vec::new();
-        if self.path_m.len() < 2 {
-            out.push((
-                "path_m",
-                format!(
-                    "a road needs at least two points, got {}",
-                    self.path_m.len()
-                ),
-            ));
-        }
-        if self.path_m.iter().flatten().any(|v| !v.is_finite()) {
-            out.push(("path_m", "road points must be finite numbers".to_owned()));
-        }
-        if let Some(w) = self.half_width_m {
-            out.extend(range_problem("half_width_m", w, 3.0, 15.0));
-        }
-        out
+        let count = check_count(
+            "path_m",
+            self.path_m.len() as u64,
+            2,
+            MAX_PATH_POINTS,
+            "points of a road's centre line",
+        );
+        let width = self
+            .half_width_m
+            .and_then(|w| ROAD_HALF_WIDTH_M.check("half_width_m", w));
+        [
+            count,
+            COORD_M.check_each("path_m", self.path_m.iter().flatten()),
+            width,
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
     }
 }

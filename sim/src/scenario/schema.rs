@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::bounds::{Bound, COORD_M, MAX_RANDOM_ACTORS, REFLECTIVITY, check_count};
 use super::{
     ActorConfig, LidarConfig, PoseErrorConfig, Realism, RoadConfig, SensorConfig, StructureConfig,
     WorldConfig,
@@ -41,45 +42,34 @@ impl Default for TrafficConfig {
 
 /// The problem with a surface's lidar reflectivity, if it lies outside [0, 1].
 pub(crate) fn reflectivity_problem(reflectivity: Option<f64>) -> Option<(&'static str, String)> {
-    let r = reflectivity?;
-    (!(0.0..=1.0).contains(&r)).then(|| {
-        (
-            "reflectivity",
-            format!("reflectivity must be in [0, 1], got {r}"),
-        )
-    })
+    REFLECTIVITY.check("reflectivity", reflectivity?)
 }
 
 impl TrafficConfig {
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
-        let mut out = Vec::new();
-        if self.random_cars + self.random_pedestrians > 2000 {
-            out.push(("random_cars", "at most 2000 random actors".to_owned()));
-        }
-        if !self.grid_spacing_m.is_finite() || self.grid_spacing_m < 30.0 {
-            out.push((
-                "grid_spacing_m",
-                format!(
-                    "grid spacing must be at least 30 m, got {}",
-                    self.grid_spacing_m
-                ),
-            ));
-        }
-        if !self.extent_m.is_finite() || self.extent_m <= 0.0 {
-            out.push((
-                "extent_m",
-                format!("extent must be positive, got {}", self.extent_m),
-            ));
-        }
-        if self.centre_m.iter().any(|v| !v.is_finite()) {
-            out.push(("centre_m", "centre must be finite".to_owned()));
-        }
+        let random = u64::from(self.random_cars) + u64::from(self.random_pedestrians);
+        let mut out: Vec<(&'static str, String)> = [
+            check_count(
+                "random_cars",
+                random,
+                0,
+                MAX_RANDOM_ACTORS,
+                "random cars and pedestrians together",
+            ),
+            GRID_SPACING_M.check("grid_spacing_m", self.grid_spacing_m),
+            EXTENT_M.check("extent_m", self.extent_m),
+            COORD_M.check_each("centre_m", &self.centre_m),
+            CAR_SPEED_MPS.check_each("car_speed_mps", &self.car_speed_mps),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
         let [lo, hi] = self.car_speed_mps;
-        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && lo <= hi && hi <= 40.0) {
+        if out.is_empty() && lo > hi {
             out.push((
                 "car_speed_mps",
                 format!(
-                    "car speeds must satisfy 0 < min ≤ max ≤ 40 m/s, got {:?}",
+                    "car speeds must be [min, max], got {:?}",
                     self.car_speed_mps
                 ),
             ));
@@ -87,6 +77,18 @@ impl TrafficConfig {
         out
     }
 }
+
+/// Distance between parallel streets of random traffic.
+const GRID_SPACING_M: Bound = Bound::new(30.0, 10_000.0, "m", "a block fits two turns");
+/// Half-width of the square random traffic starts in.
+const EXTENT_M: Bound = Bound::new(
+    1.0,
+    10_000.0,
+    "m",
+    "the traffic's square lies within the world",
+);
+/// Cruise speeds of random cars.
+const CAR_SPEED_MPS: Bound = Bound::new(0.1, 40.0, "m/s", "a moving car");
 
 /// A traffic scenario: sensor, ego path, actors, static structures and random traffic.
 ///

@@ -3,6 +3,7 @@
 use patchflow_dataset::SemanticClass;
 use serde::{Deserialize, Serialize};
 
+use super::bounds::{COORD_M, MAX_ROW_BOXES, SIZE_M, SPACING_M, YAW_DEG};
 use super::schema::reflectivity_problem;
 
 /// What a static structure is; sets its label, default size and reflectivity.
@@ -96,7 +97,20 @@ impl StructureConfig {
             .get_or_insert(self.kind.default_reflectivity());
     }
 
-    /// The centres of every box this entry stands for (one, or a row).
+    /// Number of boxes this entry stands for (one, or a row), from the row's length and spacing
+    /// alone, so a row too long to build is caught before it is built.
+    pub(crate) fn box_count(&self) -> u64 {
+        let Some(end) = self.repeat_to_m else {
+            return 1;
+        };
+        let length = (end[0] - self.centre_m[0]).hypot(end[1] - self.centre_m[1]);
+        let spacing = self.spacing_m.unwrap_or(1.0).max(1e-3);
+        // Float-to-integer casts saturate (and map NaN to 0), so this cannot overflow.
+        ((length / spacing + 1e-9).floor() as u64).saturating_add(1)
+    }
+
+    /// The centres of every box this entry stands for (one, or a row); call on a validated
+    /// scenario, whose rows hold at most `bounds::MAX_ROW_BOXES` boxes.
     pub fn centres_m(&self) -> Vec<[f64; 2]> {
         let Some(end) = self.repeat_to_m else {
             return vec![self.centre_m];
@@ -104,7 +118,7 @@ impl StructureConfig {
         let (dx, dy) = (end[0] - self.centre_m[0], end[1] - self.centre_m[1]);
         let length = dx.hypot(dy);
         let spacing = self.spacing_m.unwrap_or(1.0).max(1e-3);
-        let count = (length / spacing + 1e-9).floor() as usize + 1;
+        let count = self.box_count().min(MAX_ROW_BOXES) as usize;
         (0..count)
             .map(|i| {
                 let f = if length > 0.0 {
@@ -117,35 +131,20 @@ impl StructureConfig {
             .collect()
     }
 
-    /// Reasons this entry is impossible, each with the offending field's name (call after `resolve`).
+    /// Reasons this entry is impossible, each with the offending field's name (call after
+    /// `resolve`); the number of boxes is checked with the other derived sizes.
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
         let mut out = Vec::new();
-        if self.centre_m.iter().any(|v| !v.is_finite()) {
-            out.push(("centre_m", "centre must be finite".to_owned()));
+        out.extend(COORD_M.check_each("centre_m", &self.centre_m));
+        if let Some(size) = &self.size_m {
+            out.extend(SIZE_M.check_each("size_m", size));
         }
-        if let Some(size) = self.size_m
-            && size.iter().any(|v| !v.is_finite() || *v <= 0.0)
-        {
-            out.push(("size_m", format!("sizes must be positive, got {size:?}")));
+        out.extend(YAW_DEG.check("yaw_deg", self.yaw_deg));
+        if let Some(end) = &self.repeat_to_m {
+            out.extend(COORD_M.check_each("repeat_to_m", end));
         }
-        if !self.yaw_deg.is_finite() {
-            out.push(("yaw_deg", "yaw must be finite".to_owned()));
-        }
-        if let Some(end) = self.repeat_to_m
-            && end.iter().any(|v| !v.is_finite())
-        {
-            out.push(("repeat_to_m", "row end must be finite".to_owned()));
-        }
-        if let Some(s) = self.spacing_m
-            && (!s.is_finite() || s < 0.1)
-        {
-            out.push((
-                "spacing_m",
-                format!("spacing must be at least 0.1 m, got {s}"),
-            ));
-        }
-        if self.centres_m().len() > 10_000 {
-            out.push(("spacing_m", "a row may hold at most 10000 boxes".to_owned()));
+        if let Some(s) = self.spacing_m {
+            out.extend(SPACING_M.check("spacing_m", s));
         }
         out.extend(reflectivity_problem(self.reflectivity));
         out

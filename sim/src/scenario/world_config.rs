@@ -4,7 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::realism::{Realism, range_problem};
+use super::bounds::Bound;
+use super::realism::Realism;
 
 /// Knobs of the procedural street world, as written in a scenario file.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -169,21 +170,44 @@ impl WorldConfig {
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
         let k = self.knobs();
         [
-            range_problem("camber", k.camber, 0.0, 0.1),
-            range_problem("curb_height_m", k.curb_height_m, 0.0, 0.3),
-            range_problem("sidewalk_width_m", k.sidewalk_width_m, 0.0, 10.0),
-            range_problem("road_half_width_m", k.road_half_width_m, 3.0, 15.0),
-            range_problem("grade_m", k.grade_m, 0.0, 2.0),
-            range_problem("terrain_relief_m", k.terrain_relief_m, 0.0, 3.0),
-            range_problem("roughness_m", k.roughness_m, 0.0, 0.2),
-            range_problem("clutter", k.clutter, 0.0, 5.0),
-            range_problem("parked_cars_per_100m", k.parked_cars_per_100m, 0.0, 20.0),
+            CAMBER.check("camber", k.camber),
+            CURB_HEIGHT_M.check("curb_height_m", k.curb_height_m),
+            SIDEWALK_WIDTH_M.check("sidewalk_width_m", k.sidewalk_width_m),
+            ROAD_HALF_WIDTH_M.check("road_half_width_m", k.road_half_width_m),
+            GRADE_M.check("grade_m", k.grade_m),
+            TERRAIN_RELIEF_M.check("terrain_relief_m", k.terrain_relief_m),
+            ROUGHNESS_M.check("roughness_m", k.roughness_m),
+            CLUTTER.check("clutter", k.clutter),
+            PARKED_CARS_PER_100M.check("parked_cars_per_100m", k.parked_cars_per_100m),
         ]
         .into_iter()
         .flatten()
         .collect()
     }
 }
+
+// Documented in scenarios/README.md ("The realism ladder"); change both together.
+
+/// Cross slope of a road.
+const CAMBER: Bound = Bound::new(0.0, 0.1, "", "real roads slope 1.5-3 % to the gutter");
+/// Curb height.
+const CURB_HEIGHT_M: Bound =
+    Bound::new(0.0, 0.3, "m", "curbs stand 0.1-0.2 m; 0 switches them off");
+/// Sidewalk width.
+const SIDEWALK_WIDTH_M: Bound = Bound::new(0.0, 10.0, "m", "from none to a wide promenade");
+/// Half width of a carriageway.
+pub(crate) const ROAD_HALF_WIDTH_M: Bound =
+    Bound::new(3.0, 15.0, "m", "one lane to a four-lane avenue each way");
+/// Amplitude of the grade changes.
+const GRADE_M: Bound = Bound::new(0.0, 2.0, "m", "gentle grade changes over 160 m, not hills");
+/// Amplitude of the terrain relief.
+const TERRAIN_RELIEF_M: Bound = Bound::new(0.0, 3.0, "m", "hummocks and verges, not hills");
+/// Amplitude of the surface roughness.
+const ROUGHNESS_M: Bound = Bound::new(0.0, 0.2, "m", "potholes and tufts, not relief");
+/// Clutter density.
+const CLUTTER: Bound = Bound::new(0.0, 5.0, "", "up to five times a typical city street");
+/// Parked cars per 100 m.
+const PARKED_CARS_PER_100M: Bound = Bound::new(0.0, 20.0, "", "a car every 5 m fills a curb");
 
 #[cfg(test)]
 mod tests {

@@ -16,8 +16,8 @@ use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
 use crate::world::{GroundField, GroundShape, StreetWorld};
 
-/// Half size of the square ground slab, metres.
-const GROUND_HALF_M: f32 = 2000.0;
+/// Half size of the square ground slab, metres (scenarios keep the ego on it).
+const GROUND_HALF_M: f32 = crate::scenario::GROUND_HALF_M as f32;
 
 /// Rapier sets and pipelines plus the actor and surface tables.
 pub struct Scene {

@@ -28,18 +28,16 @@ pub use ground_field::GroundField;
 pub use ground_shape::GroundShape;
 pub(crate) use piece::{Piece, PieceShape};
 
-use crate::motion::Trajectory;
-use crate::scenario::{ActorConfig, Scenario, StructureKind};
+// Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
+// heights and materials); a larger reach gets larger cells.
+use crate::scenario::{
+    ActorConfig, GROUND_CELL_M, MAX_GROUND_CELLS, Scenario, StructureKind, lidar_reach,
+};
 use crate::seed::{hash_name, mix, sub_seed};
 use clearance::Clearance;
 use ground_field::GroundRecipe;
 use street_furniture::SideBuilder;
 use street_map::StreetMap;
-
-/// Ground cell size, metres.
-const CELL_M: f64 = 0.5;
-/// Most ground cells a world may have (about 100 MB of heights and materials).
-const MAX_CELLS: f64 = 16.0e6;
 
 /// The static part of a street world.
 pub(crate) struct StreetWorld {
@@ -63,7 +61,7 @@ impl StreetWorld {
         };
         let (min, max) = lidar_reach(scenario);
         let area = (max[0] - min[0]) * (max[1] - min[1]);
-        let cell_m = CELL_M.max((area / MAX_CELLS).sqrt());
+        let cell_m = GROUND_CELL_M.max((area / MAX_GROUND_CELLS).sqrt());
         let field = GroundField::build(&recipe, min, max, cell_m);
         let t0 = scenario.start_secs - 1.0;
         let t1 = scenario.sweep_start_secs(scenario.sweeps) + 1.0;
@@ -164,27 +162,6 @@ fn structure_pieces(scenario: &Scenario, field: &GroundField, seed: u64) -> Vec<
         }
     }
     out
-}
-
-/// The rectangle the ego's lidar can reach over the scenario's sweeps (ego positions at every
-/// sweep, grown by the lidar's range).
-fn lidar_reach(scenario: &Scenario) -> ([f64; 2], [f64; 2]) {
-    let reach = scenario.lidar.max_range_m + 10.0;
-    let mut min = [f64::MAX; 2];
-    let mut max = [f64::MIN; 2];
-    if let Ok(ego) = Trajectory::from_config(&scenario.ego) {
-        for i in 0..=scenario.sweeps {
-            let p = ego.state_at(scenario.sweep_start_secs(i)).position_m;
-            for a in 0..2 {
-                min[a] = min[a].min(p[a] - reach);
-                max[a] = max[a].max(p[a] + reach);
-            }
-        }
-    }
-    if min[0] > max[0] {
-        return ([-reach; 2], [reach; 2]);
-    }
-    (min, max)
 }
 
 #[cfg(test)]

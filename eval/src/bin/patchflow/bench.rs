@@ -165,6 +165,7 @@ fn generate(names: &[&'static str], out: &Path) -> anyhow::Result<Dataset> {
         seed: SEED,
         shard: Shard::ALL,
         realism: None,
+        overwrite: false,
     };
     crate::generate::generate_with_progress(&sources, &options)?;
     Ok(Dataset::open(out)?)

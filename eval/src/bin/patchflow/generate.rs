@@ -27,6 +27,10 @@ pub struct Args {
     /// names (default: the file's own, `urban` if it names none); knobs a file sets alone still apply.
     #[arg(long, value_parser = parse_realism)]
     pub realism: Option<Realism>,
+    /// Delete and regenerate the sequences this run covers (without it, a sequence written by
+    /// another seed, scenario text or version is refused, never mixed in).
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 fn parse_realism(name: &str) -> Result<Realism, String> {
@@ -55,6 +59,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         seed: args.seed,
         shard,
         realism: args.realism,
+        overwrite: args.overwrite,
     };
     let manifest = generate_with_progress(&sources, &options)?;
     let points: u64 = manifest.sequences.iter().map(|s| s.points).sum();
@@ -82,6 +87,11 @@ pub fn generate_with_progress(
     let on_progress = |event: Progress| {
         let Ok(mut open) = open.lock() else { return };
         match event {
+            Progress::Waiting { name } => {
+                let _ = bars.println(format!(
+                    "{name:>12} is being written by another run; waiting for it"
+                ));
+            }
             Progress::SequenceStarted { name, sweeps } => {
                 let bar = bars.add(
                     ProgressBar::new(u64::from(sweeps))

@@ -38,6 +38,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .with_context(|| format!("{}: no sequence", args.data.display()))?,
     };
     let sequence = dataset.sequence(&name)?;
+    if args.scan >= sequence.len() {
+        anyhow::bail!(
+            "--scan {}: sequence {name} of {} has {} sweeps (0 to {})",
+            args.scan,
+            args.data.display(),
+            sequence.len(),
+            sequence.len().saturating_sub(1)
+        );
+    }
     let prev = sequence.read_sweep(args.scan - 1)?;
     let curr = sequence.read_sweep(args.scan)?;
     let features = SweepFeatures::compute(&prev, &curr, &FeatureParams::default())
