@@ -137,8 +137,12 @@ impl<'a> BlockCaster<'a> {
             }
             let ring = |k: usize| (channels - 1 - (first + k)) as u16;
             if self.realistic {
+                let occluded = self.table.occluded_column(j);
                 out.extend(batch.iter().zip(&rays).enumerate().filter_map(
                     |(k, (&in_sensor, ray))| {
+                        if occluded.is_some_and(|o| o[first + k]) {
+                            return None;
+                        }
                         self.cast_ray_real(first + k, ring(k), in_sensor, ray, &mut rng)
                     },
                 ));

@@ -25,6 +25,8 @@ pub(super) struct FiringTable {
     /// The directions the beams really leave in (nominal plus each channel's elevation error);
     /// `None` when they are the nominal ones.
     rays_cast: Option<Vec<Vector>>,
+    /// Beams the ego car's own body stops (never cast), per ray; `None` when none is.
+    occluded: Option<Vec<bool>>,
     blocks: Vec<BlockSpan>,
     /// Index of the block of every column.
     block_of_column: Vec<u32>,
@@ -80,6 +82,7 @@ impl FiringTable {
             channels: elevation_sin_cos.len(),
             rays_in_sensor,
             rays_cast: None,
+            occluded: None,
             blocks,
             block_of_column,
         }
@@ -114,6 +117,28 @@ impl FiringTable {
                 .collect(),
         );
         self
+    }
+
+    /// The same table with the beams for which `occluded(directions)` (the directions they are
+    /// really cast in, sensor frame, every ray) says true never cast.
+    pub(super) fn with_occlusion(mut self, occluded: impl Fn(&[Vector]) -> Vec<bool>) -> Self {
+        let mask = occluded(self.rays_cast.as_deref().unwrap_or(&self.rays_in_sensor));
+        self.occluded = mask.contains(&true).then_some(mask);
+        self
+    }
+
+    /// Whether each ray of column `j` is stopped by the ego car's body; `None` if none is.
+    #[inline]
+    pub(super) fn occluded_column(&self, j: usize) -> Option<&[bool]> {
+        let mask = self.occluded.as_ref()?;
+        Some(&mask[j * self.channels..(j + 1) * self.channels])
+    }
+
+    /// Share of the rays the ego car's body stops.
+    pub(super) fn occluded_share(&self) -> f64 {
+        self.occluded.as_ref().map_or(0.0, |m| {
+            m.iter().filter(|&&o| o).count() as f64 / m.len().max(1) as f64
+        })
     }
 
     /// Directions the rays of column `j` are really cast in, sensor frame.

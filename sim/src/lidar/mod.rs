@@ -7,6 +7,7 @@ mod intensity;
 mod mixed_pixels;
 mod real_return;
 mod scan;
+mod self_occlusion;
 mod sensor_model;
 mod spinning_lidar;
 

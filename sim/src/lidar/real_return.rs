@@ -40,7 +40,7 @@ impl BlockCaster<'_> {
         let mut segment = *ray;
         let mut travelled = 0.0f32;
         for _ in 0..MAX_PASSES {
-            let (surface, toi, id) = self
+            let (surface, toi, part) = self
                 .query
                 .cast_ray_to_hit(&segment, self.max_range_m - travelled)?;
             let mut range = travelled + toi;
@@ -65,7 +65,7 @@ impl BlockCaster<'_> {
                 SurfaceKind::Shape => {
                     let (n, feature) = self
                         .query
-                        .normal(id, &segment, toi)
+                        .normal(part, &segment, toi)
                         .unwrap_or((-dir, FeatureId::Unknown));
                     cos = n.dot(dir).abs();
                     glass |= match surface.material.glass {
@@ -79,7 +79,7 @@ impl BlockCaster<'_> {
                 // Leaves at exponential depths: the beam scatters inside or passes through.
                 let depth = -surface.material.porous_m * (1.0 - rng.random::<f32>()).ln();
                 let inside = Ray::new(hit + dir * 1e-3, dir);
-                let exit = self.query.exit_toi(id, &inside, 20.0).unwrap_or(0.0);
+                let exit = self.query.exit_toi(part, &inside, 20.0).unwrap_or(0.0);
                 if depth >= exit {
                     travelled = range + exit + 2e-3;
                     segment = Ray::new(inside.origin + dir * (exit + 1e-3), dir);

@@ -10,6 +10,7 @@ use super::block_caster::{BlockCaster, EgoStates};
 use super::firing_table::FiringTable;
 use super::mixed_pixels::mix_edges;
 use super::scan::{Scan, ScanSlots};
+use super::self_occlusion::occluded_beams;
 use super::sensor_model::SensorModel;
 use crate::motion::MotionState;
 use crate::pose_error::PoseError;
@@ -54,9 +55,14 @@ impl Lidar {
             config.channels as usize,
             sub_seed(key, 0x5E45),
         );
-        let table = FiringTable::new(config)
+        let world = scenario.world.knobs();
+        let mut table = FiringTable::new(config)
             .with_elevation_errors(config, |c| sensor.elevation_error_rad(c));
-        let world_ideal = scenario.world.knobs() == WorldKnobs::of(Realism::Ideal);
+        if world.shapes {
+            table = table
+                .with_occlusion(|rays| occluded_beams(rays, &scenario.ego, config.mount_height_m));
+        }
+        let world_ideal = world == WorldKnobs::of(Realism::Ideal);
         Self {
             config: config.clone(),
             table,
@@ -70,6 +76,11 @@ impl Lidar {
     /// The ego's estimate of its state at `t_secs` given its true state then.
     pub(crate) fn estimate(&self, truth: &MotionState, t_secs: f64) -> MotionState {
         self.pose_error.estimate(truth, t_secs)
+    }
+
+    /// Share of the beams the ego car's own body stops (never cast), 0 without vehicle shapes.
+    pub fn self_occluded_share(&self) -> f64 {
+        self.table.occluded_share()
     }
 
     /// The settings.
@@ -166,7 +177,8 @@ impl Lidar {
 
     /// The bare Rapier loop over the same rays: `cast_ray` only, from the sensor pose at
     /// `start_secs`, into the scene as it stands through `tree`, one rayon task per azimuth
-    /// column like [`Lidar::scan`]. Returns the number of hits. The yardstick of SPEC §8.
+    /// column like [`Lidar::scan`] (the beams the ego car's own body stops are not cast in
+    /// either). Returns the number of hits. The yardstick of SPEC §8.
     pub fn bare_cast_ray_hits(&self, scene: &Scene, start_secs: f64, tree: QueryTree) -> usize {
         let ego = scene.ego().trajectory.state_at(start_secs);
         let origin = Vector::new(
@@ -181,10 +193,15 @@ impl Lidar {
             .into_par_iter()
             .map(|j| {
                 let qp = scene.query_pipeline_on(tree);
+                let occluded = self.table.occluded_column(j);
                 self.table
                     .column(j)
                     .iter()
-                    .filter(|d| {
+                    .enumerate()
+                    .filter(|&(k, d)| {
+                        if occluded.is_some_and(|o| o[k]) {
+                            return false;
+                        }
                         let dir = Vector::new(c * d.x - s * d.y, s * d.x + c * d.y, d.z);
                         qp.cast_ray(&Ray::new(origin, dir), max_range_m, true)
                             .is_some()

@@ -5,10 +5,24 @@
 use patchflow_dataset::SemanticClass;
 use rapier3d::prelude::*;
 
+use std::sync::Arc;
+
 use super::{SceneActor, Surface, SurfaceKind};
 use crate::motion::Trajectory;
 use crate::scenario::ActorConfig;
-use crate::world::{Piece, body_parts};
+use crate::world::{GridPiece, GroundField, Piece, PieceGrid, StreetShape, body_parts};
+
+/// The street world's collider: its shape, its arena index, and where its surfaces start.
+#[derive(Debug, Clone)]
+pub(super) struct StreetCollider {
+    pub shape: Arc<StreetShape>,
+    /// Arena index of the collider.
+    pub collider: u32,
+    /// Surface of the ground.
+    pub ground_surface: u32,
+    /// Surface of piece 0 (piece `k` has `first_piece_surface + k`).
+    pub first_piece_surface: u32,
+}
 
 /// One moving collider: whose it is (`None`: the ego car), its surface and its pose on its body.
 #[derive(Debug, Clone, Copy)]
@@ -47,14 +61,8 @@ impl ColliderTables {
         self.register(handle, surface);
     }
 
-    /// Adds a fixed collider for a static piece of the street world.
-    pub(super) fn add_piece(&mut self, piece: &Piece) {
-        let Some(shape) = piece.shared_shape() else {
-            return;
-        };
-        let [x, y, z] = piece.centre_m;
-        let pose = Pose::new(Vector::new(x, y, z), Vector::new(0.0, 0.0, piece.yaw_rad))
-            * Pose::new(Vector::ZERO, Vector::from(piece.tilt_rad()));
+    /// The surface of a piece of the street world, placed where it stands.
+    fn piece_surface(piece: &Piece) -> Surface {
         let h = match piece.shape {
             crate::world::PieceShape::Cuboid(h) => h,
             _ => [0.0; 3],
@@ -66,25 +74,39 @@ impl ColliderTables {
         };
         let mut surface =
             Surface::new(piece.semantic, None, h, piece.reflectivity).with(kind, piece.material);
-        surface.place(pose.translation, piece.yaw_rad);
-        let collider = ColliderBuilder::new(shape)
-            .position(pose)
-            .user_data(self.surfaces.len() as u128)
-            .build();
-        let handle = self.colliders.insert(collider);
-        self.register(handle, surface);
+        let [x, y, z] = piece.centre_m;
+        surface.place(Vector::new(x, y, z), piece.yaw_rad);
+        surface
     }
 
-    /// Adds the fixed ground collider of a street world, with the surface the lidar reads its
-    /// normals and materials through.
-    pub(super) fn add_ground(&mut self, shape: crate::world::GroundShape) {
-        let surface = Surface::new(SemanticClass::Road, None, [0.0; 3], 0.15)
+    /// Adds the street world (its ground, if not flat, and every static piece) as one fixed
+    /// collider whose shape casts rays through the ground and the piece grid, with the surface
+    /// of its ground and of every piece. Returns the street world.
+    pub(super) fn add_street(
+        &mut self,
+        ground: Option<Arc<GroundField>>,
+        pieces: &[Piece],
+    ) -> StreetCollider {
+        let ground_surface = Surface::new(SemanticClass::Road, None, [0.0; 3], 0.15)
             .with(SurfaceKind::Ground, super::Material::SOLID);
-        let collider = ColliderBuilder::new(SharedShape::new(shape))
+        let (placed, surfaces): (Vec<GridPiece>, Vec<Surface>) = pieces
+            .iter()
+            .filter_map(|p| Some((GridPiece::new(p)?, Self::piece_surface(p))))
+            .unzip();
+        let shape = Arc::new(StreetShape::new(ground, PieceGrid::new(placed)));
+        let collider = ColliderBuilder::new(SharedShape(shape.clone() as Arc<dyn Shape>))
             .user_data(self.surfaces.len() as u128)
             .build();
         let handle = self.colliders.insert(collider);
-        self.register(handle, surface);
+        let ground_surface = self.register(handle, ground_surface) as u32;
+        let first_piece_surface = self.surfaces.len() as u32;
+        self.surfaces.extend(surfaces);
+        StreetCollider {
+            shape,
+            collider: handle.into_raw_parts().0,
+            ground_surface,
+            first_piece_surface,
+        }
     }
 
     /// Adds a kinematic body for an actor (or the ego car, `index = None`): one cuboid collider,

@@ -1,5 +1,6 @@
 //! The Rapier scene: ground, static boxes, kinematic actors and the ego car.
 
+mod actor_tree;
 mod collider_tables;
 mod instant_query;
 mod rapier_scene;

@@ -6,15 +6,14 @@
 
 use rapier3d::prelude::*;
 
-use std::sync::Arc;
-
-use super::collider_tables::{ColliderTables, MoverPart};
+use super::actor_tree::ActorTree;
+use super::collider_tables::{ColliderTables, MoverPart, StreetCollider};
 use super::ray_tree::RayTree;
 use super::{SceneActor, Surface};
 use crate::error::{Result, SimError};
 use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
-use crate::world::{GroundField, GroundShape, StreetWorld};
+use crate::world::StreetWorld;
 
 /// Half size of the square ground slab, metres (scenarios keep the ego on it).
 const GROUND_HALF_M: f32 = crate::scenario::GROUND_HALF_M as f32;
@@ -36,8 +35,10 @@ pub struct Scene {
     /// The moving colliders, ego car first (see [`MoverPart`]).
     pub(super) movers: Vec<MoverPart>,
     pub(super) ray_tree: RayTree,
-    /// The street world's ground (`None`: the flat slab of the first release).
-    pub(super) ground: Option<Arc<GroundField>>,
+    /// The lidar's tree over the actors, in a street world (see [`ActorTree`]).
+    pub(super) actor_tree: ActorTree,
+    /// The street world (`None`: the world of the first release, every collider in the tree).
+    pub(super) street: Option<StreetCollider>,
 }
 
 impl Scene {
@@ -53,21 +54,15 @@ impl Scene {
         let knobs = scenario.world.knobs();
         let street_world = knobs != crate::WorldKnobs::of(crate::Realism::Ideal);
         let mut tables = ColliderTables::default();
-        let mut ground_field = None;
+        let mut street = None;
         if street_world {
             let world = StreetWorld::build(scenario, actors, seed);
-            match &world.ground {
-                Some(field) => tables.add_ground(GroundShape(field.clone())),
-                None => {
-                    let ground =
-                        ColliderTables::ground(GROUND_HALF_M, scenario.ground_reflectivity as f32);
-                    tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5), 0.0);
-                }
+            if world.ground.is_none() {
+                let ground =
+                    ColliderTables::ground(GROUND_HALF_M, scenario.ground_reflectivity as f32);
+                tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5), 0.0);
             }
-            for piece in &world.pieces {
-                tables.add_piece(piece);
-            }
-            ground_field = world.ground;
+            street = Some(tables.add_street(world.ground, &world.pieces));
         } else {
             let ground = ColliderTables::ground(GROUND_HALF_M, scenario.ground_reflectivity as f32);
             tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5), 0.0);
@@ -87,6 +82,7 @@ impl Scene {
         }
         let moving = tables.movers.iter().map(|m| m.handle).collect();
         let ray_tree = RayTree::new(&tables.colliders, moving);
+        let actor_tree = ActorTree::new(&tables.movers);
         let mut scene = Self {
             bodies: tables.bodies,
             colliders: tables.colliders,
@@ -102,7 +98,8 @@ impl Scene {
             ego,
             movers: tables.movers,
             ray_tree,
-            ground: ground_field,
+            actor_tree,
+            street,
         };
         scene.move_to(scenario.start_secs);
         scene.rebuild_ray_tree();
@@ -178,6 +175,11 @@ impl Scene {
     /// Number of colliders (ground, structures, actors, ego).
     pub fn collider_count(&self) -> usize {
         self.colliders.len()
+    }
+
+    /// Number of static pieces inside the street world's one collider (0 on the `ideal` world).
+    pub fn street_piece_count(&self) -> usize {
+        self.street.as_ref().map_or(0, |s| s.shape.pieces().len())
     }
 
     /// The velocity Rapier itself derives for actor `index` arriving at its pose at `t_secs` from

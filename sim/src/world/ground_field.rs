@@ -6,6 +6,7 @@
 //! roughness. A ray is traced through two grid levels (blocks with their height bounds, then
 //! cells) so a grazing ray over a flat street costs a few block steps, not a walk over every cell.
 
+use super::grid_walk::walk_cells;
 pub(crate) use super::ground_recipe::{GroundMaterial, GroundRecipe};
 
 /// Cells per block side of the coarse level.
@@ -198,7 +199,7 @@ impl GroundField {
         let ox = origin[0] - self.origin_m[0] as f32;
         let oy = origin[1] - self.origin_m[1] as f32;
         let mut hit = None;
-        grid_walk(
+        walk_cells(
             [ox, oy],
             [dir[0], dir[1]],
             block_m,
@@ -228,7 +229,7 @@ impl GroundField {
                     ox - first[0] as f32 * self.cell_m,
                     oy - first[1] as f32 * self.cell_m,
                 ];
-                grid_walk(
+                walk_cells(
                     local,
                     [dir[0], dir[1]],
                     self.cell_m,
@@ -292,55 +293,6 @@ impl GroundField {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
         }
-    }
-}
-
-/// Walks the cells of a grid (`size` cells of `cell` metres from the local origin) that the 2-D
-/// ray `origin + t·dir` crosses for `t` in `span`, in order, calling `visit(i, j, t_in, t_out)`
-/// until it returns true; returns whether it did.
-fn grid_walk(
-    origin: [f32; 2],
-    dir: [f32; 2],
-    cell: f32,
-    size: [usize; 2],
-    span: (f32, f32),
-    mut visit: impl FnMut(usize, usize, f32, f32) -> bool,
-) -> bool {
-    let (mut t, t_end) = span;
-    let start = [origin[0] + dir[0] * t, origin[1] + dir[1] * t];
-    let mut index = [0usize; 2];
-    let mut step = [0i64; 2];
-    let mut next = [f32::INFINITY; 2];
-    let mut delta = [f32::INFINITY; 2];
-    for a in 0..2 {
-        let c = ((start[a] / cell).floor().max(0.0) as usize).min(size[a] - 1);
-        index[a] = c;
-        if dir[a] > 1e-12 {
-            step[a] = 1;
-            delta[a] = cell / dir[a];
-            next[a] = ((c + 1) as f32 * cell - origin[a]) / dir[a];
-        } else if dir[a] < -1e-12 {
-            step[a] = -1;
-            delta[a] = -cell / dir[a];
-            next[a] = (c as f32 * cell - origin[a]) / dir[a];
-        }
-    }
-    loop {
-        let axis = usize::from(next[1] < next[0]);
-        let t_out = next[axis].min(t_end);
-        if visit(index[0], index[1], t, t_out) {
-            return true;
-        }
-        if next[axis] >= t_end {
-            return false;
-        }
-        t = next[axis];
-        next[axis] += delta[axis];
-        let moved = index[axis] as i64 + step[axis];
-        if moved < 0 || moved >= size[axis] as i64 {
-            return false;
-        }
-        index[axis] = moved as usize;
     }
 }
 

@@ -8,14 +8,17 @@ mod body_shapes;
 mod clearance;
 mod facade;
 mod facade_shape;
+mod grid_piece;
+mod grid_walk;
 mod ground_field;
 mod ground_recipe;
-mod ground_shape;
 mod noise;
 mod piece;
+mod piece_grid;
 mod plane_hull;
 mod street_furniture;
 mod street_map;
+mod street_shape;
 mod terrain_scatter;
 
 use std::sync::Arc;
@@ -24,9 +27,11 @@ use patchflow_dataset::SemanticClass;
 
 pub(crate) use body_shapes::body_parts;
 pub use facade_shape::GLASS_FEATURE;
+pub(crate) use grid_piece::GridPiece;
 pub use ground_field::GroundField;
-pub use ground_shape::GroundShape;
 pub(crate) use piece::{Piece, PieceShape};
+pub use piece_grid::PieceGrid;
+pub use street_shape::{StreetPart, StreetShape};
 
 // Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
 // heights and materials); a larger reach gets larger cells.
