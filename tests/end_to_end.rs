@@ -1,67 +1,65 @@
-//! End to end on a small scene: generate → train SPGP and SPGP-HET → evaluate → report. Checks
-//! that every stage hands the next what it needs and that metrics.json has the SPEC §7 shape.
+//! End to end on a small scene, through the same library driver as `patchflow bench`: generate →
+//! sample → train SPGP and SPGP-HET → cross-validate → evaluate → report. Checks that every stage
+//! hands the next what it needs, that metrics.json has the SPEC §7 shape, and that the whole-scene
+//! evaluation scores every method (zero flow included) on every point and every moving actor.
 
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
-use patchflow_eval::{BaselineParams, GpMethod, evaluate_dataset, method_prefix, write_report};
-use patchflow_learn::{
-    EstimatorParams, FeatureKind, FeatureParams, GpKind, MotionEstimator, SampleSet,
-};
+use patchflow_eval::{BenchPlan, CvParams, run_bench};
+use patchflow_learn::GpKind;
+use patchflow_sim::ScenarioSource;
 
 #[test]
-fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
+fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
     let dir = tempfile::tempdir().unwrap();
-    let dataset =
-        patchflow_tests::generate_scene(dir.path(), "e2e", patchflow_tests::TRAFFIC_SCENE, 3);
-
-    let features = FeatureParams {
-        half_extent_m: 30.0,
-        ..FeatureParams::default()
+    let scenario = |name: &str| {
+        let path = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&path, patchflow_tests::TRAFFIC_SCENE).unwrap();
+        ScenarioSource::File(path)
     };
-    let set = SampleSet::collect(&dataset, &features, FeatureKind::Patch, 200, 1).unwrap();
-    assert!(
-        set.samples.len() >= 100,
-        "only {} samples",
-        set.samples.len()
-    );
-    let estimators: Vec<MotionEstimator> = [GpKind::Spgp, GpKind::SpgpHet]
-        .iter()
-        .map(|&gp| {
-            let params = EstimatorParams {
-                gp,
-                features: features.clone(),
-                samples: 200,
-                pseudo_inputs: 10,
-                max_iters: 25,
-                seed: 1,
-                ..EstimatorParams::default()
-            };
-            MotionEstimator::fit_samples(&set, &params).unwrap()
-        })
-        .collect();
-    let methods: Vec<GpMethod<'_>> = estimators
-        .iter()
-        .map(|e| GpMethod {
-            prefix: method_prefix(e.gp_kind()),
-            estimator: e,
-        })
-        .collect();
-    let (report, perception) =
-        evaluate_dataset(&dataset, &methods, &BaselineParams::default(), &|| {}).unwrap();
-    assert!(perception.maps_secs > 0.0 && perception.estimate_secs > 0.0);
-    assert!(perception.target_points > 0.0);
-    let out = dir.path().join("report");
-    let files = write_report(&report, &out).unwrap();
+    let plan = BenchPlan {
+        training: vec![scenario("track")],
+        situations: vec![scenario("e2e")],
+        occupancy: Vec::new(),
+        gps: vec![GpKind::Spgp, GpKind::SpgpHet],
+        samples: 200,
+        pseudo_inputs: 10,
+        max_iters: 25,
+        cv: CvParams {
+            folds: 2,
+            samples: 120,
+            pseudo_inputs: 6,
+            max_iters: 8,
+            seed: 1,
+            ..CvParams::default()
+        },
+        seed: 3,
+        quick: true,
+    };
+    let out = dir.path().join("bench");
+    let stages = std::sync::Mutex::new(Vec::new());
+    let outcome = run_bench(&plan, &out, &|t| {
+        stages.lock().unwrap().push(t.stage.clone())
+    })
+    .unwrap();
+    assert_eq!(stages.lock().unwrap().len(), 6);
+    let files = &outcome.files;
+    for file in [
+        "cv.json",
+        "cv.md",
+        "models/spgp.json",
+        "models/spgp-het.json",
+    ] {
+        assert!(out.join(file).exists(), "{file} missing");
+    }
 
     let metrics: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&files.metrics_json).unwrap()).unwrap();
     let situation = &metrics["situations"]["e2e"];
     assert_eq!(situation["scans"], 13, "{metrics}");
     let methods = situation["methods"].as_object().unwrap();
-    let names: Vec<&str> = methods.keys().map(String::as_str).collect();
-    // The eight methods of SPEC §6.
-    for name in patchflow_eval::CANONICAL_METHODS {
-        assert!(names.contains(&name), "{name} missing from {names:?}");
+    // The eight methods of SPEC §6 with their per-target scores.
+    for name in patchflow_eval::CANONICAL_METHODS.map(|m| m.name()) {
         let m = &methods[name];
         for key in [
             "heading_rmse_deg",
@@ -83,13 +81,40 @@ fn a_small_scene_goes_through_generate_train_evaluate_and_report() {
             .unwrap()
             .is_finite()
     );
+    // Scene flow of every method, zero flow included, on the same points.
+    let zero = &methods["ZERO-FLOW"]["scene_flow"];
+    assert_eq!(zero["normalised_dynamic_epe"], 1.0);
+    let points = zero["points"].as_u64().unwrap();
+    assert!(points > 1000);
+    for (name, m) in methods {
+        let flow = &m["scene_flow"];
+        assert_eq!(flow["points"].as_u64(), Some(points), "{name}");
+        assert!(flow["epe3d_m"].as_f64().unwrap().is_finite(), "{name}");
+    }
+    assert!(methods["SPGP-HET-POINT"].get("coverage").is_none());
+    // The three cars of the scene are scored as moving objects, not only the target.
+    let object_scans = situation["objects"]["KF-AUTO"]["object_scans"]
+        .as_u64()
+        .unwrap();
+    assert!(object_scans > 13, "{object_scans} object scans");
+    assert!(metrics["objects"]["by_class"]["car"].is_object());
+    // Plots, perception and the report.
     for plot in &files.plots {
         let bytes = std::fs::read(plot).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", plot.display());
     }
-    assert!(
-        std::fs::read_to_string(&files.report_md)
-            .unwrap()
-            .contains("e2e")
+    assert_eq!(files.plots.len(), 4);
+    let all = outcome.perception.last().unwrap();
+    assert_eq!(
+        (all.name.as_str(), all.scans, all.estimators),
+        ("all", 13, 2)
     );
+    let md = std::fs::read_to_string(&files.report_md).unwrap();
+    for needle in [
+        "## e2e (13 scans)",
+        "### Scene flow",
+        "## Perception per scan",
+    ] {
+        assert!(md.contains(needle), "{needle}");
+    }
 }

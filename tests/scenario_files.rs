@@ -1,10 +1,13 @@
 //! Every shipped scenario loads and validates; a few sweeps of each have a plausible point count
 //! (60,000 to 130,000 in open streets) and the situations' target is hit. The full check over
-//! every sweep is run by hand (see `scenarios/README.md`), not in CI.
+//! every sweep is run by hand (see `scenarios/README.md`), not in CI. The occupancy scenarios
+//! (the DGPOM T-junction) have the paper's scanner, lanes and occlusions.
 
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
-use patchflow_sim::{EMBEDDED_SCENARIOS, Scenario, Simulation};
+use patchflow_sim::{
+    EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Scenario, SensorKind, Simulation,
+};
 
 fn shipped() -> Vec<Scenario> {
     EMBEDDED_SCENARIOS
@@ -16,9 +19,12 @@ fn shipped() -> Vec<Scenario> {
 #[test]
 fn every_embedded_scenario_matches_its_file_in_the_repository() {
     let dir = patchflow_tests::workspace_root().join("scenarios");
-    for (name, text) in EMBEDDED_SCENARIOS {
+    for (name, text) in EMBEDDED_SCENARIOS
+        .iter()
+        .chain(&EMBEDDED_OCCUPANCY_SCENARIOS)
+    {
         let on_disk = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
-        assert_eq!(on_disk, text, "{name}");
+        assert_eq!(on_disk, *text, "{name}");
         Scenario::from_file(&dir.join(format!("{name}.toml"))).unwrap();
     }
 }
@@ -90,6 +96,7 @@ fn training_tracks_have_100_to_200_sweeps_clutter_and_speeds_of_2_to_10() {
 
 #[test]
 fn sampled_sweeps_of_every_scenario_have_plausible_point_counts_and_hit_the_target() {
+    // The shipped spinning-lidar scenarios; the planar occupancy scenes are checked below.
     for scenario in shipped() {
         let mut sim = Simulation::new(&scenario, 0).unwrap();
         for index in [0, scenario.sweeps / 2, scenario.sweeps - 1] {
@@ -108,5 +115,65 @@ fn sampled_sweeps_of_every_scenario_have_plausible_point_counts_and_hit_the_targ
                 );
             }
         }
+    }
+}
+
+#[test]
+fn the_tjunction_has_the_papers_fixed_scanner_two_lanes_and_occluded_cars() {
+    for (name, text) in EMBEDDED_OCCUPANCY_SCENARIOS {
+        let scenario = Scenario::from_toml(text, &format!("{name}.toml"), name).unwrap();
+        let lidar = &scenario.lidar;
+        assert_eq!(lidar.kind, SensorKind::Planar, "{name}");
+        assert_eq!(
+            (lidar.beams, lidar.fov_deg),
+            (Some(70), Some(180.0)),
+            "{name}"
+        );
+        assert_eq!((lidar.max_range_m, lidar.rate_hz), (20.0, 1.0), "{name}");
+        assert_eq!(scenario.ego.path_m[0], [15.0, 0.0], "{name}");
+        assert_eq!(scenario.ego.speed_mps, 0.0, "{name}");
+        let lanes: Vec<(f64, f64)> = scenario
+            .actors
+            .iter()
+            .map(|a| {
+                (
+                    a.path_m[0][1],
+                    (a.path_m[1][0] - a.path_m[0][0]).signum() * a.speed_mps,
+                )
+            })
+            .collect();
+        assert!(
+            lanes.iter().all(|&l| l == (4.5, 2.0) || l == (7.5, -1.0)),
+            "{name}: {lanes:?}"
+        );
+    }
+    let (name, text) = EMBEDDED_OCCUPANCY_SCENARIOS[0];
+    let scenario = Scenario::from_toml(text, "dgpom_tjunction.toml", name).unwrap();
+    let mut sim = Simulation::new(&scenario, 0).unwrap();
+    for t in [3, 5] {
+        let sweep = sim.sweep(t);
+        assert!(
+            (30..=70).contains(&sweep.len()),
+            "t = {t}: {} returns",
+            sweep.len()
+        );
+        let in_view =
+            |o: &&patchflow_sim::dataset::ObjectTruth| (0.0..30.0).contains(&o.centre_m[0]);
+        let seen = sweep
+            .objects
+            .iter()
+            .filter(in_view)
+            .filter(|o| o.point_count > 0)
+            .count();
+        let hidden = sweep
+            .objects
+            .iter()
+            .filter(in_view)
+            .filter(|o| o.point_count == 0)
+            .count();
+        assert!(
+            seen >= 3 && hidden >= 1,
+            "t = {t}: {seen} cars seen, {hidden} hidden"
+        );
     }
 }

@@ -1,25 +1,30 @@
-//! Runs a baseline method over one situation's scans and returns one optional estimate per scan
-//! (thesis 3.2, SPEC §6).
+//! Runs a baseline method over one situation's scans and returns one optional estimate of the
+//! target per scan (thesis 3.2, SPEC §6); the methods themselves run scan by scan in
+//! [`BaselineTrackers`](crate::BaselineTrackers).
 //!
 //! - `ICP`: ICP between the target's cluster at t−1 and at t (oracle association, as the thesis).
 //! - `KF`: one constant-velocity Kalman filter on the target's cluster centroid (oracle
 //!   association); it coasts through scans where the target is not seen and reports nothing there.
 //! - `ICP-AUTO`: clusters are linked scan to scan by nearest predicted centroid with a gate
-//!   ([`CentroidAssociator`]); ICP runs between the target cluster and the cluster it was linked to.
-//! - `KF-AUTO`: the multi-target tracker over all clusters ([`MultiTargetTracker`]); the estimate is
-//!   that of the confirmed track that took the target cluster.
+//!   ([`CentroidAssociator`](crate::CentroidAssociator)); ICP runs between the target cluster and
+//!   the cluster it was linked to.
+//! - `KF-AUTO`: the multi-target tracker over all clusters
+//!   ([`MultiTargetTracker`](crate::MultiTargetTracker)); the estimate is that of the confirmed
+//!   track that took the target cluster.
 //!
 //! In the auto modes the target id is used only to read out the estimate, never to associate.
 
 use std::collections::BTreeMap;
 
-use crate::cluster_association::{CentroidAssociationParams, CentroidAssociator};
+use crate::baseline_step::BaselineTrackers;
+use crate::cluster_association::CentroidAssociationParams;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
-use crate::icp::{IcpParams, icp_motion_estimate};
-use crate::kalman::{ConstantVelocityKalman, KalmanParams};
+use crate::icp::IcpParams;
+use crate::kalman::KalmanParams;
+use crate::method::Method;
 use crate::observation::ScanObservation;
-use crate::tracker::{MultiTargetTracker, TrackStatus, TrackerParams};
+use crate::tracker::TrackerParams;
 
 /// The four baselines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -38,13 +43,13 @@ impl BaselineMethod {
     /// All four, in report order.
     pub const ALL: [Self; 4] = [Self::Kf, Self::Icp, Self::KfAuto, Self::IcpAuto];
 
-    /// The method name used in reports (`ICP`, `KF`, `ICP-AUTO`, `KF-AUTO`).
-    pub fn name(self) -> &'static str {
+    /// The benchmark method this baseline reports as (`ICP`, `KF`, `ICP-AUTO`, `KF-AUTO`).
+    pub fn method(self) -> Method {
         match self {
-            Self::Icp => "ICP",
-            Self::Kf => "KF",
-            Self::IcpAuto => "ICP-AUTO",
-            Self::KfAuto => "KF-AUTO",
+            Self::Icp => Method::Icp,
+            Self::Kf => Method::Kf,
+            Self::IcpAuto => Method::IcpAuto,
+            Self::KfAuto => Method::KfAuto,
         }
     }
 }
@@ -69,152 +74,41 @@ pub fn run_baseline(
     scans: &[ScanObservation],
     params: &BaselineParams,
 ) -> Result<Vec<Option<MotionEstimate>>, EvalError> {
-    check_stamps(situation, scans)?;
-    let label = |err: EvalError| match err {
-        EvalError::BadObservation { scan, reason, .. } => EvalError::BadObservation {
-            situation: situation.to_owned(),
-            scan,
-            reason,
-        },
-        other => other,
-    };
-    match method {
-        BaselineMethod::Icp => Ok(run_icp_oracle(scans, &params.icp)),
-        BaselineMethod::Kf => run_kf_oracle(scans, params.kalman),
-        BaselineMethod::IcpAuto => run_icp_auto(scans, params).map_err(label),
-        BaselineMethod::KfAuto => run_kf_auto(scans, params.tracker).map_err(label),
-    }
+    Ok(run_all_baselines(situation, scans, params)?
+        .remove(&method.method())
+        .unwrap_or_default())
 }
 
-/// Runs all four baselines; method name → per-scan estimates.
+/// Runs all four baselines; method → per-scan estimates of the target.
 pub fn run_all_baselines(
     situation: &str,
     scans: &[ScanObservation],
     params: &BaselineParams,
-) -> Result<BTreeMap<String, Vec<Option<MotionEstimate>>>, EvalError> {
-    BaselineMethod::ALL
+) -> Result<BTreeMap<Method, Vec<Option<MotionEstimate>>>, EvalError> {
+    let mut trackers = BaselineTrackers::new(situation, params)?;
+    let mut out: BTreeMap<Method, Vec<Option<MotionEstimate>>> = BaselineMethod::ALL
         .iter()
-        .map(|m| {
-            Ok((
-                m.name().to_owned(),
-                run_baseline(*m, situation, scans, params)?,
-            ))
-        })
-        .collect()
-}
-
-fn run_icp_oracle(scans: &[ScanObservation], params: &IcpParams) -> Vec<Option<MotionEstimate>> {
-    let mut estimates = vec![None];
-    for pair in scans.windows(2) {
-        let (previous, current) = (&pair[0], &pair[1]);
-        let estimate = match (previous.target(), current.target()) {
-            (Some(p), Some(c)) => icp_motion_estimate(
-                &p.points_xy_world,
-                &c.points_xy_world,
-                current.stamp_secs - previous.stamp_secs,
-                params,
-            ),
-            _ => None,
-        };
-        estimates.push(estimate);
-    }
-    estimates.truncate(scans.len());
-    estimates
-}
-
-fn run_kf_oracle(
-    scans: &[ScanObservation],
-    params: KalmanParams,
-) -> Result<Vec<Option<MotionEstimate>>, EvalError> {
-    let mut filter: Option<ConstantVelocityKalman> = None;
-    let mut last_stamp = 0.0;
-    let mut estimates = Vec::with_capacity(scans.len());
+        .map(|m| (m.method(), Vec::with_capacity(scans.len())))
+        .collect();
     for scan in scans {
-        if let Some(kf) = filter.as_mut() {
-            kf.predict(scan.stamp_secs - last_stamp);
+        let target = scan.target_actor;
+        let mut wanted = vec![false; scan.clusters.len()];
+        if let Some(c) = scan.target_cluster().filter(|&c| c < wanted.len()) {
+            wanted[c] = true;
         }
-        last_stamp = scan.stamp_secs;
-        let Some(target) = scan.target() else {
-            estimates.push(None);
-            continue;
-        };
-        match filter.as_mut() {
-            Some(kf) => {
-                kf.update(target.centroid_xy)?;
-            }
-            None => filter = Some(ConstantVelocityKalman::new(target.centroid_xy, params)?),
-        }
-        estimates.push(filter.as_ref().and_then(ConstantVelocityKalman::estimate));
-    }
-    Ok(estimates)
-}
-
-fn run_icp_auto(
-    scans: &[ScanObservation],
-    params: &BaselineParams,
-) -> Result<Vec<Option<MotionEstimate>>, EvalError> {
-    let mut associator = CentroidAssociator::new(params.association);
-    let mut estimates = Vec::with_capacity(scans.len());
-    let mut previous: Option<&ScanObservation> = None;
-    for scan in scans {
-        let links = associator.step(scan)?;
-        let estimate = previous.and_then(|prev| {
-            let target_index = scan.target_cluster?;
-            let previous_index = (*links.get(target_index)?)?;
-            icp_motion_estimate(
-                &prev.clusters.get(previous_index)?.points_xy_world,
-                &scan.clusters.get(target_index)?.points_xy_world,
-                scan.stamp_secs - prev.stamp_secs,
-                &params.icp,
-            )
-        });
-        estimates.push(estimate);
-        previous = Some(scan);
-    }
-    Ok(estimates)
-}
-
-fn run_kf_auto(
-    scans: &[ScanObservation],
-    params: TrackerParams,
-) -> Result<Vec<Option<MotionEstimate>>, EvalError> {
-    let mut tracker = MultiTargetTracker::new(params)?;
-    let mut estimates = Vec::with_capacity(scans.len());
-    for scan in scans {
-        let centroids: Vec<[f64; 2]> = scan.clusters.iter().map(|c| c.centroid_xy).collect();
-        let track_of_cluster = tracker.step(scan.scan, scan.stamp_secs, &centroids)?;
-        let estimate = scan
-            .target_cluster
-            .and_then(|i| *track_of_cluster.get(i)?)
-            .and_then(|id| tracker.track(id))
-            .filter(|track| track.status == TrackStatus::Confirmed)
-            .and_then(|track| track.filter.estimate());
-        estimates.push(estimate);
-    }
-    Ok(estimates)
-}
-
-fn check_stamps(situation: &str, scans: &[ScanObservation]) -> Result<(), EvalError> {
-    for pair in scans.windows(2) {
-        let dt = pair[1].stamp_secs - pair[0].stamp_secs;
-        if !(dt > 0.0 && dt.is_finite()) {
-            return Err(EvalError::BadObservation {
-                situation: situation.to_owned(),
-                scan: pair[1].scan,
-                reason: format!(
-                    "time stamp {} s does not follow {} s",
-                    pair[1].stamp_secs, pair[0].stamp_secs
-                ),
-            });
+        let step = trackers.step(scan.clone(), &wanted)?;
+        for (method, estimates) in &mut out {
+            estimates.push(target.and_then(|t| step.actor_estimate(*method, t, scan)));
         }
     }
-    Ok(())
+    Ok(out)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::observation::ClusterObservation;
+    use crate::baseline_step::BaselineTrackers;
+    use crate::observation::{ActorCluster, ClusterObservation};
 
     const DT: f64 = 0.1;
 
@@ -238,12 +132,21 @@ mod tests {
                 let mut clusters = vec![parked, slow];
                 let target_cluster = k % 3;
                 clusters.insert(target_cluster, target);
+                let seen = |cluster| ActorCluster {
+                    cluster,
+                    points: 62,
+                };
                 ScanObservation {
                     scan: k,
                     stamp_secs: t,
                     sensor_xy_world: [0.0, 0.0],
                     clusters,
-                    target_cluster: Some(target_cluster),
+                    // The target is actor 7; the slow car actor 9 (the parked car has no id).
+                    actors: BTreeMap::from([
+                        (7, seen(target_cluster)),
+                        (9, seen(if target_cluster == 2 { 1 } else { 2 })),
+                    ]),
+                    target_actor: Some(7),
                 }
             })
             .collect()
@@ -293,7 +196,7 @@ mod tests {
     #[test]
     fn scans_without_the_target_have_no_oracle_estimate() {
         let mut scans = situation(6);
-        scans[3].target_cluster = None;
+        scans[3].actors.remove(&7);
         let icp =
             run_baseline(BaselineMethod::Icp, "s", &scans, &BaselineParams::default()).unwrap();
         assert!(icp[3].is_none() && icp[4].is_none() && icp[5].is_some());
@@ -304,8 +207,8 @@ mod tests {
     #[test]
     fn all_baselines_are_run_under_their_report_names() {
         let all = run_all_baselines("s", &situation(4), &BaselineParams::default()).unwrap();
-        let names: Vec<&str> = all.keys().map(String::as_str).collect();
-        assert_eq!(names, ["ICP", "ICP-AUTO", "KF", "KF-AUTO"]);
+        let names: Vec<&str> = all.keys().map(|m| m.name()).collect();
+        assert_eq!(names, ["KF", "ICP", "KF-AUTO", "ICP-AUTO"]);
         assert!(all.values().all(|v| v.len() == 4));
     }
 
@@ -329,7 +232,8 @@ mod tests {
 
     #[test]
     fn baseline_estimates_score_near_zero_error_on_a_clean_constant_velocity_target() {
-        use crate::result::{SituationResult, TruthAtScan};
+        use crate::result::SituationResult;
+        use crate::truth_at_scan::TruthAtScan;
         let scans = situation(30);
         let situation = SituationResult {
             name: "clean".into(),
@@ -340,11 +244,42 @@ mod tests {
             methods: run_all_baselines("clean", &scans, &BaselineParams::default()).unwrap(),
         };
         let metrics = situation.metrics().unwrap();
-        let icp = &metrics["ICP"];
+        let icp = &metrics[&Method::Icp];
         assert!(icp.heading_rmse_deg.unwrap() < 1e-6 && icp.speed_rmse_mps.unwrap() < 1e-6);
         assert!((icp.coverage - 29.0 / 30.0).abs() < 1e-12);
         // The Kalman filters start at rest, so their early scans carry the start-up error.
-        assert!(metrics["KF"].heading_me_deg.unwrap() < 10.0);
-        assert!((metrics["KF-AUTO"].coverage - 28.0 / 30.0).abs() < 1e-12);
+        assert!(metrics[&Method::Kf].heading_me_deg.unwrap() < 10.0);
+        assert!((metrics[&Method::KfAuto].coverage - 28.0 / 30.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn every_actor_gets_its_own_oracle_estimate_and_every_wanted_cluster_an_auto_one() {
+        let mut trackers = BaselineTrackers::new("s", &BaselineParams::default()).unwrap();
+        let mut last = None;
+        for scan in situation(8) {
+            // Only the slow car's cluster is wanted for ICP-AUTO.
+            let slow = scan.actor_cluster(9).unwrap();
+            let wanted: Vec<bool> = (0..3).map(|c| c == slow).collect();
+            last = Some((trackers.step(scan.clone(), &wanted).unwrap(), scan));
+        }
+        let (step, scan) = last.unwrap();
+        let slow = step.actor_estimate(Method::Icp, 9, &scan).unwrap();
+        assert!((slow.velocity_xy_mps[1] - 1.0).abs() < 1e-6, "{slow:?}");
+        let target = step.actor_estimate(Method::Icp, 7, &scan).unwrap();
+        assert!(velocity_error(&target) < 1e-6);
+        // KF-AUTO has every cluster (the parked car too, standing still); ICP-AUTO only the wanted one.
+        let kf_auto = &step.clusters[&Method::KfAuto];
+        assert!(kf_auto.iter().all(Option::is_some));
+        let icp_auto = &step.clusters[&Method::IcpAuto];
+        let slow_cluster = scan.actor_cluster(9).unwrap();
+        for (c, flow) in icp_auto.iter().enumerate() {
+            assert_eq!(flow.is_some(), c == slow_cluster, "cluster {c}");
+        }
+        // The oracle flow of a cluster is its actor's.
+        let parked = (0..3)
+            .find(|c| !scan.actors.values().any(|a| a.cluster == *c))
+            .unwrap();
+        assert!(step.cluster_flow(Method::Kf, parked).is_none());
+        assert!(step.cluster_flow(Method::Kf, slow_cluster).is_some());
     }
 }

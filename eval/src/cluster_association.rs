@@ -129,7 +129,8 @@ mod tests {
                 .enumerate()
                 .map(|(i, c)| ClusterObservation::from_points(i, vec![*c]))
                 .collect(),
-            target_cluster: None,
+            actors: Default::default(),
+            target_actor: None,
         }
     }
 

@@ -58,9 +58,23 @@ pub enum EvalError {
     /// Feature extraction, GP training or prediction, or a model file failed.
     #[error(transparent)]
     Learn(#[from] patchflow_learn::LearnError),
+    /// GP fitting or prediction failed (patchflow-gp, re-exported by patchflow-learn).
+    #[error(transparent)]
+    Gp(#[from] patchflow_learn::GpError),
+    /// Building or scoring an occupancy map failed.
+    #[error(transparent)]
+    Occupancy(#[from] patchflow_occupancy::OccupancyError),
     /// Reading a dataset failed.
     #[error(transparent)]
     Dataset(#[from] patchflow_dataset::DatasetError),
+    /// Simulating scenarios into a dataset failed.
+    #[error("generating into {out}: {source}")]
+    Sim {
+        /// The dataset folder being written.
+        out: PathBuf,
+        /// What the simulator reported.
+        source: patchflow_sim::SimError,
+    },
 }
 
 impl EvalError {

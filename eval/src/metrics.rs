@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
-use crate::result::TruthAtScan;
+use crate::truth_at_scan::TruthAtScan;
 
 /// Below this true speed the heading is ill-defined and not scored (AV2's dynamic threshold).
 pub const MIN_SCORED_SPEED_MPS: f64 = 0.5;

@@ -1,5 +1,8 @@
 //! What the benchmark hands to every method, per scan: the clusters of height-sliced points in the
-//! world frame (ground plane) and, for the oracle baselines and the read-out, which cluster is the target.
+//! world frame (ground plane) and, for the oracle baselines and the read-out, which cluster holds
+//! which actor.
+
+use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
@@ -37,15 +40,38 @@ pub struct ScanObservation {
     pub sensor_xy_world: [f64; 2],
     /// All clusters of this scan.
     pub clusters: Vec<ClusterObservation>,
-    /// Index into `clusters` of the cluster holding most target points: the oracle association.
-    /// `None` when the target is not seen in this scan.
-    pub target_cluster: Option<usize>,
+    /// The oracle association (thesis 4.4): for every actor seen, the cluster holding most of its
+    /// sliced points.
+    pub actors: BTreeMap<u16, ActorCluster>,
+    /// The actor the situation marks `target`, if any.
+    pub target_actor: Option<u16>,
+}
+
+/// Where an actor's sliced points went in one scan's clustering.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ActorCluster {
+    /// Index into the scan's clusters of the cluster holding most of the actor's points (ties to
+    /// the lowest index).
+    pub cluster: usize,
+    /// The actor's sliced points in that cluster.
+    pub points: usize,
 }
 
 impl ScanObservation {
+    /// Index of the target's cluster this scan (the oracle association); `None` when the
+    /// situation has no target or the target is not seen.
+    pub fn target_cluster(&self) -> Option<usize> {
+        self.actor_cluster(self.target_actor?)
+    }
+
+    /// Index of an actor's cluster this scan, if it is seen.
+    pub fn actor_cluster(&self, actor: u16) -> Option<usize> {
+        self.actors.get(&actor).map(|a| a.cluster)
+    }
+
     /// The target's cluster this scan, if the target is seen and the index is valid.
     pub fn target(&self) -> Option<&ClusterObservation> {
-        self.target_cluster.and_then(|i| self.clusters.get(i))
+        self.target_cluster().and_then(|i| self.clusters.get(i))
     }
 }
 
@@ -79,7 +105,14 @@ mod tests {
             stamp_secs: 0.0,
             sensor_xy_world: [0.0, 0.0],
             clusters: vec![ClusterObservation::from_points(0, vec![[1.0, 1.0]])],
-            target_cluster: Some(4),
+            actors: BTreeMap::from([(
+                3,
+                ActorCluster {
+                    cluster: 4,
+                    points: 1,
+                },
+            )]),
+            target_actor: Some(3),
         };
         assert!(scan.target().is_none());
     }

@@ -1,5 +1,6 @@
 //! The benchmark result model: per situation the ground truth at every scan and every method's
-//! per-scan estimates; the whole benchmark adds notes and stage timings. Plain data, serialisable.
+//! per-scan estimates, per sequence the whole-scene results; the whole benchmark adds notes and
+//! stage timings. Plain data, serialisable.
 
 use std::collections::BTreeMap;
 
@@ -7,43 +8,13 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
+use crate::method::Method;
 use crate::metrics::{MethodMetrics, score_method};
+use crate::objects::ObjectScan;
+use crate::perception_timing::ScanTiming;
 use crate::progress::StageTiming;
-
-/// The target's true motion at one scan.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct TruthAtScan {
-    /// Scan number within the situation.
-    pub scan: usize,
-    /// True heading, radians, counter-clockwise from world +x.
-    pub heading_rad: f64,
-    /// True speed, m/s.
-    pub speed_mps: f64,
-    /// True velocity, world frame, m/s.
-    pub velocity_xy_mps: [f64; 2],
-    /// Distance sensor → target centre in the ground plane, metres, when known; the report
-    /// breaks the heading error down by it (the height slice thins out with range).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub range_m: Option<f64>,
-    /// Sliced points in the target's cluster (what ICP and the GP estimators see), when known.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub target_points: Option<usize>,
-}
-
-impl TruthAtScan {
-    /// Truth from a world-frame velocity (heading and speed derived from it).
-    pub fn from_velocity(scan: usize, velocity_xy_mps: [f64; 2]) -> Self {
-        let [vx, vy] = velocity_xy_mps;
-        Self {
-            scan,
-            heading_rad: vy.atan2(vx),
-            speed_mps: vx.hypot(vy),
-            velocity_xy_mps,
-            range_m: None,
-            target_points: None,
-        }
-    }
-}
+use crate::scene_flow::SceneFlowTally;
+use crate::truth_at_scan::TruthAtScan;
 
 /// One situation's truth and every method's estimates, aligned scan by scan.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -54,8 +25,8 @@ pub struct SituationResult {
     pub scans: usize,
     /// Truth per scan (`scans` entries).
     pub truth: Vec<TruthAtScan>,
-    /// Method name → one optional estimate per scan, aligned with `truth`.
-    pub methods: BTreeMap<String, Vec<Option<MotionEstimate>>>,
+    /// Method → one optional estimate per scan, aligned with `truth`.
+    pub methods: BTreeMap<Method, Vec<Option<MotionEstimate>>>,
 }
 
 impl SituationResult {
@@ -84,8 +55,8 @@ impl SituationResult {
         Ok(())
     }
 
-    /// Scores every method against the truth (SPEC §6); method name → metrics.
-    pub fn metrics(&self) -> Result<BTreeMap<String, MethodMetrics>, EvalError> {
+    /// Scores every method against the truth (SPEC §6); method → metrics.
+    pub fn metrics(&self) -> Result<BTreeMap<Method, MethodMetrics>, EvalError> {
         self.validate()?;
         self.methods
             .iter()
@@ -95,17 +66,36 @@ impl SituationResult {
                         situation: self.name.clone(),
                         reason: format!("method {method}: {err}"),
                     })?;
-                Ok((method.clone(), metrics))
+                Ok((*method, metrics))
             })
             .collect()
     }
 }
 
+/// One sequence seen as a whole scene: scene flow of every method on every scored point, every
+/// actor at every scan, and what each scan's perception cost.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct SceneResult {
+    /// Sequence name.
+    pub name: String,
+    /// Scans evaluated.
+    pub scans: usize,
+    /// Per method, the per-point errors of all scans.
+    pub scene_flow: BTreeMap<Method, SceneFlowTally>,
+    /// Every actor with enough points at every scan.
+    pub objects: Vec<ObjectScan>,
+    /// Per scan, the perception's stages.
+    pub timing: Vec<ScanTiming>,
+}
+
 /// Everything the report writer needs.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct BenchmarkReport {
-    /// The situations, in report order.
+    /// The situations with a target, in report order (the per-target tables, thesis 4.4).
     pub situations: Vec<SituationResult>,
+    /// Every sequence evaluated as a whole scene, in report order.
+    #[serde(default)]
+    pub scenes: Vec<SceneResult>,
     /// Free-text notes for the report's notes section (one bullet each).
     pub notes: Vec<String>,
     /// Seconds spent per stage, for the timing table.

@@ -7,13 +7,13 @@
 //! SPGP-BEST, SPGP-HET-BEST) print an ME larger than the RMSE, which cannot hold for a mean
 //! absolute error; we keep the printed values.
 
-use crate::method::CANONICAL_METHODS;
+use crate::method::{CANONICAL_METHODS, Method};
 
 /// One method's RMSE and ME in a thesis table.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ThesisRow {
-    /// Method name as in our reports.
-    pub method: &'static str,
+    /// The method.
+    pub method: Method,
     /// RMSE (degrees for heading, m/s for speed).
     pub rmse: f64,
     /// ME (same unit).
@@ -44,7 +44,7 @@ pub struct ThesisSituation {
 /// The thesis' six methods: the first six of [`CANONICAL_METHODS`] (it has no `-AUTO` variants).
 const fn rows(values: [(f64, f64); 6]) -> [ThesisRow; 6] {
     let mut out = [ThesisRow {
-        method: "",
+        method: Method::SpgpAll,
         rmse: 0.0,
         me: 0.0,
     }; 6];
@@ -190,7 +190,7 @@ pub fn thesis_situation(name: &str) -> Option<&'static ThesisSituation> {
 }
 
 /// A thesis row of a method in a table, if the thesis reports that method.
-pub fn thesis_row(rows: &[ThesisRow], method: &str) -> Option<ThesisRow> {
+pub fn thesis_row(rows: &[ThesisRow], method: Method) -> Option<ThesisRow> {
     rows.iter().copied().find(|r| r.method == method)
 }
 
@@ -227,12 +227,12 @@ mod tests {
     #[test]
     fn the_transcribed_tables_match_spot_checks_of_the_thesis_text() {
         let s1 = thesis_situation("situation1").unwrap();
-        assert_eq!(thesis_row(&s1.heading, "ICP").unwrap().rmse, 33.76);
-        assert_eq!(thesis_row(&s1.speed, "SPGP-ALL").unwrap().me, 0.8);
+        assert_eq!(thesis_row(&s1.heading, Method::Icp).unwrap().rmse, 33.76);
+        assert_eq!(thesis_row(&s1.speed, Method::SpgpAll).unwrap().me, 0.8);
         let s5 = thesis_situation("situation5").unwrap();
-        assert_eq!(thesis_row(&s5.speed, "ICP").unwrap().rmse, 102.52);
+        assert_eq!(thesis_row(&s5.speed, Method::Icp).unwrap().rmse, 102.52);
         assert_eq!(s5.heading_table, "Table 4.14");
         assert!(thesis_situation("situation6").is_none());
-        assert!(thesis_row(&s1.heading, "KF-AUTO").is_none());
+        assert!(thesis_row(&s1.heading, Method::KfAuto).is_none());
     }
 }

@@ -66,6 +66,28 @@ fn an_unknown_scenario_field_is_rejected_with_its_name_and_line() {
 }
 
 #[test]
+fn occupancy_on_a_dataset_of_an_older_build_names_the_missing_sensor_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    let generated = patchflow(&[
+        "generate",
+        "dgpom_tjunction",
+        "--out",
+        data.to_str().unwrap(),
+    ]);
+    assert!(generated.status.success(), "{}", stderr(&generated));
+    std::fs::remove_file(data.join("sequences/dgpom_tjunction/sensor.json")).unwrap();
+    let output = patchflow(&[
+        "occupancy",
+        "--data",
+        data.to_str().unwrap(),
+        "--out",
+        dir.path().join("report").to_str().unwrap(),
+    ]);
+    assert_clean_failure(&output, &["sensor.json", "regenerate"]);
+}
+
+#[test]
 fn a_corrupt_model_file_is_named_in_the_error() {
     let dir = tempfile::tempdir().unwrap();
     let model = dir.path().join("model.json");

@@ -2,6 +2,9 @@
 //! under 50 ms with GP prediction; the feature part targets under 30 ms on 2 cores), and the
 //! one-pass training-sample collection for two priors.
 //!
+//! The `ground` group times the ground estimate of one sweep and the sweep's height slice above
+//! the flat and the estimated ground.
+//!
 //! `cargo bench -p patchflow-learn --bench features` runs on a synthetic street. With
 //! `PATCHFLOW_BENCH_DATASET=<dir>` (e.g. the output of
 //! `patchflow generate scenarios/train01.toml --out /tmp/t1 --seed 7`) the pipeline runs on
@@ -14,7 +17,9 @@ use std::path::PathBuf;
 use criterion::{Criterion, criterion_group, criterion_main};
 use patchflow_dataset::{Dataset, Sweep};
 use patchflow_learn::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
-use patchflow_learn::{FeatureKind, FeatureParams, SampleSet, SweepFeatures};
+use patchflow_learn::{
+    FeatureKind, FeatureParams, GroundGrid, GroundMode, HeightSlice, SampleSet, SweepFeatures,
+};
 
 /// The dataset named by `PATCHFLOW_BENCH_DATASET`, if any.
 fn bench_dataset() -> Option<Dataset> {
@@ -90,6 +95,7 @@ fn pipeline(c: &mut Criterion) {
         b.iter(|| black_box(probe.heading_patches(&indices)))
     });
     group.finish();
+    ground(c, &curr, &params);
     if let Some(dataset) = dataset {
         let mut group = c.benchmark_group("samples");
         group.sample_size(10);
@@ -109,6 +115,31 @@ fn pipeline(c: &mut Criterion) {
         });
         group.finish();
     }
+}
+
+/// The ground estimate of one sweep, and one sweep's height slice above the flat and above the
+/// estimated ground (the estimate included).
+fn ground(c: &mut Criterion, sweep: &Sweep, params: &FeatureParams) {
+    let flat = FeatureParams {
+        ground: GroundMode::Flat,
+        ..params.clone()
+    };
+    let estimated = FeatureParams {
+        ground: GroundMode::Estimated,
+        ..params.clone()
+    };
+    let mut group = c.benchmark_group("ground");
+    group.sample_size(30);
+    group.bench_function("ground_estimate", |b| {
+        b.iter(|| GroundGrid::estimate(black_box(sweep), params.half_extent_m).expect("ground"))
+    });
+    group.bench_function("slice_above_flat_ground", |b| {
+        b.iter(|| HeightSlice::cut(black_box(sweep), &flat).expect("slice"))
+    });
+    group.bench_function("slice_above_estimated_ground", |b| {
+        b.iter(|| HeightSlice::cut(black_box(sweep), &estimated).expect("slice"))
+    });
+    group.finish();
 }
 
 criterion_group!(benches, pipeline);

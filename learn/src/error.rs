@@ -8,6 +8,9 @@ pub enum LearnError {
     /// Reading a dataset failed (the message names the file).
     #[error(transparent)]
     Dataset(#[from] patchflow_dataset::DatasetError),
+    /// GP fitting, prediction or a GP model file failed (the message names the file).
+    #[error(transparent)]
+    Gp(#[from] patchflow_gp::GpError),
     /// An operating-system error on a file.
     #[error("{path}: {source}")]
     Io {

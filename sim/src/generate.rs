@@ -6,7 +6,10 @@ use patchflow_dataset::{FolderLock, Manifest, SequenceWriter};
 
 use crate::error::{Result, SimError};
 use crate::provenance::{Provenance, provenance};
-use crate::scenario::{EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes, sweep_memory_bytes};
+use crate::scenario::{
+    EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes,
+    sweep_memory_bytes,
+};
 use crate::simulation::Simulation;
 
 /// Program and version recorded in every marker; a sequence written by another is not resumed.
@@ -28,6 +31,27 @@ impl ScenarioSource {
             .iter()
             .map(|&(name, text)| Self::Embedded(name, text))
             .collect()
+    }
+
+    /// The scenario a command-line argument names: the file at that path if there is one,
+    /// otherwise the embedded scenario of that name (with or without `.toml`), e.g.
+    /// `dgpom_tjunction`; an error names the argument when it is neither.
+    pub fn from_argument(argument: &Path) -> Result<Self> {
+        if argument.exists() {
+            return Ok(Self::File(argument.to_owned()));
+        }
+        let text = argument.to_string_lossy();
+        let name = text.strip_suffix(".toml").unwrap_or(&text);
+        EMBEDDED_SCENARIOS
+            .iter()
+            .chain(&EMBEDDED_OCCUPANCY_SCENARIOS)
+            .find(|(embedded, _)| *embedded == name)
+            .map(|&(name, text)| Self::Embedded(name, text))
+            .ok_or_else(|| {
+                SimError::Options(format!(
+                    "{text}: no such scenario file, nor an embedded scenario of that name"
+                ))
+            })
     }
 
     /// Loads and validates it.
@@ -239,6 +263,8 @@ pub fn generate_sequence(
     let writer = SequenceWriter::open(root, &name)?;
     writer.write_scenario(&text)?;
     let mut sim = Simulation::new(scenario, seed)?;
+    writer.write_static_obstacles(&sim.scene().static_obstacles())?;
+    writer.write_sensor(&crate::lidar::sensor_info(&scenario.lidar))?;
     for index in 0..scenario.sweeps {
         let mut points = 0;
         if !writer.has_sweep(index) {
@@ -287,6 +313,19 @@ pub fn generate_sequence(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_argument_names_a_file_or_else_an_embedded_scenario() {
+        let source = ScenarioSource::from_argument(Path::new("dgpom_tjunction")).unwrap();
+        assert!(matches!(
+            source,
+            ScenarioSource::Embedded("dgpom_tjunction", _)
+        ));
+        let source = ScenarioSource::from_argument(Path::new("situation2.toml")).unwrap();
+        assert!(matches!(source, ScenarioSource::Embedded("situation2", _)));
+        let err = ScenarioSource::from_argument(Path::new("no/such/scene.toml")).unwrap_err();
+        assert!(err.to_string().contains("no/such/scene.toml"), "{err}");
+    }
 
     #[test]
     fn shards_parse_and_partition_the_work() {

@@ -24,15 +24,16 @@ pub use error::{Result, SimError};
 pub use generate::{
     GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset, generate_sequence,
 };
-pub use lidar::{Lidar, Scan, elevations_deg};
+pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
 pub use motion::{
     MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory, wrap_angle,
 };
 pub use patchflow_dataset as dataset;
 pub use scenario::{
-    ActorConfig, CarModel, EMBEDDED_SCENARIOS, ElevationSpacing, LidarConfig, PoseErrorConfig,
-    PoseErrorKnobs, Realism, RoadConfig, Scenario, SensorConfig, SensorKnobs, StructureConfig,
-    StructureKind, TrafficConfig, WorldConfig, WorldKnobs,
+    ActorConfig, CarModel, EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, ElevationSpacing,
+    LidarConfig, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M,
+    PoseErrorConfig, PoseErrorKnobs, Realism, RoadConfig, Scenario, SensorConfig, SensorKind,
+    SensorKnobs, StructureConfig, StructureKind, TrafficConfig, WorldConfig, WorldKnobs,
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;

@@ -4,9 +4,9 @@
 
 use std::fmt::Write as _;
 
-use crate::method::ordered_methods;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, heading_error_deg, rmse};
-use crate::result::{SituationResult, TruthAtScan};
+use crate::result::SituationResult;
+use crate::truth_at_scan::TruthAtScan;
 
 /// One breakdown: a title, column labels with the upper edge of each bin, and the scan's value.
 struct Breakdown {
@@ -56,10 +56,9 @@ fn section(md: &mut String, situation: &SituationResult, breakdown: &Breakdown) 
     let _ = writeln!(md, "#### {}\n", breakdown.title);
     let labels: Vec<&str> = breakdown.bins.iter().map(|(label, _)| *label).collect();
     let _ = writeln!(md, "| Method | {} |\n|---|---|---|---|", labels.join(" | "));
-    let names: Vec<&str> = situation.methods.keys().map(String::as_str).collect();
-    for method in ordered_methods(names) {
+    for (method, estimates) in &situation.methods {
         let mut errors: [Vec<f64>; 3] = Default::default();
-        for (truth, estimate) in situation.truth.iter().zip(&situation.methods[&method]) {
+        for (truth, estimate) in situation.truth.iter().zip(estimates) {
             let (Some(e), Some(v)) = (estimate, (breakdown.value)(truth)) else {
                 continue;
             };

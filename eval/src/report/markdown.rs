@@ -5,18 +5,20 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use crate::method::ordered_methods;
+use crate::method::Method;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
+use crate::perception_summary::PerceptionSummary;
 use crate::report::breakdown::breakdown_sections;
 use crate::report::files::fmt_opt;
+use crate::report::perception_markdown::perception_section;
+use crate::report::scene_markdown::scene_sections;
+use crate::report::scores::{ReportScores, SituationMetrics};
 use crate::result::BenchmarkReport;
 use crate::thesis_tables::{thesis_row, thesis_situation};
 
-/// Metrics of every situation, in report order: (name, scans, method → metrics).
-pub(crate) type SituationMetrics = (String, usize, BTreeMap<String, MethodMetrics>);
-
 /// The text of `report.md`.
-pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetrics]) -> String {
+pub(crate) fn report_markdown(report: &BenchmarkReport, scores: &ReportScores) -> String {
+    let metrics = &scores.situations[..];
     let mut md = String::new();
     // Writing to a String cannot fail, so the `fmt::Result`s below are ignored.
     let _ = writeln!(md, "# patchflow benchmark report\n");
@@ -55,6 +57,8 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetr
             let _ = writeln!(md, "{line}");
         }
     }
+    scene_sections(&mut md, scores);
+    perception_section(&mut md, &PerceptionSummary::of_scenes(&report.scenes));
     timing_section(&mut md, report);
     notes_section(&mut md, report);
     md
@@ -63,11 +67,10 @@ pub(crate) fn report_markdown(report: &BenchmarkReport, metrics: &[SituationMetr
 fn summary_section(md: &mut String, metrics: &[SituationMetrics]) {
     let _ = writeln!(md, "## Summary\n");
     let names: Vec<&str> = metrics.iter().map(|(n, _, _)| n.as_str()).collect();
-    let methods = ordered_methods(
-        metrics
-            .iter()
-            .flat_map(|(_, _, m)| m.keys().map(String::as_str)),
-    );
+    let methods: std::collections::BTreeSet<Method> = metrics
+        .iter()
+        .flat_map(|(_, _, m)| m.keys().copied())
+        .collect();
     let _ = write!(md, "| Method |");
     for n in &names {
         let _ = write!(md, " {n} heading RMSE (°) / speed RMSE (m/s) |");
@@ -109,14 +112,13 @@ fn situation_section(
     md: &mut String,
     name: &str,
     scans: usize,
-    methods: &BTreeMap<String, MethodMetrics>,
+    methods: &BTreeMap<Method, MethodMetrics>,
 ) {
     let thesis = thesis_situation(name);
     let _ = writeln!(md, "## {name} ({scans} scans)\n");
     if let Some(t) = thesis {
         let _ = writeln!(md, "After thesis 4.4: {}.\n", t.description);
     }
-    let order = ordered_methods(methods.keys().map(String::as_str));
     let (heading_label, speed_label) =
         thesis.map_or(("–", "–"), |t| (t.heading_table, t.speed_table));
 
@@ -128,11 +130,8 @@ fn situation_section(
         md,
         "| Method | RMSE | ME | scored scans | coverage | Hess 2008 RMSE | Hess 2008 ME |\n|---|---|---|---|---|---|---|"
     );
-    for method in &order {
-        let Some(m) = methods.get(method) else {
-            continue;
-        };
-        let row = thesis.and_then(|t| thesis_row(&t.heading, method));
+    for (method, m) in methods {
+        let row = thesis.and_then(|t| thesis_row(&t.heading, *method));
         let _ = writeln!(
             md,
             "| {method} | {} | {} | {} | {:.3} | {} | {} |",
@@ -149,11 +148,8 @@ fn situation_section(
         md,
         "| Method | RMSE | ME | EPE | coverage | Hess 2008 RMSE | Hess 2008 ME |\n|---|---|---|---|---|---|---|"
     );
-    for method in &order {
-        let Some(m) = methods.get(method) else {
-            continue;
-        };
-        let row = thesis.and_then(|t| thesis_row(&t.speed, method));
+    for (method, m) in methods {
+        let row = thesis.and_then(|t| thesis_row(&t.speed, *method));
         let _ = writeln!(
             md,
             "| {method} | {} | {} | {} | {:.3} | {} | {} |",

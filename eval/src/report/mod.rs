@@ -7,12 +7,18 @@ mod cv;
 mod files;
 mod json;
 mod markdown;
+mod object_plot;
+mod perception_markdown;
 mod plot;
+mod scene_markdown;
+mod scores;
 #[cfg(test)]
 mod synthetic;
 mod writer;
 
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
+pub(crate) use files::{create_dir, write_atomic};
 pub use json::{metrics_json, metrics_json_value};
+pub(crate) use plot::{FONT, ensure_font};
 pub use plot::{plot_heading, plot_speed};
 pub use writer::{ReportFiles, write_report};

@@ -12,13 +12,12 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
 use crate::error::EvalError;
-use crate::method::{method_slot, ordered_methods};
 use crate::metrics::wrap_angle_rad;
 use crate::result::SituationResult;
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVu-LICENSE.txt`).
 const FONT_TTF: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 const SIZE_PX: (u32, u32) = (1000, 560);
 
 /// Colour per canonical method slot (tab10), then a few spares.
@@ -37,7 +36,8 @@ const PALETTE: [RGBColor; 12] = [
     RGBColor(160, 100, 100),
 ];
 
-fn ensure_font(path: &Path) -> Result<(), EvalError> {
+/// Registers the bundled font once; an error names the PNG that needed it.
+pub(crate) fn ensure_font(path: &Path) -> Result<(), EvalError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| register_font(FONT, FontStyle::Normal, FONT_TTF).is_ok());
     if ok {
@@ -50,11 +50,44 @@ fn ensure_font(path: &Path) -> Result<(), EvalError> {
     }
 }
 
-/// One curve: (scan, value) runs without gaps, so lines break where a method has no estimate.
-struct Curve {
-    label: String,
-    colour: RGBColor,
-    points: Vec<Option<(f64, f64)>>,
+/// One curve: (x, value) runs without gaps, so lines break where a method has no estimate.
+pub(crate) struct Curve {
+    /// Legend label.
+    pub label: String,
+    /// Line colour.
+    pub colour: RGBColor,
+    /// Points; `None` breaks the line.
+    pub points: Vec<Option<(f64, f64)>>,
+}
+
+/// Axis descriptions and the resolution of the value axis.
+pub(crate) struct Axes<'a> {
+    /// Description of the x axis.
+    pub x: &'a str,
+    /// Decimals of the x tick labels.
+    pub x_decimals: usize,
+    /// Description of the y axis.
+    pub y: &'a str,
+    /// Decimals of the y tick labels.
+    pub y_decimals: usize,
+    /// Smallest padding above and below the data, in y units.
+    pub min_pad: f64,
+}
+
+/// The colour of a method in every plot.
+pub(crate) fn colour_of(method: crate::method::Method) -> RGBColor {
+    PALETTE[method.slot() % PALETTE.len()]
+}
+
+/// The axes of the plots over the scans, values in whole units.
+fn scan_axes(y: &str) -> Axes<'_> {
+    Axes {
+        x: "scan",
+        x_decimals: 0,
+        y,
+        y_decimals: 0,
+        min_pad: 1.0,
+    }
 }
 
 /// Draws `plots/<situation>_heading.png`: true and estimated heading in degrees over the scans.
@@ -83,7 +116,7 @@ pub fn plot_heading(situation: &SituationResult, path: &Path) -> Result<(), Eval
     draw(
         path,
         &format!("{}: heading", situation.name),
-        "heading (°)",
+        scan_axes("heading (°)"),
         truth_points,
         curves,
         None,
@@ -109,7 +142,7 @@ pub fn plot_speed(situation: &SituationResult, path: &Path) -> Result<(), EvalEr
     draw(
         path,
         &format!("{}: speed", situation.name),
-        "speed (m/s)",
+        scan_axes("speed (m/s)"),
         truth_points,
         curves,
         Some(0.0),
@@ -127,29 +160,30 @@ fn method_curves(
     situation: &SituationResult,
     value: impl Fn(usize, &crate::estimate::MotionEstimate) -> f64,
 ) -> Vec<Curve> {
-    ordered_methods(situation.methods.keys().map(String::as_str))
-        .into_iter()
-        .filter_map(|method| {
-            let estimates = situation.methods.get(&method)?;
+    situation
+        .methods
+        .iter()
+        .map(|(method, estimates)| {
             let points = estimates
                 .iter()
                 .enumerate()
                 .map(|(i, e)| e.as_ref().map(|e| (scan_of(situation, i), value(i, e))))
                 .filter(|p| p.is_none_or(|(_, v)| v.is_finite()))
                 .collect();
-            Some(Curve {
-                colour: PALETTE[method_slot(&method) % PALETTE.len()],
-                label: method,
+            Curve {
+                colour: colour_of(*method),
+                label: method.name().to_owned(),
                 points,
-            })
+            }
         })
         .collect()
 }
 
-fn draw(
+/// Draws curves (and a black truth curve, if any) to a PNG.
+pub(crate) fn draw(
     path: &Path,
     title: &str,
-    y_label: &str,
+    axes: Axes<'_>,
     truth: Vec<Option<(f64, f64)>>,
     curves: Vec<Curve>,
     y_floor: Option<f64>,
@@ -163,8 +197,10 @@ fn draw(
         .iter()
         .chain(curves.iter().flat_map(|c| c.points.iter()))
         .flatten();
-    let (mut x_max, mut y_min, mut y_max) = (1.0f64, f64::INFINITY, f64::NEG_INFINITY);
+    let (mut x_min, mut x_max) = (0.0f64, 1.0f64);
+    let (mut y_min, mut y_max) = (f64::INFINITY, f64::NEG_INFINITY);
     for (x, y) in all {
+        x_min = x_min.min(*x);
         x_max = x_max.max(*x);
         y_min = y_min.min(*y);
         y_max = y_max.max(*y);
@@ -173,8 +209,8 @@ fn draw(
         (y_min, y_max) = (0.0, 1.0);
     }
     // Extra room at the top keeps the legend (upper right) off the curves.
-    let pad = ((y_max - y_min) * 0.08).max(1.0);
-    let legend_room = (y_max - y_min).max(1.0) * 0.35;
+    let pad = ((y_max - y_min) * 0.08).max(axes.min_pad);
+    let legend_room = (y_max - y_min).max(axes.min_pad) * 0.35;
     let y_range = y_floor.map_or(y_min - pad, |f| f.min(y_min))..(y_max + pad + legend_room);
 
     let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
@@ -184,14 +220,14 @@ fn draw(
         .margin(14)
         .x_label_area_size(44)
         .y_label_area_size(64)
-        .build_cartesian_2d(0.0..x_max + 1.0, y_range)
+        .build_cartesian_2d(x_min.min(0.0)..x_max + 1.0, y_range)
         .map_err(|e| plot_err(&e))?;
     chart
         .configure_mesh()
-        .x_desc("scan")
-        .y_desc(y_label)
-        .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|y| format!("{y:.0}"))
+        .x_desc(axes.x)
+        .y_desc(axes.y)
+        .x_label_formatter(&|x| format!("{x:.*}", axes.x_decimals))
+        .y_label_formatter(&|y| format!("{y:.*}", axes.y_decimals))
         .label_style((FONT, 15))
         .axis_desc_style((FONT, 17))
         .light_line_style(RGBColor(235, 235, 235))
@@ -203,7 +239,9 @@ fn draw(
         colour: BLACK,
         points: truth,
     };
-    draw_curve(&mut chart, &truth_curve, 3).map_err(|e| plot_err(&e))?;
+    if truth_curve.points.iter().any(Option::is_some) {
+        draw_curve(&mut chart, &truth_curve, 3).map_err(|e| plot_err(&e))?;
+    }
     for curve in &curves {
         draw_curve(&mut chart, curve, 2).map_err(|e| plot_err(&e))?;
     }

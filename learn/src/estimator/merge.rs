@@ -53,6 +53,12 @@ impl HeadingVote {
         Self { mean, cov }
     }
 
+    /// This vote's own heading (the angle of its mean vector) and the delta-method variance,
+    /// `None` when the vector has no direction.
+    pub fn heading(&self) -> Option<(f64, f64)> {
+        angle_of(self.mean, &self.cov)
+    }
+
     /// Scalar spread used to rank votes for BEST: the trace of the covariance.
     fn spread(&self) -> f64 {
         self.cov.trace()
@@ -106,6 +112,17 @@ pub fn merge_heading(votes: &[HeadingVote], rule: MergeRule) -> Option<MergedHea
             .iter()
             .map(|(v, info)| info * v.mean)
             .sum::<Vector2<f64>>();
+    let (heading_rad, var_rad2) = angle_of(mean, &cov)?;
+    Some(MergedHeading {
+        heading_rad,
+        var_rad2,
+        votes: chosen.len(),
+    })
+}
+
+/// The angle of a 2-D Gaussian's mean vector and its variance by the delta method; `None` when
+/// the mean has no direction.
+fn angle_of(mean: Vector2<f64>, cov: &Matrix2<f64>) -> Option<(f64, f64)> {
     let norm2 = mean.norm_squared();
     if norm2.is_nan() || norm2 <= 1e-12 {
         return None;
@@ -113,11 +130,7 @@ pub fn merge_heading(votes: &[HeadingVote], rule: MergeRule) -> Option<MergedHea
     // Delta method: the angle's gradient w.r.t. (x, y) is (−y, x) / |m|².
     let gradient = Vector2::new(-mean.y, mean.x) / norm2;
     let var_rad2 = (gradient.transpose() * cov * gradient)[(0, 0)];
-    Some(MergedHeading {
-        heading_rad: mean.y.atan2(mean.x),
-        var_rad2,
-        votes: chosen.len(),
-    })
+    Some((mean.y.atan2(mean.x), var_rad2))
 }
 
 fn usable_var(var: f64) -> bool {

@@ -1,11 +1,18 @@
-//! The motion estimator of thesis 3.1: per-point GP predictions from map patches, merged per cluster.
+//! The motion estimator of thesis 3.1: per-point GP predictions from map patches, merged per
+//! cluster; the per-scan step of Algorithm 3.1 in `scan_motion.rs`.
 
+mod cluster_estimate;
+mod cluster_prediction;
 mod merge;
 mod model_file;
 mod motion_estimator;
 mod params;
+mod scan_motion;
 
+pub use cluster_estimate::{
+    ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming, ScanEstimate, ScanMotion,
+};
 pub use merge::{Gaussian, HeadingVote, MergeRule, MergedHeading, merge_heading, merge_scalar};
 pub use model_file::{MOTION_MODEL_FORMAT, MOTION_MODEL_VERSION};
-pub use motion_estimator::{ClusterEstimate, ClusterMotion, MotionEstimator, TrainingRecord};
+pub use motion_estimator::{MotionEstimator, TrainingRecord};
 pub use params::EstimatorParams;

@@ -7,12 +7,18 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use super::motion_estimator::{MotionEstimator, TrainingRecord};
-use crate::{FeatureKind, FeatureParams, GaborParams, GpKind, GpModel, LearnError, Result};
+use crate::{
+    FeatureKind, FeatureParams, GaborParams, GpKind, GpModel, GroundMode, LearnError, Result,
+};
 
 /// Format name written into every estimator model file.
 pub const MOTION_MODEL_FORMAT: &str = "patchflow-motion-model";
-/// Version of the estimator model file this build reads and writes.
-pub const MOTION_MODEL_VERSION: u32 = 2;
+/// Version of the estimator model file this build writes. Version 3 records the ground the height
+/// slice is measured from (`features.ground`); version 2 files, from before the ground estimate,
+/// are read with the flat ground their maps were cut above.
+pub const MOTION_MODEL_VERSION: u32 = 3;
+/// The last version without `features.ground`.
+const FLAT_GROUND_VERSION: u32 = 2;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -35,6 +41,9 @@ struct ModelFile {
 struct FeatureRecord {
     slice_min_m: f64,
     slice_max_m: f64,
+    /// `GroundMode::name`; absent in version 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    ground: Option<String>,
     cell_m: f64,
     half_extent_m: f64,
     prior: f64,
@@ -51,6 +60,7 @@ impl From<&FeatureParams> for FeatureRecord {
         Self {
             slice_min_m: p.slice_min_m,
             slice_max_m: p.slice_max_m,
+            ground: Some(p.ground.name().to_owned()),
             cell_m: p.cell_m,
             half_extent_m: p.half_extent_m,
             prior: p.prior,
@@ -69,6 +79,7 @@ impl From<FeatureRecord> for FeatureParams {
         Self {
             slice_min_m: r.slice_min_m,
             slice_max_m: r.slice_max_m,
+            ground: GroundMode::Flat, // set from the version by `ground_of`
             cell_m: r.cell_m,
             half_extent_m: r.half_extent_m,
             prior: r.prior,
@@ -81,6 +92,17 @@ impl From<FeatureRecord> for FeatureParams {
                 gamma: r.gabor_gamma,
             },
         }
+    }
+}
+
+/// The ground a model's maps were cut above: named in version 3, flat in version 2.
+fn ground_of(version: u32, name: Option<&str>) -> std::result::Result<GroundMode, String> {
+    match (version, name) {
+        (FLAT_GROUND_VERSION, None) => Ok(GroundMode::Flat),
+        (FLAT_GROUND_VERSION, Some(_)) => Err("features.ground is not part of version 2".into()),
+        (_, None) => Err("features.ground is missing".into()),
+        (_, Some(name)) => GroundMode::parse(name)
+            .ok_or_else(|| format!("unknown features.ground '{name}' (flat or estimated)")),
     }
 }
 
@@ -159,9 +181,9 @@ impl MotionEstimator {
             )));
         }
         let version = value.get("version").and_then(Value::as_u64).unwrap_or(0);
-        if version != u64::from(MOTION_MODEL_VERSION) {
+        if version != u64::from(MOTION_MODEL_VERSION) && version != u64::from(FLAT_GROUND_VERSION) {
             return Err(model_err(format!(
-                "motion model version {version} is not supported (this build reads version {MOTION_MODEL_VERSION}); retrain it with `patchflow train`"
+                "motion model version {version} is not supported (this build reads versions {FLAT_GROUND_VERSION} and {MOTION_MODEL_VERSION}); retrain it with `patchflow train`"
             )));
         }
         let file: ModelFile = serde_json::from_value(value)
@@ -171,7 +193,11 @@ impl MotionEstimator {
             "gabor" => FeatureKind::Gabor,
             other => return Err(model_err(format!("unknown feature kind '{other}'"))),
         };
-        let features = FeatureParams::from(file.features);
+        let ground = ground_of(file.version, file.features.ground.as_deref()).map_err(model_err)?;
+        let features = FeatureParams {
+            ground,
+            ..FeatureParams::from(file.features)
+        };
         features.validate().map_err(|e| model_err(e.to_string()))?;
         let estimator = Self {
             gp: file.gp,
@@ -215,5 +241,19 @@ impl MotionEstimator {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_version_2_model_is_read_with_the_flat_ground_and_version_3_names_its_own() {
+        assert_eq!(ground_of(2, None), Ok(GroundMode::Flat));
+        assert_eq!(ground_of(3, Some("estimated")), Ok(GroundMode::Estimated));
+        assert_eq!(ground_of(3, Some("flat")), Ok(GroundMode::Flat));
+        assert!(ground_of(3, None).is_err() && ground_of(2, Some("flat")).is_err());
+        assert!(ground_of(3, Some("level")).unwrap_err().contains("level"));
     }
 }

@@ -1,13 +1,21 @@
-//! Motion features from consecutive sweeps (thesis Chapter 2): the height slice, reflection and
-//! difference maps, single-link clusters, map patches and Gabor responses, and the importance
+//! Motion features from consecutive sweeps (thesis Chapter 2): the ground estimate and the height
+//! slice above it, reflection and difference maps, single-link clusters, map patches and Gabor responses, and the importance
 //! sampled training samples of thesis 3.1.1-3.1.2.
 
 mod beam_counts;
+mod cell_samples;
 mod cluster;
+mod cluster_shape;
 mod csv;
 mod difference_map;
 mod gabor;
 mod grid;
+mod ground_cells;
+mod ground_envelope;
+mod ground_fit;
+mod ground_grid;
+mod ground_pits;
+mod ground_slab;
 mod line;
 mod mirror;
 mod params;
@@ -17,21 +25,29 @@ mod render;
 mod sampler;
 mod samples;
 mod sampling;
+mod scan_stream;
 mod slice;
 mod spread_kernel;
 mod sweep_features;
 pub mod synthetic;
+mod synthetic_canopy;
+mod synthetic_ground;
+mod synthetic_world;
 mod top_n;
 
+pub use cell_samples::CellSamples;
 pub use cluster::Clusters;
+pub use cluster_shape::{ClusterShape, MAX_OBJECT_LENGTH_M};
 pub use csv::{Alignment, META_COLUMNS};
 pub use difference_map::MapPair;
 pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
 pub use grid::{GridMap, GridWindow};
-pub use params::{FeatureParams, GaborParams, MAX_MAP_SIDE_CELLS};
+pub use ground_grid::GroundGrid;
+pub use params::{FeatureParams, GaborParams, GroundMode, MAX_MAP_SIDE_CELLS};
 pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
 pub use render::{render_png, write_png};
 pub use samples::{Sample, SampleSet};
 pub use sampling::importance_sample;
+pub use scan_stream::{Scan, ScanStream};
 pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
-pub use sweep_features::{FeatureKind, SweepFeatures};
+pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};

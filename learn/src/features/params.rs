@@ -12,10 +12,13 @@ use crate::{LearnError, Result};
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeatureParams {
-    /// Lower edge of the height slice above the ground (z = 0), metres (thesis 2.1.1: 0.5 m).
+    /// Lower edge of the height slice above the ground, metres (thesis 2.1.1: 0.5 m).
     pub slice_min_m: f64,
     /// Upper edge of the height slice above the ground, metres (thesis 2.1.1: 1.0 m).
     pub slice_max_m: f64,
+    /// Which ground the slice is measured from: the world plane z = 0 (the thesis' flat road) or
+    /// the ground estimated from each sweep (the thesis' future work, 6).
+    pub ground: GroundMode,
     /// Side of a map cell, metres (thesis 4.3: 0.10 m).
     pub cell_m: f64,
     /// Half the side of the square map window centred on the ego sensor, metres. 40 m covers the
@@ -49,6 +52,7 @@ impl Default for FeatureParams {
         Self {
             slice_min_m: 0.5,
             slice_max_m: 1.0,
+            ground: GroundMode::Estimated,
             cell_m: 0.10,
             half_extent_m: 40.0,
             prior: 0.5,
@@ -142,6 +146,42 @@ impl FeatureParams {
     }
 }
 
+/// The ground the height slice is measured from (thesis 2.1.1 assumes a flat road; 6 names ground
+/// extraction as future work).
+///
+/// ```
+/// use patchflow_learn::GroundMode;
+/// assert_eq!(GroundMode::default(), GroundMode::Estimated);
+/// assert_eq!(GroundMode::parse("flat"), Some(GroundMode::Flat));
+/// assert_eq!(GroundMode::Estimated.name(), "estimated");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum GroundMode {
+    /// The world plane z = 0: right for the `ideal` world, wrong on cambered and sloped roads.
+    Flat,
+    /// A height field estimated from each sweep's own points ([`GroundGrid`](crate::GroundGrid)).
+    #[default]
+    Estimated,
+}
+
+impl GroundMode {
+    /// Every mode, in a fixed order.
+    pub const ALL: [Self; 2] = [Self::Flat, Self::Estimated];
+
+    /// The name written into model files and accepted on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Flat => "flat",
+            Self::Estimated => "estimated",
+        }
+    }
+
+    /// The mode called `name`, if any.
+    pub fn parse(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
 /// Shape of the Gabor filters (thesis Eq. 2.15, with the envelope *times* the cosine).
 ///
 /// The orientations are fixed: 16 angles `2πk/16` over the full circle, phase offset π/2, so each
@@ -204,6 +244,7 @@ mod tests {
         let p = FeatureParams::default();
         p.validate().unwrap();
         assert_eq!((p.slice_min_m, p.slice_max_m), (0.5, 1.0));
+        assert_eq!(p.ground, GroundMode::Estimated);
         assert!((p.half_extent_m / p.cell_m - 400.0).abs() < 1e-9);
     }
 
@@ -233,6 +274,14 @@ mod tests {
             ..FeatureParams::default()
         };
         assert!(p.validate().is_err());
+    }
+
+    #[test]
+    fn every_ground_mode_parses_back_from_its_name() {
+        for mode in GroundMode::ALL {
+            assert_eq!(GroundMode::parse(mode.name()), Some(mode));
+        }
+        assert_eq!(GroundMode::parse("level"), None);
     }
 
     #[test]

@@ -1,9 +1,12 @@
 //! The height slice (thesis 2.1.1): the parts of the beams and the end points between 0.5 m and
-//! 1.0 m above the ground, projected onto the ground plane.
+//! 1.0 m above the ground, projected onto the ground plane. The ground is the flat road the
+//! thesis assumes (world z = 0) or the local ground estimated from the sweep itself.
 
 use patchflow_dataset::Sweep;
 
-use crate::{FeatureParams, LearnError, Result};
+use crate::features::ground_grid::{GroundGrid, points_in_world};
+use crate::features::ground_slab::{SlabAboveGround, clip_to_slab};
+use crate::{FeatureParams, GroundMode, Result};
 
 /// The part of one beam inside the height slice, projected to the ground plane (world x, y).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,140 +35,117 @@ pub struct SlicedPoint {
 pub struct HeightSlice {
     /// Sensor position at the sweep's reference time, world x, y.
     pub sensor_xy: [f64; 2],
-    /// Every beam that crosses or ends in the slice, in point order.
+    /// Every part of a beam that crosses or ends in the slice, in point order (over uneven
+    /// ground a beam may pass through the slice more than once).
     pub beams: Vec<SlicedBeam>,
     /// Every end point in the slice, in point order.
     pub points: Vec<SlicedPoint>,
 }
 
 impl HeightSlice {
-    /// Cuts a sweep: heights are world z (ground at z = 0), beams run from the sensor origin to
-    /// each end point. A non-finite point is an error.
+    /// Cuts a sweep: beams run from the sensor origin to each end point, and heights are taken
+    /// above the ground `params.ground` names (world z = 0, or the sweep's own estimated ground,
+    /// [`GroundGrid`]). A non-finite point is an error.
     pub fn cut(sweep: &Sweep, params: &FeatureParams) -> Result<Self> {
-        let origin = sweep.world_from_sensor.translation.vector;
-        let rotation = sweep.world_from_sensor.rotation.to_rotation_matrix();
-        let (zmin, zmax) = (params.slice_min_m, params.slice_max_m);
-        let mut beams = Vec::new();
-        let mut points = Vec::new();
-        for (index, p) in sweep.points_in_sensor.iter().enumerate() {
-            if !p.iter().all(|v| v.is_finite()) {
-                return Err(LearnError::DegenerateData(format!(
-                    "sweep {}: point {index} is not finite",
-                    sweep.index
-                )));
-            }
-            let end = rotation
-                * nalgebra::Vector3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
-                + origin;
-            let Some((t0, t1)) = clip_to_slab(origin.z, end.z, zmin, zmax) else {
-                continue;
-            };
-            let at = |t: f64| {
-                [
-                    origin.x + t * (end.x - origin.x),
-                    origin.y + t * (end.y - origin.y),
-                ]
-            };
-            let hit = (zmin..=zmax).contains(&end.z);
-            beams.push(SlicedBeam {
-                start_xy: at(t0),
-                end_xy: at(t1),
-                hit,
-            });
-            if hit {
-                points.push(SlicedPoint {
-                    x_m: end.x,
-                    y_m: end.y,
-                    index,
-                });
+        // The end points in the world frame.
+        let points = points_in_world(sweep)?;
+        let o = sweep.world_from_sensor.translation.vector;
+        let origin = [o.x, o.y, o.z];
+        match params.ground {
+            GroundMode::Flat => Ok(Self::above_flat(&points, origin, params)),
+            GroundMode::Estimated => {
+                // The ground under the sweep, from the sweep alone (thesis 6, future work).
+                let ground =
+                    GroundGrid::from_points_in_world(&points, [o.x, o.y], params.half_extent_m);
+                // 2.1.1: the slice above it.
+                Ok(Self::above(&points, origin, &ground, params))
             }
         }
-        Ok(Self {
-            sensor_xy: [origin.x, origin.y],
-            beams,
-            points,
-        })
     }
-}
 
-/// The parameter interval `[t0, t1] ⊆ [0, 1]` where `z0 + t·(z1 − z0)` lies in `[zmin, zmax]`.
-fn clip_to_slab(z0: f64, z1: f64, zmin: f64, zmax: f64) -> Option<(f64, f64)> {
-    let dz = z1 - z0;
-    if dz.abs() < 1e-12 {
-        return (zmin..=zmax).contains(&z0).then_some((0.0, 1.0));
+    /// Cuts a sweep above a given ground ([`Self::cut`] with `GroundMode::Estimated` is this
+    /// with the sweep's own estimate).
+    pub fn cut_above(sweep: &Sweep, ground: &GroundGrid, params: &FeatureParams) -> Result<Self> {
+        let points = points_in_world(sweep)?;
+        let o = sweep.world_from_sensor.translation.vector;
+        Ok(Self::above(&points, [o.x, o.y, o.z], ground, params))
     }
-    let (ta, tb) = ((zmin - z0) / dz, (zmax - z0) / dz);
-    let (lo, hi) = (ta.min(tb).max(0.0), ta.max(tb).min(1.0));
-    (lo <= hi).then_some((lo, hi))
+
+    /// The slice above the plane z = 0: one straight clip per beam (the thesis' flat road).
+    fn above_flat(points: &[[f64; 3]], origin: [f64; 3], params: &FeatureParams) -> Self {
+        let (zmin, zmax) = (params.slice_min_m, params.slice_max_m);
+        let mut slice = Self::empty(origin);
+        for (index, &end) in points.iter().enumerate() {
+            let Some(interval) = clip_to_slab(origin[2], end[2], zmin, zmax) else {
+                continue;
+            };
+            let hit = (zmin..=zmax).contains(&end[2]);
+            slice.push(origin, end, index, &[interval], hit);
+        }
+        slice
+    }
+
+    /// The slice above `ground`: each beam in the pieces where it runs between `slice_min_m` and
+    /// `slice_max_m` above the ground under it.
+    fn above(
+        points: &[[f64; 3]],
+        origin: [f64; 3],
+        ground: &GroundGrid,
+        params: &FeatureParams,
+    ) -> Self {
+        let slab = SlabAboveGround::new(ground, origin, params.slice_min_m, params.slice_max_m);
+        let mut slice = Self::empty(origin);
+        let mut intervals = Vec::new();
+        for (index, &end) in points.iter().enumerate() {
+            intervals.clear();
+            let hit = slab.clip(end, &mut intervals);
+            slice.push(origin, end, index, &intervals, hit);
+        }
+        slice
+    }
+
+    fn empty(origin: [f64; 3]) -> Self {
+        Self {
+            sensor_xy: [origin[0], origin[1]],
+            beams: Vec::new(),
+            points: Vec::new(),
+        }
+    }
+
+    /// Adds the parts `intervals` (beam parameters, in order) of the beam to point `index`; the
+    /// last part carries the hit if the end point lies in the slice.
+    fn push(
+        &mut self,
+        origin: [f64; 3],
+        end: [f64; 3],
+        index: usize,
+        intervals: &[(f64, f64)],
+        hit: bool,
+    ) {
+        let at = |t: f64| {
+            [
+                origin[0] + t * (end[0] - origin[0]),
+                origin[1] + t * (end[1] - origin[1]),
+            ]
+        };
+        let last = intervals.len().saturating_sub(1);
+        for (k, &(t0, t1)) in intervals.iter().enumerate() {
+            self.beams.push(SlicedBeam {
+                start_xy: at(t0),
+                end_xy: at(t1),
+                hit: hit && k == last,
+            });
+        }
+        if hit {
+            self.points.push(SlicedPoint {
+                x_m: end[0],
+                y_m: end[1],
+                index,
+            });
+        }
+    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use nalgebra::{Translation3, UnitQuaternion};
-    use patchflow_dataset::{PointLabel, Pose};
-
-    fn sweep_with(points: Vec<[f32; 3]>) -> Sweep {
-        let n = points.len();
-        Sweep {
-            world_from_sensor: Pose::from_parts(
-                Translation3::new(5.0, -2.0, 1.73),
-                UnitQuaternion::identity(),
-            ),
-            points_in_sensor: points,
-            intensities: vec![0.5; n],
-            labels: vec![PointLabel::default(); n],
-            flow_in_world_mps: vec![[0.0; 3]; n],
-            time_in_sweep_secs: vec![0.0; n],
-            ..Sweep::default()
-        }
-    }
-
-    #[test]
-    fn a_beam_ending_in_the_slice_is_cut_where_it_enters_and_kept_as_a_hit() {
-        // End 10 m ahead at z = 0.73 (world): enters the slice (z = 1.0) at 73 % of the way.
-        let slice = HeightSlice::cut(
-            &sweep_with(vec![[10.0, 0.0, -1.0]]),
-            &FeatureParams::default(),
-        )
-        .unwrap();
-        assert_eq!(slice.beams.len(), 1);
-        let beam = slice.beams[0];
-        assert!(beam.hit);
-        assert!((beam.start_xy[0] - (5.0 + 7.3)).abs() < 1e-6, "{beam:?}");
-        assert!((beam.end_xy[0] - 15.0).abs() < 1e-6);
-        assert_eq!(slice.points[0].index, 0);
-    }
-
-    #[test]
-    fn a_ground_beam_keeps_only_its_passage_through_the_slice_as_misses() {
-        // End on the ground 17.3 m ahead: inside the slice between 7.3 m and 12.3 m.
-        let slice = HeightSlice::cut(
-            &sweep_with(vec![[17.3, 0.0, -1.73]]),
-            &FeatureParams::default(),
-        )
-        .unwrap();
-        let beam = slice.beams[0];
-        assert!(!beam.hit && slice.points.is_empty());
-        assert!((beam.start_xy[0] - 12.3).abs() < 1e-5 && (beam.end_xy[0] - 17.3).abs() < 1e-5);
-    }
-
-    #[test]
-    fn beams_above_the_slice_are_dropped() {
-        let slice = HeightSlice::cut(
-            &sweep_with(vec![[20.0, 0.0, 0.5]]),
-            &FeatureParams::default(),
-        )
-        .unwrap();
-        assert!(slice.beams.is_empty() && slice.points.is_empty());
-    }
-
-    #[test]
-    fn a_non_finite_point_is_an_error() {
-        let err = HeightSlice::cut(
-            &sweep_with(vec![[f32::NAN, 0.0, 0.0]]),
-            &FeatureParams::default(),
-        );
-        assert!(err.is_err());
-    }
-}
+#[path = "slice_tests.rs"]
+mod tests;

@@ -1,15 +1,20 @@
 //! One sweep's motion features (thesis Chapter 2 end to end): the height slice, the reflection
 //! and difference maps, the clusters, and patches and Gabor responses on demand.
 
+use std::time::Instant;
+
 use patchflow_dataset::Sweep;
 use rayon::prelude::*;
 
+use crate::features::cell_samples::CellSamples;
 use crate::features::cluster::Clusters;
+use crate::features::cluster_shape::ClusterShape;
 use crate::features::difference_map::MapPair;
 use crate::features::gabor::{GABOR_FILTERS, GaborBank};
 use crate::features::grid::{GridMap, GridWindow};
 use crate::features::patch::Patch;
 use crate::features::slice::{HeightSlice, SlicedPoint};
+use crate::timing::timed;
 use crate::{FeatureParams, Result};
 
 /// Which feature vector a point gets (thesis 2.2.2 and 2.2.3).
@@ -54,26 +59,65 @@ pub struct SweepFeatures {
     clusters: Clusters,
     maps: MapPair,
     gabor: GaborBank,
+    timing: FeatureTiming,
+}
+
+/// What the feature pipeline of one scan cost, seconds of wall time.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FeatureTiming {
+    /// Height slice of the sweeps cut for this scan (both, or only the current one in a stream).
+    pub slice_secs: f64,
+    /// Reflection and difference maps (thesis 2.1), measured inside their parallel branch.
+    pub maps_secs: f64,
+    /// End points in the window and their single-link clusters (thesis 2.2.1), measured inside
+    /// their parallel branch.
+    pub clusters_secs: f64,
+    /// Maps and clusters together, as they run side by side.
+    pub maps_and_clusters_secs: f64,
 }
 
 impl SweepFeatures {
     /// Runs the per-sweep pipeline on two consecutive sweeps.
     pub fn compute(prev: &Sweep, curr: &Sweep, params: &FeatureParams) -> Result<Self> {
         params.validate()?;
+        let start = Instant::now();
         // 2.1.1: cut both sweeps to the height slice.
         let (prev_slice, curr_slice) = rayon::join(
             || HeightSlice::cut(prev, params),
             || HeightSlice::cut(curr, params),
         );
         let (prev_slice, curr_slice) = (prev_slice?, curr_slice?);
+        let slice_secs = start.elapsed().as_secs_f64();
+        let mut features = Self::from_slices(&prev_slice, &curr_slice, params)?;
+        features.set_slice_secs(slice_secs);
+        Ok(features)
+    }
+
+    /// The pipeline after the height slice, on both sweeps' slices (a [`ScanStream`](crate::ScanStream)
+    /// cuts each sweep once and hands its slice on to the next scan).
+    pub fn from_slices(
+        prev_slice: &HeightSlice,
+        curr_slice: &HeightSlice,
+        params: &FeatureParams,
+    ) -> Result<Self> {
+        params.validate()?;
+        let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
         // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
+        let (mut maps_secs, mut clusters_secs) = (0.0, 0.0);
         let (maps, (points, clusters)) = rayon::join(
-            || MapPair::build(&prev_slice, &curr_slice, params),
             || {
-                let points = points_in_window(&curr_slice, params);
-                let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
-                (points, Clusters::single_link(&xy, params.cluster_gap_m))
+                timed(&mut maps_secs, || {
+                    MapPair::build(prev_slice, curr_slice, params)
+                })
+            },
+            || {
+                timed(&mut clusters_secs, || {
+                    let points = points_in_window(curr_slice, params);
+                    let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
+                    let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
+                    (points, clusters)
+                })
             },
         );
         Ok(Self {
@@ -82,6 +126,12 @@ impl SweepFeatures {
             clusters,
             maps,
             gabor: GaborBank::new(&params.gabor, params.cell_m),
+            timing: FeatureTiming {
+                slice_secs: 0.0,
+                maps_secs,
+                clusters_secs,
+                maps_and_clusters_secs: start.elapsed().as_secs_f64(),
+            },
         })
     }
 
@@ -99,6 +149,7 @@ impl SweepFeatures {
             clusters: Clusters::default(),
             maps,
             gabor,
+            timing: FeatureTiming::default(),
         }
     }
 
@@ -127,6 +178,35 @@ impl SweepFeatures {
         &self.clusters
     }
 
+    /// Ids of the clusters that can be one object (thesis 3.1, step 1: "each cluster is taken as
+    /// a dynamic object hypothesis"), leaving out those longer than any road user
+    /// ([`ClusterShape::is_object_sized`]): building fronts, walls and fences.
+    pub fn object_hypotheses(&self) -> Vec<usize> {
+        (0..self.clusters.len())
+            .filter(|&c| self.cluster_shape(c).is_object_sized())
+            .collect()
+    }
+
+    /// Extent of cluster `c` along its principal axes.
+    pub fn cluster_shape(&self, c: usize) -> ClusterShape {
+        let members = self.clusters.members(c);
+        ClusterShape::of(
+            members
+                .iter()
+                .map(|&i| [self.points[i].x_m, self.points[i].y_m]),
+        )
+    }
+
+    /// What computing these features cost.
+    pub fn timing(&self) -> FeatureTiming {
+        self.timing
+    }
+
+    /// Records the time the height slice took where it was cut (a stream cuts it beforehand).
+    pub(crate) fn set_slice_secs(&mut self, slice_secs: f64) {
+        self.timing.slice_secs = slice_secs;
+    }
+
     /// Cluster id of point `i`.
     pub fn cluster_of(&self, i: usize) -> usize {
         self.clusters.cluster_of(i)
@@ -145,13 +225,29 @@ impl SweepFeatures {
     /// Bearing of sensor → point `i` in the world frame, counter-clockwise from +x.
     pub fn bearing_rad(&self, i: usize) -> f64 {
         let p = &self.points[i];
-        (p.y_m - self.sensor_xy[1]).atan2(p.x_m - self.sensor_xy[0])
+        self.bearing_at([p.x_m, p.y_m])
+    }
+
+    /// Bearing of sensor → a world position, counter-clockwise from +x.
+    pub fn bearing_at(&self, xy: [f64; 2]) -> f64 {
+        (xy[1] - self.sensor_xy[1]).atan2(xy[0] - self.sensor_xy[0])
     }
 
     /// Patch of point `i` rotated to the axis `axis_rad` (thesis 2.2.2).
     pub fn patch_along(&self, i: usize, axis_rad: f64) -> Patch {
         let p = &self.points[i];
-        Patch::extract(&self.maps, [p.x_m, p.y_m], axis_rad)
+        self.patch_at([p.x_m, p.y_m], axis_rad)
+    }
+
+    /// Patch centred on a world position, rotated to the axis `axis_rad` (thesis 2.2.2).
+    pub fn patch_at(&self, xy: [f64; 2], axis_rad: f64) -> Patch {
+        Patch::extract(&self.maps, xy, axis_rad)
+    }
+
+    /// The members of a cluster grouped by map cell, one sample at the mean of each cell's points
+    /// (see [`CellSamples`]).
+    pub fn cell_samples(&self, members: &[usize]) -> CellSamples {
+        CellSamples::group(&self.points, members, self.maps.reflection.window())
     }
 
     /// Heading patch: aligned to the observation direction sensor → point.
@@ -195,72 +291,5 @@ fn points_in_window(curr_slice: &HeightSlice, params: &FeatureParams) -> Vec<Sli
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::features::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
-
-    /// A car driving away along the line of sight (+x) and a static wall off to the side; the
-    /// ego drives 0.5 m along +y between the sweeps.
-    fn car_and_wall() -> SweepFeatures {
-        let scene = SyntheticScene {
-            boxes: vec![
-                SceneBox::car(7, [14.0, 0.0], 0.0, 6.0),
-                SceneBox::wall([0.0, 12.0], 0.0, [10.0, 0.4, 2.5]),
-            ],
-        };
-        let lidar = SyntheticLidar::with_resolution(64, 1800);
-        let prev = scene.scan(&lidar, [0.0, -0.5], 0.0, 0);
-        let curr = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
-        let params = FeatureParams {
-            half_extent_m: 25.0,
-            ..FeatureParams::default()
-        };
-        let f = SweepFeatures::compute(&prev, &curr, &params).unwrap();
-        assert!(
-            f.points()
-                .iter()
-                .all(|p| curr.labels[p.index].semantic() != 40)
-        );
-        f
-    }
-
-    fn mean_patch_weight(f: &SweepFeatures, on: impl Fn(&SlicedPoint) -> bool) -> f64 {
-        let idx: Vec<usize> = (0..f.len()).filter(|&i| on(&f.points()[i])).collect();
-        assert!(idx.len() > 20, "{} points", idx.len());
-        let patches = f.heading_patches(&idx);
-        patches.iter().map(Patch::mean_abs_difference).sum::<f64>() / patches.len() as f64
-    }
-
-    #[test]
-    fn a_car_on_the_line_of_sight_changes_the_map_far_more_than_a_static_wall() {
-        let f = car_and_wall();
-        let car = mean_patch_weight(&f, |p| p.x_m > 5.0);
-        let wall = mean_patch_weight(&f, |p| p.y_m > 10.0);
-        assert!(car >= 5.0 * wall, "car {car} vs wall {wall}");
-    }
-
-    #[test]
-    fn the_car_and_the_wall_form_separate_clusters() {
-        let f = car_and_wall();
-        assert_eq!(f.clusters().len(), 2);
-        let car_cluster = f.cluster_of((0..f.len()).find(|&i| f.points()[i].x_m > 5.0).unwrap());
-        for i in 0..f.len() {
-            assert_eq!(f.cluster_of(i) == car_cluster, f.points()[i].x_m > 5.0);
-        }
-    }
-
-    #[test]
-    fn the_bearing_points_from_the_sensor_to_the_point() {
-        let f = car_and_wall();
-        let i = (0..f.len()).find(|&i| f.points()[i].y_m > 10.0).unwrap();
-        let p = f.points()[i];
-        assert!((f.bearing_rad(i) - p.y_m.atan2(p.x_m)).abs() < 1e-12);
-        let g = f.gabor(&f.heading_patch(i));
-        assert_eq!(g.len(), 16);
-        assert_eq!(
-            f.feature_of(&f.speed_patch(i, 0.3), FeatureKind::Patch)
-                .len(),
-            242
-        );
-    }
-}
+#[path = "sweep_features_tests.rs"]
+mod tests;

@@ -1,8 +1,13 @@
 //! A world of boxes on flat ground scanned by an ideal spinning lidar: exact, hand-made sweeps for
 //! tests, benchmarks and demos while no simulator is at hand. No noise, no rolling shutter.
+//! [`SyntheticWorld`] puts the boxes on uneven ground ([`SyntheticGround`]) under tree canopies.
 
-use nalgebra::{Translation3, UnitQuaternion, Vector3};
-use patchflow_dataset::{ActorClass, ObjectTruth, PointLabel, Pose, SemanticClass, Sweep};
+use nalgebra::Vector3;
+use patchflow_dataset::{ActorClass, Sweep};
+
+pub use super::synthetic_canopy::SyntheticCanopy;
+pub use super::synthetic_ground::{SyntheticGround, SyntheticRoad};
+pub use super::synthetic_world::SyntheticWorld;
 
 /// A box standing on the ground: a static structure or an actor moving at constant velocity.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,12 +47,12 @@ impl SceneBox {
         }
     }
 
-    fn speed_mps(&self) -> f64 {
+    pub(crate) fn speed_mps(&self) -> f64 {
         self.velocity_mps[0].hypot(self.velocity_mps[1])
     }
 
     /// Distance along the ray `o + t·d` to the box, if it is hit.
-    fn intersect(&self, o: &Vector3<f64>, d: &Vector3<f64>) -> Option<f64> {
+    pub(crate) fn intersect(&self, o: &Vector3<f64>, d: &Vector3<f64>) -> Option<f64> {
         let (s, c) = self.yaw_rad.sin_cos();
         let (rx, ry) = (o.x - self.centre_xy[0], o.y - self.centre_xy[1]);
         let local_o = [c * rx + s * ry, -s * rx + c * ry, o.z];
@@ -134,8 +139,9 @@ impl SyntheticScene {
         next
     }
 
-    /// Scans the scene from a sensor at `sensor_xy` with yaw `sensor_yaw_rad`; the sweep gets
-    /// number `index` and time stamp `index / 10` s.
+    /// Scans the scene on the flat ground z = 0 from a sensor at `sensor_xy` with yaw
+    /// `sensor_yaw_rad`; the sweep gets number `index` and time stamp `index / 10` s. See
+    /// [`SyntheticWorld`] for uneven ground and tree canopies.
     pub fn scan(
         &self,
         lidar: &SyntheticLidar,
@@ -143,97 +149,11 @@ impl SyntheticScene {
         sensor_yaw_rad: f64,
         index: u32,
     ) -> Sweep {
-        let origin = Vector3::new(sensor_xy[0], sensor_xy[1], lidar.mount_height_m);
-        let rotation = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), sensor_yaw_rad);
-        let mut sweep = Sweep {
-            index,
-            stamp_secs: f64::from(index) * 0.1,
-            world_from_sensor: Pose::from_parts(
-                Translation3::new(origin.x, origin.y, origin.z),
-                rotation,
-            ),
-            ..Sweep::default()
+        let world = SyntheticWorld {
+            scene: self.clone(),
+            ..SyntheticWorld::default()
         };
-        let mut counts = vec![0u32; self.boxes.len()];
-        for step in 0..lidar.azimuth_steps {
-            let azimuth = std::f64::consts::TAU * step as f64 / lidar.azimuth_steps as f64;
-            for elevation in &lidar.elevations_deg {
-                let el = elevation.to_radians();
-                let dir_sensor =
-                    Vector3::new(el.cos() * azimuth.cos(), el.cos() * azimuth.sin(), el.sin());
-                let dir = rotation * dir_sensor;
-                let mut best = (lidar.max_range_m, None);
-                if dir.z < -1e-9 {
-                    let t = -origin.z / dir.z;
-                    if t < best.0 {
-                        best = (t, Some(usize::MAX));
-                    }
-                }
-                for (k, b) in self.boxes.iter().enumerate() {
-                    if let Some(t) = b.intersect(&origin, &dir)
-                        && t < best.0
-                    {
-                        best = (t, Some(k));
-                    }
-                }
-                let (t, Some(k)) = best else { continue };
-                let p = dir_sensor * t;
-                sweep
-                    .points_in_sensor
-                    .push([p.x as f32, p.y as f32, p.z as f32]);
-                sweep.intensities.push(0.5);
-                sweep.time_in_sweep_secs.push(0.0);
-                let (label, flow) = match self.boxes.get(k) {
-                    None => (PointLabel::new(SemanticClass::Road, 0), [0.0; 3]),
-                    Some(b) => {
-                        counts[k] += 1;
-                        let flow = [b.velocity_mps[0] as f32, b.velocity_mps[1] as f32, 0.0];
-                        match b.actor {
-                            None => (PointLabel::new(SemanticClass::Building, 0), flow),
-                            Some((id, class)) => (
-                                PointLabel::new(class.semantic(b.speed_mps() >= 0.05), id),
-                                flow,
-                            ),
-                        }
-                    }
-                };
-                sweep.labels.push(label);
-                sweep.flow_in_world_mps.push(flow);
-            }
-        }
-        sweep.objects = self.objects(&counts);
-        sweep
-    }
-
-    fn objects(&self, counts: &[u32]) -> Vec<ObjectTruth> {
-        self.boxes
-            .iter()
-            .zip(counts)
-            .filter_map(|(b, &point_count)| {
-                let (id, class) = b.actor?;
-                let speed_mps = b.speed_mps();
-                let moving = speed_mps >= 0.05;
-                Some(ObjectTruth {
-                    id,
-                    name: format!("actor{id}"),
-                    class,
-                    target: false,
-                    moving,
-                    centre_m: [b.centre_xy[0], b.centre_xy[1], b.size_m[2] / 2.0],
-                    size_m: b.size_m,
-                    yaw_rad: b.yaw_rad,
-                    velocity_mps: [b.velocity_mps[0], b.velocity_mps[1], 0.0],
-                    speed_mps,
-                    heading_rad: if moving {
-                        b.velocity_mps[1].atan2(b.velocity_mps[0])
-                    } else {
-                        b.yaw_rad
-                    },
-                    yaw_rate_radps: 0.0,
-                    point_count,
-                })
-            })
-            .collect()
+        world.scan(lidar, sensor_xy, sensor_yaw_rad, index)
     }
 }
 
@@ -247,6 +167,7 @@ pub fn rotate_about(p: [f64; 2], pivot: [f64; 2], angle_rad: f64) -> [f64; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use patchflow_dataset::SemanticClass;
 
     #[test]
     fn a_wall_ahead_returns_points_at_its_face_and_the_ground_elsewhere() {

@@ -20,6 +20,9 @@ mod pose;
 mod reader;
 mod record_files;
 mod semantic;
+mod sensor_info;
+mod sequence_files;
+mod static_obstacle;
 mod sweep;
 mod sweep_checks;
 mod writer;
@@ -32,6 +35,8 @@ pub use object::{ActorClass, ObjectTruth};
 pub use pose::{format_kitti_pose, parse_kitti_pose};
 pub use reader::{Dataset, SequenceReader};
 pub use semantic::{PointLabel, SemanticClass};
+pub use sensor_info::{SensorInfo, SensorKind};
+pub use static_obstacle::StaticObstacle;
 pub use sweep::Sweep;
 pub use writer::{SequenceWriter, sha256_hex, write_atomic};
 

@@ -302,4 +302,4 @@ fn read_estimated_poses(dir: &Path, sweeps: usize) -> Result<Option<Vec<Pose>>> 
 
 #[cfg(test)]
 #[path = "reader_tests.rs"]
-mod tests;
+pub(crate) mod tests;

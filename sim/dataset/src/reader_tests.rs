@@ -5,7 +5,7 @@ use super::*;
 use crate::{ActorClass, SemanticClass, SequenceWriter};
 use nalgebra::Vector3;
 
-fn sample_sweep(index: u32) -> Sweep {
+pub(crate) fn sample_sweep(index: u32) -> Sweep {
     let pose = Pose::new(
         Vector3::new(index as f64, 2.0, 1.73),
         Vector3::new(0.0, 0.0, 0.3),
@@ -42,7 +42,7 @@ fn sample_sweep(index: u32) -> Sweep {
     }
 }
 
-fn write_sequence(root: &Path, sweeps: &[Sweep]) {
+pub(crate) fn write_sequence(root: &Path, sweeps: &[Sweep]) {
     let writer = SequenceWriter::open(root, "seq").unwrap();
     for sweep in sweeps {
         writer.write_sweep(sweep).unwrap();

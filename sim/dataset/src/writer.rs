@@ -10,13 +10,21 @@ use sha2::{Digest, Sha256};
 use crate::limits::{MAX_TEXT_BYTES, read_limited};
 use crate::manifest::{read_marker, write_json};
 use crate::pose::format_kitti_pose;
-use crate::{DatasetError, FORMAT_NAME, FORMAT_VERSION, Pose, Result, SequenceInfo, Sweep};
+use crate::{
+    DatasetError, FORMAT_NAME, FORMAT_VERSION, Pose, Result, SensorInfo, SequenceInfo,
+    StaticObstacle, Sweep,
+};
 
 /// File of the ego's own pose estimate, beside `poses.txt`.
 pub(crate) const ESTIMATED_POSES: &str = "poses_estimated.txt";
 
 /// Sub-folders of a sequence, one file per sweep in each.
 const SWEEP_FOLDERS: [&str; 5] = ["velodyne", "labels", "flow", "time", "objects"];
+
+/// Static-world truth of a sequence (world-frame boxes), beside the data.
+pub(crate) const STATIC_JSON: &str = "static.json";
+/// Beam pattern of a sequence's sensor, beside the data.
+pub(crate) const SENSOR_JSON: &str = "sensor.json";
 
 /// Nominal KITTI odometry projections; `Tr` is the identity because `poses.txt` already holds
 /// lidar poses (`world_from_sensor`), so KITTI tools computing `Tr⁻¹ · P · Tr` get them unchanged.
@@ -86,6 +94,16 @@ impl SequenceWriter {
     /// Writes the resolved scenario beside the data.
     pub fn write_scenario(&self, toml_text: &str) -> Result<()> {
         write_atomic(&self.dir.join("scenario.toml"), toml_text.as_bytes())
+    }
+
+    /// Writes `static.json`: every static obstacle of the scene as a world-frame box.
+    pub fn write_static_obstacles(&self, obstacles: &[StaticObstacle]) -> Result<()> {
+        write_json(&self.dir.join(STATIC_JSON), &obstacles)
+    }
+
+    /// Writes `sensor.json`: the beam pattern of the sequence's sensor.
+    pub fn write_sensor(&self, sensor: &SensorInfo) -> Result<()> {
+        write_json(&self.dir.join(SENSOR_JSON), sensor)
     }
 
     /// Writes one sweep's five files; the object file goes last and marks the sweep as done.

@@ -1,8 +1,12 @@
 //! The beam pattern: channel elevations (HDL-64E-like two blocks, or uniform) and the azimuth of
 //! each column. Azimuth columns start behind the car and turn clockwise seen from above, like a
-//! Velodyne, so the seam of a sweep lies behind the ego car as in KITTI.
+//! Velodyne, so the seam of a sweep lies behind the ego car as in KITTI; a planar scanner's
+//! columns are its beams over its field of view (`planar_scanner.rs`).
 
-use crate::scenario::{ElevationSpacing, LidarConfig};
+use patchflow_dataset::{SensorInfo, SensorKind as DatasetSensorKind};
+
+use super::planar_scanner::planar_azimuth_rad;
+use crate::scenario::{ElevationSpacing, LidarConfig, SensorKind};
 
 /// Elevation of every channel, degrees, highest first.
 pub fn elevations_deg(config: &LidarConfig) -> Vec<f64> {
@@ -35,6 +39,40 @@ pub fn azimuth_rad(j: u32, steps: u32) -> f64 {
     std::f64::consts::PI - std::f64::consts::TAU * f64::from(j) / f64::from(steps)
 }
 
+/// Azimuth of column `j` of the sensor, radians in the sensor frame: a spinning lidar's columns
+/// cover the full turn from behind the car, a planar scanner's beams its field of view.
+pub fn column_azimuth_rad(config: &LidarConfig, j: u32) -> f64 {
+    match config.kind {
+        SensorKind::Spinning => azimuth_rad(j, config.azimuth_steps),
+        SensorKind::Planar => planar_azimuth_rad(config, j),
+    }
+}
+
+/// The beam pattern as the dataset describes it (`sensor.json`): kind, range, mount height,
+/// columns with their first azimuth and step, and the channel elevations.
+pub fn sensor_info(config: &LidarConfig) -> SensorInfo {
+    let columns = config.azimuth_steps;
+    let first = column_azimuth_rad(config, 0);
+    let step = if columns > 1 {
+        column_azimuth_rad(config, 1) - first
+    } else {
+        0.0
+    };
+    SensorInfo {
+        kind: match config.kind {
+            SensorKind::Spinning => DatasetSensorKind::Spinning,
+            SensorKind::Planar => DatasetSensorKind::Planar,
+        },
+        rate_hz: config.rate_hz,
+        max_range_m: config.max_range_m,
+        mount_height_m: config.mount_height_m,
+        columns,
+        first_azimuth_deg: first.to_degrees(),
+        azimuth_step_deg: step.to_degrees(),
+        elevations_deg: elevations_deg(config),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,5 +101,20 @@ mod tests {
             ..LidarConfig::default()
         };
         assert_eq!(elevations_deg(&config), vec![0.0, -2.0, -4.0, -6.0, -8.0]);
+    }
+
+    #[test]
+    fn the_described_pattern_gives_every_column_its_own_azimuth() {
+        let config = LidarConfig {
+            azimuth_steps: 90,
+            ..LidarConfig::default()
+        };
+        let info = sensor_info(&config);
+        for j in 0..90 {
+            let described = info.azimuth_rad(j);
+            let cast = column_azimuth_rad(&config, j);
+            assert!((described - cast).abs() < 1e-9, "column {j}");
+        }
+        assert_eq!(info.elevations_deg, elevations_deg(&config));
     }
 }

@@ -5,7 +5,7 @@ use std::ops::Range;
 
 use rapier3d::prelude::Vector;
 
-use super::beams::{azimuth_rad, elevations_deg};
+use super::beams::{column_azimuth_rad, elevations_deg};
 use crate::scenario::LidarConfig;
 
 /// One azimuth block: its columns and when (after the sweep start) the scene is frozen for it.
@@ -46,7 +46,7 @@ impl FiringTable {
         let steps = config.azimuth_steps;
         let rays_in_sensor = (0..steps)
             .flat_map(|j| {
-                let (sa, ca) = azimuth_rad(j, steps).sin_cos();
+                let (sa, ca) = column_azimuth_rad(config, j).sin_cos();
                 let (sa, ca) = (sa as f32, ca as f32);
                 elevation_sin_cos
                     .iter()
@@ -103,7 +103,7 @@ impl FiringTable {
         self.rays_cast = Some(
             (0..steps)
                 .flat_map(|j| {
-                    let (sa, ca) = azimuth_rad(j, steps).sin_cos();
+                    let (sa, ca) = column_azimuth_rad(config, j).sin_cos();
                     elevations
                         .iter()
                         .enumerate()

@@ -149,6 +149,9 @@ pub(crate) const ELEVATION_DEG: Bound = Bound::new(
     "a beam below the zenith and above the nadir",
 );
 
+/// A planar scanner's field of view.
+pub(crate) const FOV_DEG: Bound = Bound::new(1.0, 360.0, "°", "a slit to a full turn");
+
 /// Maximum range of the lidar.
 pub(crate) const MAX_RANGE_M: Bound = Bound::new(
     0.1,

@@ -33,3 +33,19 @@ pub const EMBEDDED_SCENARIOS: [(&str, &str); 14] = [
     ("train08", include_str!("../../../scenarios/train08.toml")),
     ("train09", include_str!("../../../scenarios/train09.toml")),
 ];
+
+/// `(name, TOML text)` of the shipped occupancy-map scenarios (the DGPOM paper's T-junction with
+/// a fixed planar scanner): evaluation run and training run. They are kept out of
+/// [`EMBEDDED_SCENARIOS`], which `patchflow generate` runs when given no scenario, because that
+/// folder is what `train` and `cv` read, and planar scans have no place among their sequences;
+/// `patchflow generate dgpom_tjunction dgpom_tjunction_train --out DIR` makes them by name.
+pub const EMBEDDED_OCCUPANCY_SCENARIOS: [(&str, &str); 2] = [
+    (
+        "dgpom_tjunction",
+        include_str!("../../../scenarios/dgpom_tjunction.toml"),
+    ),
+    (
+        "dgpom_tjunction_train",
+        include_str!("../../../scenarios/dgpom_tjunction_train.toml"),
+    ),
+];

@@ -1,10 +1,11 @@
-//! The `[lidar]` table: a spinning multi-beam lidar, by default like a Velodyne HDL-64E on KITTI's car.
+//! The `[lidar]` table: a spinning multi-beam lidar, by default like a Velodyne HDL-64E on KITTI's
+//! car, or (`kind = "planar"`) a planar range scanner (see `planar_config.rs`).
 
 use serde::{Deserialize, Serialize};
 
 use super::bounds::{
-    ATTENUATION_PER_M, DROPOUT, ELEVATION_DEG, MAX_RANGE_M, MOUNT_HEIGHT_M, RANGE_NOISE_STD_M,
-    RATE_HZ, check_count,
+    ATTENUATION_PER_M, DROPOUT, ELEVATION_DEG, FOV_DEG, MAX_RANGE_M, MOUNT_HEIGHT_M,
+    RANGE_NOISE_STD_M, RATE_HZ, check_count,
 };
 
 /// How the channels' elevations are spread between `upper_deg` and `lower_deg`.
@@ -19,10 +20,32 @@ pub enum ElevationSpacing {
     Uniform,
 }
 
-/// Settings of the spinning lidar. Every field can be overridden in a scenario's `[lidar]` table.
+/// Which range sensor the `[lidar]` table describes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SensorKind {
+    /// A spinning multi-beam lidar (the default, HDL-64E-like).
+    #[default]
+    Spinning,
+    /// A planar range scanner: one channel at 0° elevation, `beams` beams over `fov_deg`
+    /// centred on the sensor's forward axis, each scan cast at one instant (SICK LMS291-like).
+    Planar,
+}
+
+impl SensorKind {
+    /// True for the spinning lidar (the kind left out of resolved scenario files).
+    pub fn is_spinning(&self) -> bool {
+        *self == Self::Spinning
+    }
+}
+
+/// Settings of the range sensor. Every field can be overridden in a scenario's `[lidar]` table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LidarConfig {
+    /// Spinning lidar or planar scanner; a planar scanner fixes the spinner-only fields.
+    #[serde(skip_serializing_if = "SensorKind::is_spinning")]
+    pub kind: SensorKind,
     /// Number of channels (lasers), stacked vertically.
     pub channels: u32,
     /// Elevation of the highest channel, degrees.
@@ -49,6 +72,13 @@ pub struct LidarConfig {
     pub rolling_shutter: bool,
     /// Azimuth blocks per turn; the scene is moved once per block.
     pub blocks: u32,
+    /// Horizontal field of view of a planar scanner, degrees, centred on the forward axis
+    /// (planar only; resolved to 180).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fov_deg: Option<f64>,
+    /// Beams of a planar scanner, evenly spread over `fov_deg` (planar only; resolved to 181).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beams: Option<u32>,
 }
 
 impl Default for LidarConfig {
@@ -67,6 +97,9 @@ impl Default for LidarConfig {
             attenuation_per_m: 0.004,
             rolling_shutter: true,
             blocks: 60,
+            kind: SensorKind::Spinning,
+            fov_deg: None,
+            beams: None,
         }
     }
 }
@@ -111,6 +144,10 @@ impl LidarConfig {
                 self.azimuth_steps.into(),
                 "at most one block per azimuth step",
             ),
+            self.fov_deg.and_then(|fov| FOV_DEG.check("fov_deg", fov)),
+            self.beams.and_then(|beams| {
+                check_count("beams", beams.into(), 2, 100_000, "beams per planar scan")
+            }),
         ]
         .into_iter()
         .flatten()

@@ -79,8 +79,14 @@ impl Scenario {
         if let Some(rung) = rung {
             scenario.realism = rung;
         }
+        let lidar_problems = scenario.lidar.resolve_kind(&keys_of_table(text, "lidar"));
         scenario.resolve();
-        if let Some((at, reason)) = scenario.problems().into_iter().next() {
+        let mut problems: Vec<Problem> = lidar_problems
+            .into_iter()
+            .map(|(field, reason)| (vec![Seg::Key("lidar"), Seg::Key(field)], reason))
+            .collect();
+        problems.extend(scenario.problems());
+        if let Some((at, reason)) = problems.into_iter().next() {
             return Err(SimError::at_offset(file, text, locate(text, &at), reason));
         }
         Ok(scenario)
@@ -270,6 +276,18 @@ fn key_offset(text: &str, key: &str) -> Option<usize> {
         .iter()
         .find(|(k, _)| k.get_ref() == key)
         .map(|(k, _)| k.span().start)
+}
+
+/// The keys a top-level table of `text` sets (none if it is absent or the text does not parse).
+fn keys_of_table(text: &str, table: &str) -> Vec<String> {
+    let Ok(root) = DeTable::parse(text) else {
+        return Vec::new();
+    };
+    let found = root.get_ref().iter().find(|(k, _)| k.get_ref() == table);
+    match found.map(|(_, v)| v.get_ref()) {
+        Some(DeValue::Table(t)) => t.iter().map(|(k, _)| k.get_ref().to_string()).collect(),
+        _ => Vec::new(),
+    }
 }
 
 /// Byte offset of the value at `path` in `text`: the deepest part of the path that exists

@@ -207,3 +207,21 @@ fn the_default_rung_is_urban_and_a_knob_set_alone_overrides_it() {
             .unwrap();
     assert!(ideal.world.knobs().flat_ground() && ideal.pose_error.knobs().exact());
 }
+
+#[test]
+fn a_spinner_only_field_in_a_planar_table_points_at_its_line() {
+    let (line, reason) = error_of(&format!(
+        "{BASE}[lidar]\nkind = \"planar\"\nbeams = 70\nblocks = 10\n"
+    ));
+    assert_eq!(line, 8);
+    assert!(reason.contains("blocks"), "{reason}");
+}
+
+#[test]
+fn a_resolved_planar_scenario_reads_back_equal() {
+    let text = format!("{BASE}[lidar]\nkind = \"planar\"\nbeams = 70\nmax_range_m = 20.0\n");
+    let s = Scenario::from_toml(&text, "ok.toml", "ok").unwrap();
+    assert_eq!((s.lidar.channels, s.lidar.azimuth_steps), (1, 70));
+    let back = Scenario::from_toml(&s.to_toml(), "resolved.toml", "x").unwrap();
+    assert_eq!(back, s);
+}

@@ -8,6 +8,7 @@ mod ray_tree;
 mod scene_actor;
 mod scene_instant;
 mod scene_queries;
+mod static_obstacles;
 mod surface;
 
 pub use instant_query::InstantQuery;

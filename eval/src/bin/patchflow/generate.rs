@@ -1,18 +1,15 @@
 //! `patchflow generate`: simulate scenario files and write a dataset (SPEC §4).
 
-use std::collections::HashMap;
 use std::path::PathBuf;
-use std::sync::Mutex;
 
-use anyhow::Context;
-use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
-use patchflow_dataset::Manifest;
-use patchflow_sim::{GenerateOptions, Progress, Realism, ScenarioSource, Shard, generate_dataset};
+use patchflow_eval::generate_with_progress;
+use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard};
 
 /// Arguments of `patchflow generate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Scenario files; with none, every embedded scenario is run.
+    /// Scenario files, or names of embedded scenarios (e.g. `dgpom_tjunction`); with none, every
+    /// embedded scenario of the motion benchmark (situations and training tracks) is run.
     pub scenarios: Vec<PathBuf>,
     /// Dataset folder to write (created; an interrupted run is resumed).
     #[arg(long)]
@@ -46,9 +43,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         args.scenarios
             .iter()
-            .cloned()
-            .map(ScenarioSource::File)
-            .collect()
+            .map(|path| ScenarioSource::from_argument(path))
+            .collect::<Result<Vec<_>, _>>()?
     };
     let shard = match &args.shard {
         Some(text) => Shard::parse(text)?,
@@ -70,53 +66,4 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         points
     );
     Ok(())
-}
-
-/// Generates with one progress bar per sequence; `bench` uses it too.
-pub fn generate_with_progress(
-    sources: &[ScenarioSource],
-    options: &GenerateOptions,
-) -> anyhow::Result<Manifest> {
-    let bars = MultiProgress::new();
-    let style = ProgressStyle::with_template(
-        "{prefix:>12} [{bar:40}] {pos}/{len} sweeps {elapsed} (eta {eta}) {msg}",
-    )
-    .unwrap_or_else(|_| ProgressStyle::default_bar())
-    .progress_chars("=> ");
-    let open: Mutex<HashMap<String, ProgressBar>> = Mutex::new(HashMap::new());
-    let on_progress = |event: Progress| {
-        let Ok(mut open) = open.lock() else { return };
-        match event {
-            Progress::Waiting { name } => {
-                let _ = bars.println(format!(
-                    "{name:>12} is being written by another run; waiting for it"
-                ));
-            }
-            Progress::SequenceStarted { name, sweeps } => {
-                let bar = bars.add(
-                    ProgressBar::new(u64::from(sweeps))
-                        .with_style(style.clone())
-                        .with_prefix(name.clone()),
-                );
-                open.insert(name, bar);
-            }
-            Progress::SweepDone { name, points, .. } => {
-                if let Some(bar) = open.get(&name) {
-                    bar.inc(1);
-                    if points > 0 {
-                        bar.set_message(format!("{points} points"));
-                    }
-                }
-            }
-            Progress::SequenceDone { name, skipped } => match open.remove(&name) {
-                Some(bar) => bar.finish_with_message("done"),
-                None if skipped => {
-                    let _ = bars.println(format!("{name:>12} already complete, skipped"));
-                }
-                None => {}
-            },
-        }
-    };
-    generate_dataset(sources, options, &on_progress)
-        .with_context(|| format!("generating into {}", options.out.display()))
 }

@@ -3,7 +3,9 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use patchflow_learn::{Columns, GpKind, GpModel, GpParams, Table};
+use patchflow_learn::{GpKind, GpModel, GpParams};
+
+use crate::csv_table::{Columns, Table};
 
 /// Arguments of `patchflow gp`.
 #[derive(Debug, clap::Args)]
@@ -170,5 +172,61 @@ mod tests {
             .and_then(|v| v.parse().ok())
             .expect("a number");
         assert!((mean - 1f64.sin()).abs() < 0.1, "mean {mean}");
+    }
+
+    fn fit_args(csv: PathBuf, out: PathBuf) -> FitArgs {
+        FitArgs {
+            csv,
+            out,
+            kind: "spgp".into(),
+            pseudo: 4,
+            iters: 15,
+            seed: 3,
+            target: None,
+            ignore: None,
+        }
+    }
+
+    fn write_csv(dir: &std::path::Path, name: &str, rows: usize, huge: bool) -> PathBuf {
+        let path = dir.join(name);
+        let mut text = String::from("a,b,y\n");
+        for i in 0..rows {
+            let a = if huge && i == 3 {
+                1e300
+            } else {
+                i as f64 * 0.2
+            };
+            text.push_str(&format!(
+                "{a},{},{}\n",
+                (i % 5) as f64,
+                (i as f64 * 0.2).cos()
+            ));
+        }
+        std::fs::write(&path, text).expect("writes");
+        path
+    }
+
+    #[test]
+    fn gp_fit_run_twice_writes_byte_identical_model_files() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let csv = write_csv(dir.path(), "train.csv", 25, false);
+        let (a, b) = (dir.path().join("a.json"), dir.path().join("b.json"));
+        fit(fit_args(csv.clone(), a.clone())).expect("fits");
+        fit(fit_args(csv, b.clone())).expect("fits");
+        assert_eq!(
+            std::fs::read(a).expect("reads"),
+            std::fs::read(b).expect("reads")
+        );
+    }
+
+    #[test]
+    fn gp_fit_refuses_a_cell_too_large_to_standardise_naming_the_file() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let csv = write_csv(dir.path(), "huge.csv", 25, true);
+        let out = dir.path().join("m.json");
+        let err = fit(fit_args(csv, out.clone())).expect_err("1e300 cell");
+        let msg = format!("{err:#}");
+        assert!(msg.contains("huge.csv") && msg.contains("'a'"), "{msg}");
+        assert!(!out.exists(), "no model file on error");
     }
 }

@@ -3,11 +3,14 @@
 
 mod bench;
 mod common;
+mod csv_table;
 mod cv;
 mod evaluate;
 mod features;
+mod flow;
 mod generate;
 mod gp;
+mod occupancy;
 mod show;
 mod train;
 
@@ -35,8 +38,12 @@ enum Command {
     Evaluate(evaluate::Args),
     /// K-fold cross-validation tables after thesis Tables 4.1 to 4.4.
     Cv(cv::Args),
+    /// Export a trained estimator's per-point scene flow beside a dataset's layout.
+    Flow(flow::Args),
     /// The main job: generate, train, cross-validate and evaluate on embedded defaults.
     Bench(bench::Args),
+    /// Occupancy maps (grid, GPOM) of planar-scanner sequences, scored by ROC AUC against exact truth.
+    Occupancy(occupancy::Args),
     /// Gaussian-process regression on any CSV.
     Gp(gp::Args),
 }
@@ -50,7 +57,9 @@ fn main() -> std::process::ExitCode {
         Command::Train(args) => train::run(args),
         Command::Evaluate(args) => evaluate::run(args),
         Command::Cv(args) => cv::run(args),
+        Command::Flow(args) => flow::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Occupancy(args) => occupancy::run(args),
         Command::Gp(args) => gp::run(args),
     };
     match result {

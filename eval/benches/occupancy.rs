@@ -1,0 +1,65 @@
+//! Criterion bench of one occupancy map (fit and prediction over the query lattice, SPEC §8) of
+//! each method on the DGPOM T-junction at query time t = 5 (the scans at t = 2 … 5), with the
+//! bench's settings. Prints the training and query points per map first.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use patchflow_dataset::Dataset;
+use patchflow_eval::occupancy_methods;
+use patchflow_occupancy::{OccupancyParams, OccupancySequence, QueryGrid, ScanWindow};
+use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
+use std::hint::black_box;
+
+/// The generated T-junction (seed 7), in a temporary folder kept for the bench's lifetime.
+fn tjunction() -> (tempfile::TempDir, OccupancySequence) {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let source =
+        ScenarioSource::from_argument(std::path::Path::new("dgpom_tjunction")).expect("embedded");
+    let options = GenerateOptions {
+        realism: None,
+        out: dir.path().to_owned(),
+        seed: 7,
+        shard: Shard::ALL,
+        overwrite: false,
+    };
+    generate_dataset(&[source], &options, &|_| {}).expect("generates");
+    let dataset = Dataset::open(dir.path()).expect("opens");
+    let sequence = dataset.sequence("dgpom_tjunction").expect("sequence");
+    let sequence = OccupancySequence::load(&sequence).expect("loads");
+    (dir, sequence)
+}
+
+fn bench_one_map(c: &mut Criterion) {
+    let (_dir, sequence) = tjunction();
+    let params = OccupancyParams::default();
+    let t = 5;
+    let window = ScanWindow {
+        scans: &sequence.scans[t + 1 - params.scans_per_map..=t],
+        query_secs: sequence.scans[t].stamp_secs,
+    };
+    let grid = QueryGrid::observed_by(
+        &sequence.scans[t],
+        &sequence.sensor,
+        params.query_spacing_m,
+        &sequence.truth,
+        sequence.scan_height_m(),
+    );
+    let mut group = c.benchmark_group("occupancy_map_tjunction_t5");
+    group.sample_size(10);
+    for method in occupancy_methods(7) {
+        let output = method.map(&window, &grid.points_m).expect("maps");
+        println!(
+            "{}: {} training points, {} query points; {}",
+            method.name(),
+            output.training_points,
+            grid.len(),
+            output.summary
+        );
+        group.bench_function(method.name(), |b| {
+            b.iter(|| method.map(black_box(&window), black_box(&grid.points_m)))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_one_map);
+criterion_main!(benches);

@@ -1,0 +1,16 @@
+//! The benchmark driver behind `patchflow bench` (SPEC §7): generate the training tracks and the
+//! situations, draw training samples, train SPGP and SPGP-HET, cross-validate (thesis 4.3),
+//! evaluate every method on every sequence (thesis 4.4 and the whole scene), map the DGPOM paper's
+//! T-junction (its Table 1 and Figure 6), write the report.
+
+mod notes;
+mod plan;
+mod run;
+mod stages;
+
+pub use plan::{BENCH_SEED, BenchPlan, DENSE_TRAFFIC_TOML};
+pub use run::{BenchOutcome, run_bench};
+pub use stages::{
+    collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar, generate_with_progress,
+    occupancy_with_bar,
+};

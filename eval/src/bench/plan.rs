@@ -1,0 +1,144 @@
+//! What a benchmark run does: which scenarios, how many samples, pseudo-inputs, iterations and
+//! folds. The full plan follows the thesis (4.3); the quick one is smaller.
+
+use patchflow_learn::GpKind;
+use patchflow_sim::ScenarioSource;
+
+use crate::cross_validation::CvParams;
+
+/// The seed of every stage of the default benchmark, recorded in its outputs.
+pub const BENCH_SEED: u64 = 7;
+
+/// The dense random-traffic scene the whole-scan perception is also measured on
+/// (`scenarios/dense_traffic.toml`; not a thesis situation, so it has no target).
+pub const DENSE_TRAFFIC_TOML: &str = include_str!("../../../scenarios/dense_traffic.toml");
+
+/// Everything a benchmark run does.
+#[derive(Debug, Clone)]
+pub struct BenchPlan {
+    /// Training tracks, simulated into `OUT/data/train`.
+    pub training: Vec<ScenarioSource>,
+    /// Evaluation sequences (the situations and the dense scene), into `OUT/data/situations`.
+    pub situations: Vec<ScenarioSource>,
+    /// Occupancy-map scenarios (the DGPOM paper's T-junction and its training run), into
+    /// `OUT/data/occupancy`; none skips the occupancy stage.
+    pub occupancy: Vec<ScenarioSource>,
+    /// GP kinds trained, one estimator each.
+    pub gps: Vec<GpKind>,
+    /// Importance-sampled training samples per estimator (thesis 4.3: 1,600).
+    pub samples: usize,
+    /// Pseudo-inputs per sparse GP (thesis 4.3: 100).
+    pub pseudo_inputs: usize,
+    /// Optimiser iterations per GP.
+    pub max_iters: usize,
+    /// Cross-validation (its sample sets are the first samples of the training draws).
+    pub cv: CvParams,
+    /// Seed of generation, sampling and training.
+    pub seed: u64,
+    /// Whether this is the smaller `--quick` plan (noted in the report).
+    pub quick: bool,
+}
+
+fn embedded(prefix: &str) -> Vec<ScenarioSource> {
+    patchflow_sim::EMBEDDED_SCENARIOS
+        .iter()
+        .filter(|(name, _)| name.starts_with(prefix))
+        .map(|&(name, text)| ScenarioSource::Embedded(name, text))
+        .collect()
+}
+
+impl BenchPlan {
+    /// The default run: the nine training tracks, the five situations and the dense scene; the
+    /// thesis' samples, pseudo-inputs and priors; fewer folds and iterations for time.
+    pub fn full() -> Self {
+        let mut situations = embedded("situation");
+        situations.push(ScenarioSource::Embedded(
+            "dense_traffic",
+            DENSE_TRAFFIC_TOML,
+        ));
+        Self {
+            training: embedded("train"),
+            situations,
+            occupancy: patchflow_sim::EMBEDDED_OCCUPANCY_SCENARIOS
+                .iter()
+                .map(|&(name, text)| ScenarioSource::Embedded(name, text))
+                .collect(),
+            gps: vec![GpKind::Spgp, GpKind::SpgpHet],
+            samples: 1600,
+            pseudo_inputs: 100,
+            max_iters: 300,
+            cv: CvParams {
+                folds: 3,
+                max_iters: 100,
+                seed: BENCH_SEED,
+                ..CvParams::default()
+            },
+            seed: BENCH_SEED,
+            quick: false,
+        }
+    }
+
+    /// `--quick`: every third training track, fewer samples, pseudo-inputs, iterations and folds.
+    pub fn quick() -> Self {
+        let full = Self::full();
+        Self {
+            training: full.training.into_iter().step_by(3).collect(),
+            samples: 800,
+            pseudo_inputs: 40,
+            max_iters: 120,
+            cv: CvParams {
+                folds: 2,
+                samples: 600,
+                pseudo_inputs: 30,
+                max_iters: 60,
+                seed: BENCH_SEED,
+                ..CvParams::default()
+            },
+            quick: true,
+            ..full
+        }
+    }
+
+    /// Names of the training tracks, for the report.
+    pub fn training_names(&self) -> Vec<String> {
+        self.training.iter().map(source_name).collect()
+    }
+}
+
+/// A scenario's name: the embedded name or the file stem.
+fn source_name(source: &ScenarioSource) -> String {
+    match source {
+        ScenarioSource::Embedded(name, _) => (*name).to_owned(),
+        ScenarioSource::File(path) => path.file_stem().map_or_else(
+            || path.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_full_plan_trains_on_the_nine_tracks_and_evaluates_six_sequences() {
+        let plan = BenchPlan::full();
+        assert_eq!(plan.training_names().len(), 9);
+        assert_eq!(plan.situations.len(), 6);
+        assert_eq!((plan.samples, plan.pseudo_inputs), (1600, 100));
+        let quick = BenchPlan::quick();
+        assert_eq!(quick.training_names(), ["train01", "train04", "train07"]);
+        assert!(quick.quick && !plan.quick);
+    }
+
+    #[test]
+    fn the_dense_scene_loads_and_has_no_target() {
+        let scenario = patchflow_sim::Scenario::from_toml(
+            DENSE_TRAFFIC_TOML,
+            "dense_traffic.toml",
+            "dense_traffic",
+        )
+        .unwrap();
+        assert!(scenario.actors.iter().all(|a| !a.target));
+    }
+}

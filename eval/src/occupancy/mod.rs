@@ -1,0 +1,20 @@
+//! Occupancy maps in the evaluation (SPEC §5b, §7 `patchflow occupancy`): the methods compared,
+//! the run over a dataset's planar sequences, the DGPOM paper's Table 1 for comparison, and the
+//! report files `occupancy.json`, `occupancy.md` and `plots/occupancy_*.png`.
+
+mod json;
+mod markdown;
+mod paper_table;
+mod plot;
+mod run;
+mod writer;
+
+pub use json::occupancy_json;
+pub use markdown::{occupancy_markdown, occupancy_section};
+pub use paper_table::{PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow};
+pub use plot::plot_occupancy_figure;
+pub use run::{
+    MethodsFor, OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes,
+    occupancy_sequences,
+};
+pub use writer::{OccupancyFiles, write_occupancy_report};

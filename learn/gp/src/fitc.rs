@@ -1,0 +1,300 @@
+//! The SPGP (FITC) and SPGP-HET negative log marginal likelihood (thesis eq. 3.30 with 3.27-3.28;
+//! SPGP-HET replaces K_M by K_M + diag(h), eq. 3.34) in the stable O(NM²) form of gp.md §1, and its
+//! analytic gradient by the adjoint method of gp.md §2.2-2.3. FITC is the case h = 0.
+//!
+//! Both passes run over fixed blocks of training rows in parallel and are reduced in block order,
+//! so results are bit-identical whatever the number of threads.
+
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+use super::hyper::{Hyper, HyperGrad};
+use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
+use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse};
+use super::linalg::{lower_mul, mul, scale_columns, symmetric_mul_t, upper_mul};
+use super::train_data::TrainData;
+use crate::Result;
+
+/// Pass 1 of one row block: U_b = K_MB, Ṽ_b = L⁻¹U_bΓ_b^{-1/2}, g_b and the block's share of B and
+/// Ṽỹ.
+pub(crate) struct Pass1 {
+    /// U_b = K_MB.
+    pub k: DMatrix<f64>,
+    /// Ṽ_b = V_bΓ_b^{-1/2} with V_b = L⁻¹U_b.
+    pub vt: DMatrix<f64>,
+    /// g_b = λ_b + σ², the diagonal of Γ.
+    pub g: DVector<f64>,
+    vvt: DMatrix<f64>,
+    vy: DVector<f64>,
+    yy: f64,
+    log_g: f64,
+}
+
+/// The factorisation shared by the objective, its gradient and the predictive posterior.
+pub(crate) struct Factors {
+    /// The pseudo-inputs as kernel points.
+    pub z: OwnedPoints,
+    /// K_M without jitter or h.
+    pub k_m: DMatrix<f64>,
+    /// L⁻¹ with L = chol(K_M + diag(h) + εI).
+    pub l_inv: DMatrix<f64>,
+    /// L⁻ᵀ, stored so the products with it read contiguous memory.
+    pub l_inv_t: DMatrix<f64>,
+    /// B⁻¹ with B = I + ṼṼᵀ.
+    pub b_inv: DMatrix<f64>,
+    /// u = L_B⁻ᵀ c (gp.md §2.2).
+    pub u: DVector<f64>,
+    /// The jitter ε that made chol(B_u) succeed.
+    pub jitter: f64,
+    /// The NLML 𝓛 (gp.md §1 step 8).
+    pub nlml: f64,
+    /// Pass 1 of each row block, in block order.
+    pub blocks: Vec<Pass1>,
+}
+
+/// The NLML, its gradient and ∂𝓛/∂ε = tr(∂𝓛/∂B_u).
+pub(crate) struct Evaluation {
+    /// 𝓛.
+    pub nlml: f64,
+    /// Gradient in log-coordinates (raw Z).
+    pub grad: HyperGrad,
+    /// ∂𝓛/∂ε, for a jitter proportional to s.
+    pub d_jitter: f64,
+}
+
+/// U_b = k(Z, X_b) and diag K_bb of one row block: the O(NMD) part of pass 1, which needs only
+/// the pseudo-inputs and so runs while K_M is factored.
+fn covariances<K: Kernel>(
+    data: &TrainData,
+    z: Points<'_>,
+    h: &Hyper<K>,
+    (start, len): (usize, usize),
+) -> (DMatrix<f64>, DVector<f64>) {
+    let x = data.points().range(start, len);
+    (h.kernel.cross(z, x), h.kernel.diag(x))
+}
+
+fn pass1<K: Kernel>(
+    data: &TrainData,
+    l_inv: &DMatrix<f64>,
+    h: &Hyper<K>,
+    (start, len): (usize, usize),
+    (k, k_diag): (DMatrix<f64>, DVector<f64>),
+) -> Pass1 {
+    let mut vt = lower_mul(l_inv, &k); // step 3: V = L⁻¹U
+    let q = colsum_product(&vt, &vt);
+    // step 4: λ = diag K_NN − q clamped at 0
+    let g = DVector::from_fn(len, |n, _| (k_diag[n] - q[n]).max(0.0) + h.noise_variance);
+    let g_isqrt = g.map(|x| 1.0 / x.sqrt());
+    scale_columns(&mut vt, &g_isqrt); // step 5: Ṽ = VΓ^{-1/2}
+    let yt = data.y.rows(start, len).component_mul(&g_isqrt);
+    let vvt = symmetric_mul_t(&vt, &vt);
+    let vy = &vt * &yt;
+    Pass1 {
+        yy: yt.dot(&yt),
+        log_g: g.iter().map(|x| x.ln()).sum(),
+        k,
+        vt,
+        g,
+        vvt,
+        vy,
+    }
+}
+
+/// K_M, L⁻¹ with L = chol(K_M + diag(h) + εI), and the jitter used (steps 1-2).
+fn pseudo_factor<K: Kernel>(
+    h: &Hyper<K>,
+    z: Points<'_>,
+    jitter: f64,
+) -> Result<(DMatrix<f64>, DMatrix<f64>, f64)> {
+    let k_m = self_covariance(&h.kernel, z); // step 1
+    let mut b_u = k_m.clone();
+    if let Some(p) = &h.pseudo_noise {
+        for (i, hi) in p.iter().enumerate() {
+            b_u[(i, i)] += hi;
+        }
+    }
+    let chol = cholesky_with_jitter(&b_u, jitter, "pseudo-input covariance K_M + diag(h)")?; // step 2
+    let l_inv = lower_inverse(&chol.l, "chol(K_M + diag(h))")?;
+    Ok((k_m, l_inv, chol.jitter))
+}
+
+/// Factors the model at `h` (gp.md §1 steps 1-8).
+pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> Result<Factors> {
+    let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+    let m = h.pseudo_inputs.nrows();
+    let blocks = data.blocks();
+    let (pseudo, covs) = rayon::join(
+        || pseudo_factor(h, z.points(), jitter),
+        || {
+            blocks
+                .par_iter()
+                .map(|&blk| covariances(data, z.points(), h, blk))
+                .collect::<Vec<_>>()
+        },
+    );
+    let (k_m, l_inv, used_jitter) = pseudo?;
+    let blocks: Vec<Pass1> = blocks
+        .par_iter()
+        .zip(covs.into_par_iter())
+        .map(|(&blk, cov)| pass1(data, &l_inv, h, blk, cov))
+        .collect();
+    let (mut b, mut vy, mut yy, mut log_g) = (DMatrix::identity(m, m), DVector::zeros(m), 0.0, 0.0);
+    for p in &blocks {
+        b += &p.vvt; // step 6: B = I + ṼṼᵀ
+        vy += &p.vy;
+        yy += p.yy;
+        log_g += p.log_g;
+    }
+    let lb = cholesky_with_jitter(&((&b + b.transpose()) * 0.5), 0.0, "I + ṼṼᵀ")?.l;
+    let lb_inv = lower_inverse(&lb, "chol(I + ṼṼᵀ)")?;
+    let c = &lb_inv * &vy; // step 7
+    let n = data.len() as f64;
+    let nlml = log_diag_sum(&lb)
+        + 0.5 * log_g
+        + 0.5 * (yy - c.dot(&c))
+        + 0.5 * n * (2.0 * std::f64::consts::PI).ln(); // step 8
+    let u = lb_inv.tr_mul(&c);
+    let lb_inv_t = lb_inv.transpose();
+    let b_inv = symmetric_mul_t(&lb_inv_t, &lb_inv_t); // B⁻¹ = L_B⁻ᵀL_B⁻¹
+    Ok(Factors {
+        z,
+        k_m,
+        l_inv_t: l_inv.transpose(),
+        l_inv,
+        b_inv,
+        u,
+        jitter: used_jitter,
+        nlml,
+        blocks,
+    })
+}
+
+/// Pass 2 of one row block: ∂𝓛/∂U_b, the block's share of V diag(d) Vᵀ, the gradient through
+/// diag K_NN (∂𝓛/∂k_n = d_n, gp.md §2.1) and Σd.
+struct Pass2 {
+    d_u: DMatrix<f64>,
+    vdvt: DMatrix<f64>,
+    diag_grad: DVector<f64>,
+    sum_d: f64,
+}
+
+fn pass2<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    f: &Factors,
+    p: &Pass1,
+    (start, len): (usize, usize),
+) -> Pass2 {
+    let g_sqrt = p.g.map(f64::sqrt);
+    let mut r_mat = mul(&f.b_inv, &p.vt); // B⁻¹Ṽ = L_B⁻ᵀW1
+    let w1_sq = colsum_product(&p.vt, &r_mat); // ‖W1_{:,n}‖²
+    let vtu = p.vt.tr_mul(&f.u); // Ṽᵀu = Γ^{-1/2}Vᵀu
+    let y = data.y.rows(start, len);
+    let alpha = DVector::from_fn(len, |n, _| (y[n] - g_sqrt[n] * vtu[n]) / p.g[n]); // α = C⁻¹y
+    let d = DVector::from_fn(len, |n, _| {
+        0.5 * ((1.0 - w1_sq[n]) / p.g[n] - alpha[n] * alpha[n])
+    });
+    let m = f.u.len();
+    for (n, (col, vt_col)) in r_mat
+        .as_mut_slice()
+        .chunks_exact_mut(m)
+        .zip(p.vt.as_slice().chunks_exact(m))
+        .enumerate()
+    {
+        // R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d), with V = ṼΓ^{1/2}
+        let (gi, a, v2d) = (1.0 / g_sqrt[n], alpha[n], 2.0 * g_sqrt[n] * d[n]);
+        for ((x, u), v) in col.iter_mut().zip(f.u.iter()).zip(vt_col) {
+            *x = *x * gi - u * a - v * v2d;
+        }
+    }
+    let d_u = upper_mul(&f.l_inv_t, &r_mat); // ∂𝓛/∂U = L⁻ᵀR
+    // V diag(d) Vᵀ = Ṽ diag(g∘d) Ṽᵀ, reusing R's storage for Ṽ diag(g∘d).
+    r_mat.copy_from(&p.vt);
+    scale_columns(&mut r_mat, &p.g.component_mul(&d));
+    Pass2 {
+        d_u,
+        vdvt: symmetric_mul_t(&r_mat, &p.vt),
+        diag_grad: h.kernel.diag_gradient(data.points().range(start, len), &d),
+        sum_d: d.sum(),
+    }
+}
+
+/// ∂𝓛/∂B_u = L⁻ᵀSL⁻¹ (gp.md §2.2) and the kernel and Z gradients through K_M = k(Z, Z), in
+/// which Z enters both arguments (so its gradient is twice the first-argument one).
+fn pseudo_gradient<K: Kernel>(
+    h: &Hyper<K>,
+    f: &Factors,
+    parts: &[Pass2],
+) -> (DMatrix<f64>, DVector<f64>, DMatrix<f64>) {
+    let z = f.z.points();
+    let m = z.len();
+    let mut s_mat = (&f.b_inv - DMatrix::identity(m, m)) * 0.5 + &f.u * f.u.transpose() * 0.5;
+    for p in parts {
+        s_mat += &p.vdvt;
+    }
+    // L⁻ᵀSL⁻¹ = L⁻ᵀ(L⁻ᵀS)ᵀ for symmetric S: two products with a triangular factor.
+    let d_bu = upper_mul(&f.l_inv_t, &upper_mul(&f.l_inv_t, &s_mat).transpose());
+    let d_bu = (&d_bu + d_bu.transpose()) * 0.5;
+    let mut d_z = DMatrix::zeros(z.dims(), m);
+    let grad = h.kernel.cross_gradient(z, z, &f.k_m, &d_bu, Some(&mut d_z));
+    (d_bu, grad, d_z * 2.0)
+}
+
+/// 𝓛 and its full gradient at `h` (gp.md §2.2-2.3, cost O(NM² + NMD + M³ + M²D)).
+pub(crate) fn objective<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    jitter: f64,
+) -> Result<Evaluation> {
+    let f = factor(data, h, jitter)?;
+    let blocks = data.blocks();
+    let parts: Vec<Pass2> = blocks
+        .par_iter()
+        .zip(f.blocks.par_iter())
+        .map(|(&blk, p)| pass2(data, h, &f, p, blk))
+        .collect();
+    let z = f.z.points();
+    // The O(NMD) gradient through U = k(Z, X) needs only ∂𝓛/∂U: it runs beside ∂𝓛/∂B_u.
+    let ((d_bu, mut kernel, mut d_z), through_u) = rayon::join(
+        || pseudo_gradient(h, &f, &parts),
+        || {
+            blocks
+                .par_iter()
+                .zip(parts.par_iter().zip(f.blocks.par_iter()))
+                .map(|(&(start, len), (p2, p1))| {
+                    let x = data.points().range(start, len);
+                    let mut d_z = DMatrix::zeros(z.dims(), z.len());
+                    let g = h
+                        .kernel
+                        .cross_gradient(z, x, &p1.k, &p2.d_u, Some(&mut d_z));
+                    (g, d_z)
+                })
+                .collect::<Vec<_>>()
+        },
+    );
+    let mut sum_d = 0.0;
+    for (p, (g, dz)) in parts.iter().zip(&through_u) {
+        kernel += g + &p.diag_grad;
+        d_z += dz;
+        sum_d += p.sum_d;
+    }
+    let grad = HyperGrad {
+        kernel,
+        log_noise_variance: h.noise_variance * sum_d,
+        pseudo_inputs: d_z.transpose(),
+        log_pseudo_noise: h
+            .pseudo_noise
+            .as_ref()
+            .map(|p| p.component_mul(&d_bu.diagonal())),
+    };
+    Ok(Evaluation {
+        nlml: f.nlml,
+        grad,
+        d_jitter: d_bu.trace(),
+    })
+}
+
+#[cfg(test)]
+#[path = "fitc_tests.rs"]
+mod tests;

@@ -1,0 +1,58 @@
+//! patchflow's Gaussian processes: regression with a full GP, SPGP (FITC) and SPGP-HET (Hess 2008,
+//! thesis 3.1.3), and classification by probabilistic least squares on top of any of them (GPML
+//! §6.5, for GP occupancy maps). Depends on no other patchflow crate.
+//!
+//! Every model takes any [`Kernel`]: SE-ARD by default (the thesis' kernel), Matérn 3/2, or a
+//! product over groups of input columns such as space × time ([`Stationary`]); a new covariance
+//! function (e.g. DGPOM's motion-adapted one) implements [`Kernel`] and works everywhere.
+//!
+//! ```
+//! use nalgebra::{DMatrix, DVector};
+//! use patchflow_gp::{GpKind, GpParams};
+//!
+//! let x = DMatrix::from_fn(40, 1, |i, _| i as f64 / 8.0);
+//! let y = x.column(0).map(|v| v.sin());
+//! let model = GpParams::new(GpKind::Spgp).pseudo_inputs(8).max_iters(50).fit(&x, &y)?;
+//! let p = model.predict(&DMatrix::from_element(1, 1, 2.0))?;
+//! assert!((p.mean[0] - 2f64.sin()).abs() < 0.1);
+//! # Ok::<(), patchflow_gp::GpError>(())
+//! ```
+
+mod ard_distance;
+mod blocked;
+mod error;
+mod fit;
+mod fitc;
+mod full;
+mod hyper;
+mod init;
+mod kernel;
+mod lbfgs;
+mod linalg;
+mod loo;
+mod model;
+mod model_file;
+mod normal;
+mod objective;
+mod params;
+mod pls;
+mod shape;
+mod sparse_posterior;
+mod squashing;
+mod stationary;
+mod train_data;
+mod transform;
+
+pub use error::{GpError, Result};
+pub use full::FULL_GP_MAX_SAMPLES;
+pub use kernel::{Kernel, Points};
+pub use loo::LooMoments;
+pub use model::{FitReport, GpModel, GpPrediction};
+pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
+pub use objective::GpObjective;
+pub use params::{GpKind, GpParams, GpValidParams};
+pub use pls::{PlsClassifier, PlsParams, PlsPrediction, PlsValidParams};
+pub use shape::{Factor, Shape};
+pub use squashing::Squashing;
+pub use stationary::Stationary;
+pub use transform::Standardiser;

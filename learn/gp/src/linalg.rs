@@ -1,0 +1,238 @@
+//! Small dense linear-algebra helpers: transposed views for gemm, a jittered Cholesky (gp.md §5.1)
+//! and triangular inverses, so the O(NM²) products run as matrix-matrix products.
+
+use nalgebra::{DMatrix, DVector, Dyn, Matrix, MatrixView, Storage};
+
+/// A dense matrix view with arbitrary strides (e.g. a transpose).
+pub(crate) type StridedView<'a> = MatrixView<'a, f64, Dyn, Dyn, Dyn, Dyn>;
+
+use super::blocked::{cholesky, lower_inverse_of};
+use crate::{GpError, Result};
+
+/// How many times the jitter is multiplied by 10 before a factorisation is declared failed.
+const JITTER_RETRIES: usize = 5;
+
+/// nalgebra's threshold below which `gemm` does not call matrixmultiply.
+const SMALL_DIM: usize = 5;
+
+/// A view of the transpose of the column-major `rows × cols` matrix stored in `data`.
+///
+/// nalgebra's `gemm` hands the strides to matrixmultiply, so multiplying by this view costs no copy.
+pub(crate) fn transposed(data: &[f64], rows: usize, cols: usize) -> StridedView<'_> {
+    StridedView::from_slice_with_strides(data, cols, rows, rows, 1)
+}
+
+/// The transpose of `a` as a view (see [`transposed`]).
+pub(crate) fn t_view(a: &DMatrix<f64>) -> StridedView<'_> {
+    transposed(a.as_slice(), a.nrows(), a.ncols())
+}
+
+/// `a * b` through matrixmultiply's gemm (strided views included, no copies).
+pub(crate) fn mul<S1, S2>(
+    a: &Matrix<f64, Dyn, Dyn, S1>,
+    b: &Matrix<f64, Dyn, Dyn, S2>,
+) -> DMatrix<f64>
+where
+    S1: Storage<f64, Dyn, Dyn>,
+    S2: Storage<f64, Dyn, Dyn>,
+{
+    // nalgebra's fallback for small dimensions (≤ 5) mis-handles strided views (its axcpy loops
+    // over the view's slice length), so small products go through owned copies.
+    if a.nrows().min(a.ncols()).min(b.ncols()) <= SMALL_DIM {
+        return a.clone_owned() * b.clone_owned();
+    }
+    // Above the threshold nalgebra hands both views' strides to matrixmultiply and writes the
+    // result without zeroing it first.
+    a * b
+}
+
+/// `l * b` for a lower-triangular `l`, skipping the zero upper-right quarter (¾ of the work).
+pub(crate) fn lower_mul(l: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = l.nrows();
+    if n < 4 * SMALL_DIM {
+        return mul(l, b);
+    }
+    let h = n / 2;
+    let mut out = mul(&l.view((0, 0), (n, h)), &b.rows(0, h)); // [L11; L21] B_top
+    out.rows_mut(h, n - h)
+        .gemm(1.0, &l.view((h, h), (n - h, n - h)), &b.rows(h, n - h), 1.0);
+    out
+}
+
+/// `u * b` for an upper-triangular `u`, skipping the zero lower-left quarter.
+pub(crate) fn upper_mul(u: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = u.nrows();
+    if n < 4 * SMALL_DIM {
+        return mul(u, b);
+    }
+    let h = n / 2;
+    let mut out = mul(&u.view((0, h), (n, n - h)), &b.rows(h, n - h)); // [U12; U22] B_bot
+    out.rows_mut(0, h)
+        .gemm(1.0, &u.view((0, 0), (h, h)), &b.rows(0, h), 1.0);
+    out
+}
+
+/// `a * bᵀ` when the product is known to be symmetric: three of its four quarter blocks.
+pub(crate) fn symmetric_mul_t(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    let n = a.nrows();
+    if n < 4 * SMALL_DIM {
+        return mul(a, &t_view(b));
+    }
+    let h = n / 2;
+    let bt = t_view(b);
+    // [C11; C21] = A [B1]ᵀ, C22 = A2 B2ᵀ, C12 = C21ᵀ.
+    let left = mul(a, &bt.columns(0, h));
+    let c22 = mul(&a.rows(h, n - h), &bt.columns(h, n - h));
+    let mut out = DMatrix::zeros(n, n);
+    out.columns_mut(0, h).copy_from(&left);
+    out.view_mut((h, h), (n - h, n - h)).copy_from(&c22);
+    let c21 = left.rows(h, n - h).transpose();
+    out.view_mut((0, h), (h, n - h)).copy_from(&c21);
+    out
+}
+
+/// A lower Cholesky factor and the diagonal jitter that made the factorisation succeed.
+pub(crate) struct JitteredCholesky {
+    /// Lower-triangular factor of `a + jitter·I`.
+    pub l: DMatrix<f64>,
+    /// The jitter finally added to the diagonal.
+    pub jitter: f64,
+}
+
+/// Factors `a + jitter·I`; on failure retries with 10× the jitter up to five times (GPy's `jitchol`,
+/// gp.md §5.1), then returns [`GpError::Numerical`] naming `what`.
+pub(crate) fn cholesky_with_jitter(
+    a: &DMatrix<f64>,
+    jitter: f64,
+    what: &str,
+) -> Result<JitteredCholesky> {
+    if a.iter().any(|v| !v.is_finite()) {
+        return Err(GpError::Numerical(format!("{what} has non-finite entries")));
+    }
+    let n = a.nrows();
+    let mean_diag = if n == 0 {
+        1.0
+    } else {
+        a.diagonal().mean().abs().max(f64::MIN_POSITIVE)
+    };
+    let mut eps = jitter.max(0.0);
+    for attempt in 0..=JITTER_RETRIES {
+        let mut m = a.clone();
+        for i in 0..n {
+            m[(i, i)] += eps;
+        }
+        if let Some(l) = cholesky(&m) {
+            return Ok(JitteredCholesky { l, jitter: eps });
+        }
+        if attempt < JITTER_RETRIES {
+            eps = (eps * 10.0).max(1e-10 * mean_diag);
+        }
+    }
+    Err(GpError::Numerical(format!(
+        "{what} ({n}×{n}) is not positive definite even with jitter {eps:.3e}"
+    )))
+}
+
+/// The inverse of a lower-triangular matrix with a non-zero diagonal.
+pub(crate) fn lower_inverse(l: &DMatrix<f64>, what: &str) -> Result<DMatrix<f64>> {
+    let inv = lower_inverse_of(l);
+    if inv.iter().all(|v| v.is_finite()) {
+        Ok(inv)
+    } else {
+        Err(GpError::Numerical(format!("{what} has a zero pivot")))
+    }
+}
+
+/// Sum of the logs of the diagonal of a triangular factor (half the log-determinant).
+pub(crate) fn log_diag_sum(l: &DMatrix<f64>) -> f64 {
+    l.diagonal().iter().map(|v| v.ln()).sum()
+}
+
+/// Σ values in four interleaved partial sums: vectorised and, for a given length, always added in
+/// the same order.
+pub(crate) fn sum(values: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let chunks = values.chunks_exact(4);
+    let tail: f64 = chunks.remainder().iter().sum();
+    for c in chunks {
+        for (a, v) in acc.iter_mut().zip(c) {
+            *a += v;
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// Scales column `j` of `a` by `s[j]` in place.
+pub(crate) fn scale_columns(a: &mut DMatrix<f64>, s: &DVector<f64>) {
+    for (mut col, f) in a.column_iter_mut().zip(s.iter()) {
+        col *= *f;
+    }
+}
+
+/// Column sums of the elementwise product `a ∘ b` (same shapes).
+pub(crate) fn colsum_product(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DVector<f64> {
+    DVector::from_iterator(
+        a.ncols(),
+        a.column_iter()
+            .zip(b.column_iter())
+            .map(|(ca, cb)| ca.dot(&cb)),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_transposed_view_multiplies_like_a_transpose() {
+        let a = DMatrix::from_fn(7, 9, |i, j| (i * 3 + j) as f64 * 0.1 - 1.0);
+        let b = DMatrix::from_fn(7, 8, |i, j| (i + 2 * j) as f64 * 0.05);
+        let got = mul(&t_view(&a), &b);
+        let want = a.transpose() * &b;
+        assert!((got - want).amax() < 1e-12);
+    }
+
+    #[test]
+    fn triangular_and_symmetric_products_equal_the_full_ones() {
+        for n in [7, 30, 41] {
+            let l = DMatrix::from_fn(n, n, |i, j| {
+                if i >= j {
+                    ((i * 3 + j) % 5) as f64 * 0.2 + 1.0
+                } else {
+                    0.0
+                }
+            });
+            let b = DMatrix::from_fn(n, 13, |i, j| ((i + 2 * j) % 7) as f64 * 0.3 - 1.0);
+            assert!((lower_mul(&l, &b) - &l * &b).amax() < 1e-12, "lower n={n}");
+            let u = l.transpose();
+            assert!((upper_mul(&u, &b) - &u * &b).amax() < 1e-12, "upper n={n}");
+            // B diag(w) Bᵀ is symmetric.
+            let scaled = DMatrix::from_fn(n, 13, |i, j| b[(i, j)] * (1.0 + (j % 3) as f64));
+            let want = &scaled * b.transpose();
+            assert!(
+                (symmetric_mul_t(&scaled, &b) - want).amax() < 1e-12,
+                "sym n={n}"
+            );
+        }
+    }
+
+    #[test]
+    fn small_strided_products_are_computed_without_overrunning() {
+        let a = DMatrix::from_fn(3, 2, |i, j| (i + 4 * j) as f64);
+        let b = DMatrix::from_fn(3, 4, |i, j| (2 * i + j) as f64);
+        assert_eq!(mul(&t_view(&a), &b), a.transpose() * &b);
+    }
+
+    #[test]
+    fn a_singular_matrix_factors_after_jitter_and_nan_is_an_error() {
+        let a = DMatrix::from_element(3, 3, 1.0);
+        let chol = cholesky_with_jitter(&a, 0.0, "K").expect("jitter rescues a rank-one matrix");
+        assert!(chol.jitter > 0.0);
+        let mut bad = DMatrix::identity(2, 2);
+        bad[(0, 1)] = f64::NAN;
+        assert!(matches!(
+            cholesky_with_jitter(&bad, 1e-6, "K"),
+            Err(GpError::Numerical(_))
+        ));
+    }
+}

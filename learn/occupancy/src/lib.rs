@@ -1,0 +1,38 @@
+//! Occupancy maps from planar range scans, after O'Callaghan & Ramos, *Gaussian Process
+//! Occupancy Maps for Dynamic Environments* (SPEC §5b): training samples from scans (returns
+//! occupied, free space along the beams), exact ground-truth occupancy from the dataset's truth,
+//! the occupancy-grid baseline, GP occupancy maps, and ROC AUC against the truth at the paper's
+//! query times. Depends on the dataset vocabulary and the GP crate, never on the motion-estimation
+//! code.
+//!
+//! ```
+//! use patchflow_occupancy::roc_auc;
+//! let auc = roc_auc(&[0.9, 0.4, 0.4, 0.1], &[true, true, false, false]).unwrap();
+//! assert!((auc - 0.875).abs() < 1e-12);
+//! ```
+
+mod auc;
+mod error;
+mod evaluation;
+mod gpom;
+mod ground_truth;
+mod map_method;
+mod occupancy_grid;
+mod occupancy_sequence;
+mod params;
+mod planar_scan;
+mod query_grid;
+mod training_samples;
+
+pub use auc::roc_auc;
+pub use error::{OccupancyError, Result};
+pub use evaluation::{MapFigure, MethodScores, SequenceScores, evaluate_sequence};
+pub use gpom::{GpomMethod, GpomSpace};
+pub use ground_truth::{GroundTruth, OrientedBox};
+pub use map_method::{MapMethod, MapOutput, ScanWindow};
+pub use occupancy_grid::OccupancyGridMethod;
+pub use occupancy_sequence::OccupancySequence;
+pub use params::OccupancyParams;
+pub use planar_scan::{Beam, PlanarScan};
+pub use query_grid::QueryGrid;
+pub use training_samples::{OccupancySample, SampleParams, scan_samples};

@@ -1,0 +1,47 @@
+//! The seam between the map methods and their evaluation: a method builds one map from a window
+//! of scans (DGPOM paper, 3.1: the scan at the query time and the three before it) and predicts
+//! the probability of occupancy, and its predictive variance where it has one, at query points at
+//! the query time. The occupancy grid, GPOM in R^D and GPOM in R^{D+1} implement it here; DGPOM
+//! (a motion-adapted kernel with a learned velocity field) implements it as one more method,
+//! learned beforehand from a training run and carried inside the method value.
+
+use crate::{PlanarScan, Result};
+
+/// The scans one map is built from.
+#[derive(Debug, Clone, Copy)]
+pub struct ScanWindow<'a> {
+    /// The scans, oldest first; the last is the scan at the query time.
+    pub scans: &'a [PlanarScan],
+    /// The query time, seconds since the sequence started.
+    pub query_secs: f64,
+}
+
+impl ScanWindow<'_> {
+    /// The scan at the query time.
+    pub fn query_scan(&self) -> Option<&PlanarScan> {
+        self.scans.last()
+    }
+}
+
+/// What one map gives at the query points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapOutput {
+    /// Probability of occupancy at each query point.
+    pub probability: Vec<f64>,
+    /// Predictive variance of the latent function at each query point, if the method has one.
+    pub variance: Option<Vec<f64>>,
+    /// Training points the map was built from (samples for a GP; beams for a grid).
+    pub training_points: usize,
+    /// What the fit learned, for the report (hyperparameters, squashing), one line.
+    pub summary: String,
+}
+
+/// A way of building occupancy maps (GRID, GPOM-RD, GPOM-RD1, DGPOM).
+pub trait MapMethod: Send + Sync {
+    /// The method's name in reports (`GRID`, `GPOM-RD`, `GPOM-RD1`, `DGPOM`).
+    fn name(&self) -> &str;
+
+    /// Builds the map of `window` and predicts at `points_m` (world frame) at the window's query
+    /// time: one map, fit and prediction, the unit the evaluation times.
+    fn map(&self, window: &ScanWindow<'_>, points_m: &[[f64; 2]]) -> Result<MapOutput>;
+}

@@ -1,0 +1,98 @@
+//! The per-scan step of thesis Algorithm 3.1: cluster the scan, build the difference map, then
+//! predict and merge heading and speed for every cluster that can be an object.
+
+use std::time::Instant;
+
+use patchflow_dataset::Sweep;
+
+use super::cluster_estimate::{ClusterEstimate, ScanEstimate, ScanMotion};
+use crate::{CellSamples, MotionEstimator, Result, SweepFeatures};
+
+impl MotionEstimator {
+    /// Thesis Algorithm 3.1 on one scan given the previous one. To process a sequence in order,
+    /// cutting each sweep once, run a [`ScanStream`](crate::ScanStream) and call
+    /// [`Self::estimate_features`] on its features.
+    ///
+    /// ```no_run
+    /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+    /// use std::path::Path;
+    /// let estimator = patchflow_learn::MotionEstimator::load(Path::new("models/spgp-het.json"))?;
+    /// let dataset = patchflow_dataset::Dataset::open(Path::new("data/situations"))?;
+    /// let sequence = dataset.sequence("situation1")?;
+    /// let scan = estimator.estimate_scan(&sequence.read_sweep(9)?, &sequence.read_sweep(10)?)?;
+    /// for (c, estimate) in scan.motion.clusters.iter().enumerate() {
+    ///     if let Some(all) = estimate.and_then(|e| e.all) {
+    ///         println!("cluster {c}: {:.0}° at {:.1} m/s", all.heading_rad.to_degrees(), all.speed_mps);
+    ///     }
+    /// }
+    /// # Ok(())
+    /// # }
+    /// ```
+    pub fn estimate_scan(&self, previous: &Sweep, current: &Sweep) -> Result<ScanEstimate> {
+        // Steps 1 and 2: clusters of the scan (2.2.1), difference of the maps at t and t−1 (2.1.2).
+        let features = SweepFeatures::compute(previous, current, &self.features)?;
+        // Steps 3 and 4: heading, then speed, of every object hypothesis.
+        let motion = self.estimate_features(&features)?;
+        Ok(ScanEstimate { features, motion })
+    }
+
+    /// Steps 3 and 4 of thesis Algorithm 3.1 on features already computed (with this model's
+    /// feature parameters): every cluster that can be one object gets a heading and a speed
+    /// under both merge rules, and each of its points the prediction of its map cell.
+    pub fn estimate_features(&self, features: &SweepFeatures) -> Result<ScanMotion> {
+        let start = Instant::now();
+        // Step 1's object hypotheses: the clusters no longer than a road user, each predicted
+        // once per occupied map cell (the patches' resolution).
+        let hypotheses = features.object_hypotheses();
+        let samples: Vec<CellSamples> = hypotheses
+            .iter()
+            .map(|&c| features.cell_samples(features.clusters().members(c)))
+            .collect();
+        let positions: Vec<&[[f64; 2]]> = samples.iter().map(|s| &s.positions[..]).collect();
+        let hypotheses_secs = start.elapsed().as_secs_f64();
+        // Steps 3 and 4 for all of them at once.
+        let predicted = self.predict_clusters(features, &positions)?;
+        let mut clusters = vec![None; features.clusters().len()];
+        let mut points = vec![None; features.len()];
+        for ((&c, samples), (estimate, motions)) in hypotheses
+            .iter()
+            .zip(&samples)
+            .zip(predicted.estimates.into_iter().zip(predicted.points))
+        {
+            clusters[c] = Some(estimate);
+            let members = features.clusters().members(c);
+            for (&i, &sample) in members.iter().zip(&samples.sample_of_member) {
+                points[i] = motions[sample];
+            }
+        }
+        let mut timing = predicted.timing;
+        timing.hypotheses_secs = hypotheses_secs;
+        timing.points = hypotheses
+            .iter()
+            .map(|&c| features.clusters().members(c).len())
+            .sum();
+        Ok(ScanMotion {
+            clusters,
+            points,
+            timing,
+        })
+    }
+
+    /// Steps 3 and 4 for one cluster under both merge rules, predicted at every one of its
+    /// points as thesis 4.4 does for its hand-labelled target. `members` index `features.points()`.
+    pub fn estimate_cluster(
+        &self,
+        features: &SweepFeatures,
+        members: &[usize],
+    ) -> Result<ClusterEstimate> {
+        if members.is_empty() {
+            return Ok(ClusterEstimate::default());
+        }
+        let positions: Vec<[f64; 2]> = members
+            .iter()
+            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
+            .collect();
+        let predicted = self.predict_clusters(features, &[&positions])?;
+        Ok(predicted.estimates.into_iter().next().unwrap_or_default())
+    }
+}

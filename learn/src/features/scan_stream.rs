@@ -1,0 +1,198 @@
+//! A sequence's scans in order, as a lidar delivers them: each sweep is read and cut to the
+//! height slice once, and its slice serves as the previous one of the next scan (thesis 2.1.2
+//! differences the maps at t and t − 1).
+
+use std::time::Instant;
+
+use patchflow_dataset::{SequenceReader, Sweep};
+
+use crate::features::slice::HeightSlice;
+use crate::{FeatureParams, Result, SweepFeatures};
+
+/// One scan of a stream: the current sweep and its features for every parameter set asked for.
+#[derive(Debug, Clone)]
+pub struct Scan {
+    /// Index of the current sweep in its sequence (at least 1: the first sweep has no predecessor).
+    pub index: usize,
+    /// The current sweep.
+    pub sweep: Sweep,
+    /// Its features given the previous sweep, one per parameter set of the stream, in order.
+    pub features: Vec<SweepFeatures>,
+}
+
+/// Iterates over the scans `1..len` of a sequence in order.
+///
+/// ```no_run
+/// # fn main() -> Result<(), Box<dyn std::error::Error>> {
+/// use patchflow_learn::{FeatureParams, ScanStream};
+/// let dataset = patchflow_dataset::Dataset::open(std::path::Path::new("data/situations"))?;
+/// let sequence = dataset.sequence("situation1")?;
+/// for scan in ScanStream::new(&sequence, vec![FeatureParams::default()])? {
+///     let scan = scan?;
+///     println!("sweep {}: {} clusters", scan.index, scan.features[0].clusters().len());
+/// }
+/// # Ok(())
+/// # }
+/// ```
+#[derive(Debug)]
+pub struct ScanStream<'a> {
+    sequence: &'a SequenceReader,
+    params: Vec<FeatureParams>,
+    next: usize,
+    previous: Vec<HeightSlice>,
+}
+
+impl<'a> ScanStream<'a> {
+    /// A stream over `sequence` computing features once per parameter set (usually one; several
+    /// when estimators were trained with different map parameters). Parameters are checked here.
+    pub fn new(sequence: &'a SequenceReader, params: Vec<FeatureParams>) -> Result<Self> {
+        for p in &params {
+            p.validate()?;
+        }
+        Ok(Self {
+            sequence,
+            params,
+            next: 0,
+            previous: Vec::new(),
+        })
+    }
+
+    /// Scans still to come.
+    pub fn remaining(&self) -> usize {
+        self.sequence.len().saturating_sub(self.next.max(1))
+    }
+
+    fn cut(&self, sweep: &Sweep) -> Result<Vec<HeightSlice>> {
+        self.params
+            .iter()
+            .map(|p| HeightSlice::cut(sweep, p))
+            .collect()
+    }
+
+    /// Reads the next sweep to process with its index (`None` at the end). The first call also
+    /// reads and cuts sweep 0, the first scan's predecessor. Hand the sweep to
+    /// [`Self::features_of`] before reading the next one; the iterator does both.
+    pub fn read_next(&mut self) -> Result<Option<(usize, Sweep)>> {
+        if self.next == 0 {
+            if self.sequence.is_empty() {
+                return Ok(None);
+            }
+            self.previous = self.cut(&self.sequence.read_sweep(0)?)?;
+            self.next = 1;
+        }
+        if self.next >= self.sequence.len() {
+            return Ok(None);
+        }
+        let index = self.next;
+        self.next += 1;
+        Ok(Some((index, self.sequence.read_sweep(index)?)))
+    }
+
+    /// The features of the sweep [`Self::read_next`] returned, given the previous one, one per
+    /// parameter set; its slice becomes the previous one of the next scan.
+    pub fn features_of(&mut self, sweep: &Sweep) -> Result<Vec<SweepFeatures>> {
+        let start = Instant::now();
+        // 2.1.1: only the new sweep is cut; the previous slice comes from the last scan.
+        let current = self.cut(sweep)?;
+        let slice_secs = start.elapsed().as_secs_f64();
+        let features = self
+            .params
+            .iter()
+            .zip(self.previous.iter().zip(&current))
+            .map(|(params, (prev, curr))| {
+                let mut features = SweepFeatures::from_slices(prev, curr, params)?;
+                features.set_slice_secs(slice_secs);
+                Ok(features)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        self.previous = current;
+        Ok(features)
+    }
+
+    fn advance(&mut self) -> Result<Option<Scan>> {
+        let Some((index, sweep)) = self.read_next()? else {
+            return Ok(None);
+        };
+        let features = self.features_of(&sweep)?;
+        Ok(Some(Scan {
+            index,
+            sweep,
+            features,
+        }))
+    }
+}
+
+impl Iterator for ScanStream<'_> {
+    type Item = Result<Scan>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        match self.advance() {
+            Ok(scan) => scan.map(Ok),
+            Err(err) => {
+                // A broken sweep ends the stream after reporting it once.
+                self.next = usize::MAX;
+                Some(Err(err))
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
+    use patchflow_dataset::{Dataset, Pose, SequenceWriter};
+
+    fn sequence(root: &std::path::Path, sweeps: u32) -> SequenceReader {
+        let lidar = SyntheticLidar::with_resolution(24, 720);
+        let mut scene = SyntheticScene {
+            boxes: vec![SceneBox::car(3, [10.0, 2.0], 0.4, 6.0)],
+        };
+        let writer = SequenceWriter::open(root, "stream").unwrap();
+        let (mut poses, mut stamps) = (Vec::new(), Vec::new());
+        for i in 0..sweeps {
+            let sweep = scene.scan(&lidar, [0.2 * f64::from(i), 0.0], 0.0, i);
+            writer.write_sweep(&sweep).unwrap();
+            poses.push(sweep.world_from_sensor);
+            stamps.push(sweep.stamp_secs);
+            scene = scene.advanced(0.1);
+        }
+        let poses: Vec<Pose> = poses;
+        writer
+            .finish("synthetic", 0, 10.0, &poses, &stamps, "test")
+            .unwrap();
+        Dataset::open(root).unwrap().sequence("stream").unwrap()
+    }
+
+    #[test]
+    fn streamed_features_equal_features_computed_pair_by_pair() {
+        let dir = tempfile::tempdir().unwrap();
+        let reader = sequence(dir.path(), 4);
+        let params = FeatureParams {
+            half_extent_m: 20.0,
+            ..FeatureParams::default()
+        };
+        let stream = ScanStream::new(&reader, vec![params.clone()]).unwrap();
+        assert_eq!(stream.remaining(), 3);
+        let scans: Vec<Scan> = stream.map(Result::unwrap).collect();
+        assert_eq!(scans.iter().map(|s| s.index).collect::<Vec<_>>(), [1, 2, 3]);
+        for scan in &scans {
+            let prev = reader.read_sweep(scan.index - 1).unwrap();
+            let pair = SweepFeatures::compute(&prev, &scan.sweep, &params).unwrap();
+            let streamed = &scan.features[0];
+            assert_eq!(streamed.points(), pair.points());
+            assert_eq!(streamed.clusters(), pair.clusters());
+            assert_eq!(streamed.difference_map(), pair.difference_map());
+            assert_eq!(streamed.reflection_map(), pair.reflection_map());
+        }
+    }
+
+    #[test]
+    fn a_sequence_of_one_sweep_has_no_scan() {
+        let dir = tempfile::tempdir().unwrap();
+        let reader = sequence(dir.path(), 1);
+        let mut stream = ScanStream::new(&reader, vec![FeatureParams::default()]).unwrap();
+        assert_eq!(stream.remaining(), 0);
+        assert!(stream.next().is_none());
+    }
+}

@@ -1,0 +1,110 @@
+//! Occupancy maps end to end on the shipped T-junction: generate it (a planar scanner, 12 scans)
+//! and its training run, map it with the grid and both GPOMs (small settings), score against
+//! exact truth and write the report. Checks that `occupancy.json` has the SPEC §7 shape, that every map beats chance, that
+//! the plots are PNGs, and that a dataset of an older build (no `static.json`) is refused with
+//! the file's name.
+
+#![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
+
+use patchflow_eval::{OccupancyReport, evaluate_occupancy, write_occupancy_report};
+use patchflow_occupancy::{
+    GpomMethod, MapMethod, OccupancyGridMethod, OccupancyParams, OccupancySequence, SampleParams,
+};
+use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
+
+fn generate(dir: &std::path::Path, names: &[&str]) -> patchflow_dataset::Dataset {
+    let sources: Vec<ScenarioSource> = names
+        .iter()
+        .map(|name| ScenarioSource::from_argument(std::path::Path::new(name)).unwrap())
+        .collect();
+    let options = GenerateOptions {
+        realism: None,
+        out: dir.to_owned(),
+        seed: 3,
+        shard: Shard::ALL,
+        overwrite: false,
+    };
+    generate_dataset(&sources, &options, &|_| {}).unwrap();
+    patchflow_dataset::Dataset::open(dir).unwrap()
+}
+
+fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
+    let samples = SampleParams {
+        free_spacing_m: 3.0,
+        ..SampleParams::default()
+    };
+    let small = |m: GpomMethod| GpomMethod {
+        pseudo_inputs: 60,
+        max_iters: 25,
+        ..m
+    };
+    let methods = |sequence: &OccupancySequence, training: Option<&OccupancySequence>| {
+        // The training run is handed over for methods that learn beforehand, and not scored.
+        assert_eq!(sequence.name, "dgpom_tjunction");
+        assert_eq!(training.map(|t| t.scans.len()), Some(100));
+        let methods: Vec<Box<dyn MapMethod>> = vec![
+            Box::new(small(GpomMethod::space(samples.clone()))),
+            Box::new(small(GpomMethod::space_time(samples.clone()))),
+            Box::new(OccupancyGridMethod::default()),
+        ];
+        Ok(methods)
+    };
+    let params = OccupancyParams {
+        query_scans: vec![3, 5],
+        ..OccupancyParams::default()
+    };
+    evaluate_occupancy(dataset, &methods, &params, 7, &|_, _, _| {}).unwrap()
+}
+
+#[test]
+fn the_tjunction_is_mapped_scored_and_reported_in_the_spec_shape() {
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = generate(
+        &dir.path().join("data"),
+        &["dgpom_tjunction", "dgpom_tjunction_train"],
+    );
+    let report = small_run(&dataset);
+    let files = write_occupancy_report(&report, &dir.path().join("report")).unwrap();
+
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&files.json).unwrap()).unwrap();
+    let methods = json["scenarios"]["dgpom_tjunction"]["methods"]
+        .as_object()
+        .unwrap();
+    let names: Vec<&str> = methods.keys().map(String::as_str).collect();
+    assert_eq!(names, ["GPOM-RD", "GPOM-RD1", "GRID"], "{json}");
+    for (name, m) in methods {
+        for t in ["3", "5"] {
+            let auc = m["auc_by_query_time"][t].as_f64().unwrap();
+            assert!(auc > 0.6 && auc <= 1.0, "{name} at t = {t}: AUC {auc}");
+        }
+        assert!(m["seconds_per_map"].as_f64().unwrap() >= 0.0, "{name}");
+        assert!(
+            m["training_points_per_map"].as_f64().unwrap() > 100.0,
+            "{name}"
+        );
+    }
+    assert_eq!(files.plots.len(), 3);
+    for plot in &files.plots {
+        let bytes = std::fs::read(plot).unwrap();
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", plot.display());
+    }
+    let markdown = std::fs::read_to_string(&files.markdown).unwrap();
+    assert!(markdown.contains("GPOM ℜ^D (paper)") && markdown.contains("DGPOM ℜ^{D+1} (paper)"));
+}
+
+#[test]
+fn a_dataset_without_static_truth_is_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    let dataset = generate(&data, &["dgpom_tjunction"]);
+    let static_json = data.join("sequences/dgpom_tjunction/static.json");
+    std::fs::remove_file(&static_json).unwrap();
+    let grid = |_: &OccupancySequence, _: Option<&OccupancySequence>| {
+        let methods: Vec<Box<dyn MapMethod>> = vec![Box::new(OccupancyGridMethod::default())];
+        Ok(methods)
+    };
+    let params = OccupancyParams::default();
+    let err = evaluate_occupancy(&dataset, &grid, &params, 7, &|_, _, _| {}).unwrap_err();
+    assert!(err.to_string().contains("static.json"), "{err}");
+}
