@@ -10,6 +10,8 @@
 
 mod error;
 mod generate;
+#[cfg(test)]
+mod ground_contact_tests;
 mod lidar;
 mod motion;
 mod pose_error;
