@@ -20,6 +20,7 @@ fn generate(out: &Path, seed: u64) {
         out: out.to_owned(),
         seed,
         shard: Shard::ALL,
+        realism: None,
         overwrite: false,
     };
     generate_dataset(&[tiny()], &options, &|_| {}).unwrap();

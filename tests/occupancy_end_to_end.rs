@@ -25,6 +25,7 @@ fn generate(dir: &std::path::Path, names: &[&str]) -> patchflow_dataset::Dataset
         .map(|name| ScenarioSource::from_argument(std::path::Path::new(name)).unwrap())
         .collect();
     let options = GenerateOptions {
+        realism: None,
         out: dir.to_owned(),
         seed: 3,
         shard: Shard::ALL,

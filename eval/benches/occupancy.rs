@@ -17,6 +17,7 @@ fn tjunction() -> (tempfile::TempDir, OccupancySequence, OccupancySequence) {
     let sources = ["dgpom_tjunction", "dgpom_tjunction_train"]
         .map(|n| ScenarioSource::from_argument(std::path::Path::new(n)).expect("embedded"));
     let options = GenerateOptions {
+        realism: None,
         out: dir.path().to_owned(),
         seed: 7,
         shard: Shard::ALL,

@@ -31,6 +31,7 @@ fn dataset(dir: &std::path::Path) -> Dataset {
     )
     .expect("writing the scenario");
     let options = GenerateOptions {
+        realism: None,
         out: dir.join("data"),
         seed: 7,
         shard: Shard::ALL,

@@ -7,7 +7,8 @@ use patchflow_dataset::{FolderLock, Manifest, SequenceWriter};
 use crate::error::{Result, SimError};
 use crate::provenance::{Provenance, provenance};
 use crate::scenario::{
-    EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Scenario, gigabytes, sweep_memory_bytes,
+    EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes,
+    sweep_memory_bytes,
 };
 use crate::simulation::Simulation;
 
@@ -55,10 +56,15 @@ impl ScenarioSource {
 
     /// Loads and validates it.
     pub fn load(&self) -> Result<Scenario> {
+        self.load_at_rung(None)
+    }
+
+    /// Loads and validates it with its realism rung replaced by `rung`, if given.
+    pub fn load_at_rung(&self, rung: Option<Realism>) -> Result<Scenario> {
         match self {
-            Self::File(path) => Scenario::from_file(path),
+            Self::File(path) => Scenario::from_file_at_rung(path, rung),
             Self::Embedded(name, text) => {
-                Scenario::from_toml(text, &format!("<embedded {name}.toml>"), name)
+                Scenario::from_toml_at_rung(text, &format!("<embedded {name}.toml>"), name, rung)
             }
         }
     }
@@ -110,6 +116,8 @@ pub struct GenerateOptions {
     pub seed: u64,
     /// Which part of the work to do.
     pub shard: Shard,
+    /// Realism rung replacing every scenario's own (`generate --realism NAME`); `None` keeps theirs.
+    pub realism: Option<Realism>,
     /// Delete and regenerate the sequences this run covers, instead of refusing to touch those
     /// another request (another seed, scenario text or version) wrote.
     pub overwrite: bool,
@@ -160,7 +168,7 @@ pub fn generate_dataset(
 ) -> Result<Manifest> {
     let mut scenarios = sources
         .iter()
-        .map(ScenarioSource::load)
+        .map(|s| s.load_at_rung(options.realism))
         .collect::<Result<Vec<_>>>()?;
     scenarios.sort_by(|a, b| a.name.cmp(&b.name));
     if let Some(w) = scenarios.windows(2).find(|w| w[0].name == w[1].name) {
@@ -194,7 +202,7 @@ fn check_memory(scenario: &Scenario) -> Result<()> {
     let needed = sweep_memory_bytes(scenario);
     match available_memory_bytes() {
         Some(available) if needed > available => Err(SimError::Options(format!(
-            "scenario {:?}: one sweep of {} × {} rays needs about {} of memory, but the machine has {} available",
+            "scenario {:?}: one sweep of {} × {} rays and the world it is cast into need about {} of memory, but the machine has {} available",
             scenario.name,
             scenario.lidar.channels,
             scenario.lidar.azimuth_steps,
@@ -279,6 +287,10 @@ pub fn generate_sequence(
     let poses: Vec<_> = (0..scenario.sweeps)
         .map(|i| sim.world_from_sensor(i))
         .collect();
+    let estimated: Vec<_> = (0..scenario.sweeps)
+        .map(|i| sim.estimated_world_from_sensor(i))
+        .collect();
+    writer.write_estimated_poses(&estimated)?;
     let stamps: Vec<f64> = (0..scenario.sweeps)
         .map(|i| sim.stamp_secs(i) - scenario.start_secs)
         .collect();

@@ -10,18 +10,24 @@
 
 mod error;
 mod generate;
+#[cfg(test)]
+mod ground_contact_tests;
+mod kitti_names;
 mod lidar;
 mod motion;
+mod pose_error;
 mod provenance;
 mod scenario;
 mod scene;
 mod seed;
 mod simulation;
+mod world;
 
 pub use error::{Result, SimError};
 pub use generate::{
     GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset, generate_sequence,
 };
+pub use kitti_names::write_kitti_names;
 pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
 pub use motion::{
     MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory, wrap_angle,
@@ -29,8 +35,9 @@ pub use motion::{
 pub use patchflow_dataset as dataset;
 pub use scenario::{
     ActorConfig, CarModel, EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, ElevationSpacing,
-    LidarConfig, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M, Scenario,
-    SensorKind, StructureConfig, StructureKind, TrafficConfig,
+    LidarConfig, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M,
+    PoseErrorConfig, PoseErrorKnobs, Realism, RoadConfig, Scenario, SensorConfig, SensorKind,
+    SensorKnobs, StructureConfig, StructureKind, TrafficConfig, WorldConfig, WorldKnobs,
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;

@@ -24,6 +24,7 @@ fn small_dataset(root: &Path) -> Vec<(PathBuf, Vec<u8>)> {
         out: data.clone(),
         seed: 2,
         shard: Shard::ALL,
+        realism: None,
         overwrite: false,
     };
     generate_dataset(&[ScenarioSource::File(scenario)], &options, &|_| {}).unwrap();

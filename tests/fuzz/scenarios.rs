@@ -11,12 +11,30 @@ use proptest::sample::select;
 use crate::mutate::{apply, edits};
 use crate::{cases, report, runner};
 
-/// A small scene that uses every table: lidar, ego, an actor with corners and speed changes,
-/// structures (a row among them) and random traffic.
+/// A small scene that uses every table: the realism rung and its knobs, lidar, ego, an actor
+/// with corners and speed changes, structures (a row among them), a road and random traffic.
 const SCENE: &str = r#"
 sweeps = 2
 start_secs = 1.0
 ground_reflectivity = 0.2
+realism = "urban"
+
+[world]
+camber = 0.02
+clutter = 1.0
+parked_cars_per_100m = 12.0
+terrain_relief_m = 0.4
+
+[sensor]
+detection_range_m = 140.0
+mixed_pixels = 0.5
+
+[pose_error]
+position_std_m = 0.3
+drift_secs = 30.0
+
+[[roads]]
+path_m = [[-50.0, 1.75], [80.0, 1.75]]
 
 [lidar]
 channels = 4
@@ -157,6 +175,7 @@ fn edited_scenarios_generate_data_that_reads_back_or_a_clear_error() {
                 out: out.clone(),
                 seed: 1,
                 shard: Shard::ALL,
+                realism: None,
                 overwrite: true,
             };
             let source = [ScenarioSource::File(scenario_file.clone())];

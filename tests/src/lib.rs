@@ -21,6 +21,7 @@ pub fn generate_scene(
         out: data.clone(),
         seed,
         shard: patchflow_sim::Shard::ALL,
+        realism: None,
         overwrite: false,
     };
     patchflow_sim::generate_dataset(

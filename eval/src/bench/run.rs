@@ -231,6 +231,8 @@ fn generate(sources: &[ScenarioSource], out: &Path, seed: u64) -> Result<Dataset
         out: out.to_owned(),
         seed,
         shard: Shard::ALL,
+        // Each scenario's own rung: `urban` for every shipped file, which names none.
+        realism: None,
         overwrite: false,
     };
     generate_with_progress(sources, &options)?;

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 use crate::limits::{MAX_JSON_BYTES, read_limited};
 use crate::manifest::read_marker;
 use crate::pose::parse_kitti_pose;
-use crate::record_files::{read_f32s, read_lines, read_words};
+use crate::record_files::{read_f32s, read_lines, read_u16s, read_words};
 use crate::sweep_checks::check_objects;
-use crate::writer::sweep_path;
+use crate::writer::{ESTIMATED_POSES, sweep_path};
 use crate::{
     DatasetError, MAX_SWEEPS, Manifest, ObjectTruth, PointLabel, Pose, Result, SequenceInfo, Sweep,
 };
@@ -100,6 +100,8 @@ pub struct SequenceReader {
     dir: PathBuf,
     info: SequenceInfo,
     poses: Vec<Pose>,
+    /// The ego's own estimates (`poses_estimated.txt`), if the sequence has them.
+    estimated_poses: Option<Vec<Pose>>,
     stamps_secs: Vec<f64>,
 }
 
@@ -118,15 +120,7 @@ impl SequenceReader {
             return Err(DatasetError::corrupt(&marker, reason));
         }
         let poses_path = dir.join("poses.txt");
-        let poses = read_lines(&poses_path)?
-            .iter()
-            .enumerate()
-            .map(|(i, line)| {
-                parse_kitti_pose(line).ok_or_else(|| {
-                    DatasetError::corrupt(&poses_path, format!("line {}: not a 3 x 4 pose", i + 1))
-                })
-            })
-            .collect::<Result<Vec<_>>>()?;
+        let poses = read_poses(&poses_path)?;
         let times_path = dir.join("times.txt");
         let stamps_secs = read_lines(&times_path)?
             .iter()
@@ -145,10 +139,12 @@ impl SequenceReader {
                 return Err(DatasetError::corrupt(path, reason));
             }
         }
+        let estimated_poses = read_estimated_poses(dir, info.sweeps as usize)?;
         let reader = Self {
             dir: dir.to_owned(),
             info,
             poses,
+            estimated_poses,
             stamps_secs,
         };
         reader.check_point_total(&marker)?;
@@ -195,9 +191,16 @@ impl SequenceReader {
         self.poses.is_empty()
     }
 
-    /// `world_from_sensor` of every sweep.
+    /// `world_from_sensor` of every sweep: the truth (`poses.txt`), for truth labels and metrics.
     pub fn poses(&self) -> &[Pose] {
         &self.poses
+    }
+
+    /// The ego's own estimate of `world_from_sensor` for every sweep (`poses_estimated.txt`), for
+    /// perception and estimators (what a real car knows); the truth for datasets written before
+    /// the estimate existed.
+    pub fn estimated_poses(&self) -> &[Pose] {
+        self.estimated_poses.as_deref().unwrap_or(&self.poses)
     }
 
     /// Reference time of every sweep, seconds since the sequence started.
@@ -236,6 +239,11 @@ impl SequenceReader {
             .collect();
         let flow = read_f32s(&sweep_path(&self.dir, "flow", i, "bin"), 3, Some(n))?;
         let time = read_f32s(&sweep_path(&self.dir, "time", i, "bin"), 1, Some(n))?;
+        let ring_path = sweep_path(&self.dir, "ring", i, "bin");
+        let rings = match ring_path.is_file() {
+            true => read_u16s(&ring_path, n)?,
+            false => Vec::new(),
+        };
         let objects_path = sweep_path(&self.dir, "objects", i, "json");
         let objects: Vec<ObjectTruth> =
             serde_json::from_slice(&read_limited(&objects_path, MAX_JSON_BYTES)?)
@@ -246,6 +254,7 @@ impl SequenceReader {
             index: i,
             stamp_secs: self.stamps_secs[index],
             world_from_sensor: self.poses[index],
+            estimated_world_from_sensor: self.estimated_poses.as_ref().map(|e| e[index]),
             points_in_sensor: velodyne
                 .chunks_exact(4)
                 .map(|c| [c[0], c[1], c[2]])
@@ -254,9 +263,41 @@ impl SequenceReader {
             labels,
             flow_in_world_mps: flow.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
             time_in_sweep_secs: time,
+            rings,
             objects,
         })
     }
+}
+
+/// A KITTI pose file, one finite 3 × 4 pose per line (size bounded before reading).
+fn read_poses(path: &Path) -> Result<Vec<Pose>> {
+    read_lines(path)?
+        .iter()
+        .enumerate()
+        .map(|(i, line)| {
+            parse_kitti_pose(line).ok_or_else(|| {
+                DatasetError::corrupt(path, format!("line {}: not a finite 3 x 4 pose", i + 1))
+            })
+        })
+        .collect()
+}
+
+/// The estimated poses of a sequence folder, `None` if it has no `poses_estimated.txt`; one line
+/// per sweep, like `poses.txt`.
+fn read_estimated_poses(dir: &Path, sweeps: usize) -> Result<Option<Vec<Pose>>> {
+    let path = dir.join(ESTIMATED_POSES);
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let poses = read_poses(&path)?;
+    if poses.len() != sweeps {
+        let reason = format!(
+            "{} lines, but the sequence has {sweeps} sweeps",
+            poses.len()
+        );
+        return Err(DatasetError::corrupt(&path, reason));
+    }
+    Ok(Some(poses))
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
-//! The plain files of a sequence: text lines (`poses.txt`, `times.txt`) and binary records of
-//! little-endian 32-bit words (`velodyne`, `labels`, `flow`, `time`), each read with its size
-//! checked first and its values checked after.
+//! The plain files of a sequence: text lines (`poses.txt`, `poses_estimated.txt`, `times.txt`),
+//! binary records of little-endian 32-bit words (`velodyne`, `labels`, `flow`, `time`) and of
+//! 16-bit words (`ring`), each read with its size checked first and its values checked after.
 
 use std::path::Path;
 
@@ -64,4 +64,25 @@ pub(crate) fn read_f32s(path: &Path, per_record: usize, n: Option<usize>) -> Res
         return Err(DatasetError::corrupt(path, reason));
     }
     Ok(values)
+}
+
+/// Reads a file of exactly `n` little-endian `u16` values (`ring/NNNNNN.bin`); the size is
+/// checked before anything is read.
+pub(crate) fn read_u16s(path: &Path, n: usize) -> Result<Vec<u16>> {
+    let expected = 2 * n as u64;
+    let bytes = read_limited(path, expected).map_err(|e| match e {
+        DatasetError::Corrupt { .. } => DatasetError::corrupt(
+            path,
+            format!("more than {expected} bytes for {n} points (2 bytes each)"),
+        ),
+        other => other,
+    })?;
+    if bytes.len() as u64 != expected {
+        let reason = format!("{} bytes for {n} points (2 bytes each)", bytes.len());
+        return Err(DatasetError::corrupt(path, reason));
+    }
+    Ok(bytes
+        .chunks_exact(2)
+        .map(|c| u16::from_le_bytes([c[0], c[1]]))
+        .collect())
 }

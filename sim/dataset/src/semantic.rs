@@ -27,8 +27,18 @@ pub enum SemanticClass {
     Fence = 51,
     /// Other static structure.
     OtherStructure = 52,
+    /// Vegetation: tree crowns, bushes.
+    Vegetation = 70,
+    /// Tree trunk.
+    Trunk = 71,
+    /// Terrain: grass, soil, gravel.
+    Terrain = 72,
     /// Pole.
     Pole = 80,
+    /// Traffic sign (and traffic-light head).
+    TrafficSign = 81,
+    /// Other object (bins and the like).
+    OtherObject = 99,
     /// A moving car.
     MovingCar = 252,
     /// A moving bicyclist.

@@ -13,8 +13,11 @@ pub struct Sweep {
     pub index: u32,
     /// Reference time of the sweep, seconds since the sequence started (`times.txt`).
     pub stamp_secs: f64,
-    /// Pose of the sensor at the reference time (`poses.txt`).
+    /// Pose of the sensor at the reference time (`poses.txt`): the truth.
     pub world_from_sensor: Pose,
+    /// The ego's own estimate of that pose (`poses_estimated.txt`), which the points were
+    /// ego-motion-compensated with; `None` when the dataset has none (then it is the truth).
+    pub estimated_world_from_sensor: Option<Pose>,
     /// x, y, z in the sensor frame (KITTI axes: x forward, y left, z up), metres.
     pub points_in_sensor: Vec<[f32; 3]>,
     /// Return intensity in [0, 1].
@@ -25,6 +28,9 @@ pub struct Sweep {
     pub flow_in_world_mps: Vec<[f32; 3]>,
     /// Seconds since the sweep started at which the point was measured.
     pub time_in_sweep_secs: Vec<f32>,
+    /// Channel (ring) of each point, 0 = the lowest beam (`ring/NNNNNN.bin`, uint16); empty when
+    /// the dataset has no ring files.
+    pub rings: Vec<u16>,
     /// Ground truth of every actor at the reference time.
     pub objects: Vec<ObjectTruth>,
 }
@@ -48,12 +54,27 @@ impl Sweep {
             ("labels", self.labels.len()),
             ("flow", self.flow_in_world_mps.len()),
             ("time", self.time_in_sweep_secs.len()),
+            (
+                "ring",
+                if self.rings.is_empty() {
+                    n
+                } else {
+                    self.rings.len()
+                },
+            ),
         ] {
             if len != n {
                 return Err(format!("{name} has {len} entries for {n} points"));
             }
         }
         Ok(())
+    }
+
+    /// The pose the ego itself believes it had (what perception and estimators should use, as
+    /// a real car only knows its estimate): the estimate if the dataset has one, else the truth.
+    pub fn estimated_pose(&self) -> Pose {
+        self.estimated_world_from_sensor
+            .unwrap_or(self.world_from_sensor)
     }
 
     /// Checks that the sweep fits the format's limits and every value is finite (a NaN or an

@@ -15,6 +15,9 @@ use crate::{
     StaticObstacle, Sweep,
 };
 
+/// File of the ego's own pose estimate, beside `poses.txt`.
+pub(crate) const ESTIMATED_POSES: &str = "poses_estimated.txt";
+
 /// Sub-folders of a sequence, one file per sweep in each.
 const SWEEP_FOLDERS: [&str; 5] = ["velodyne", "labels", "flow", "time", "objects"];
 
@@ -140,7 +143,20 @@ impl SequenceWriter {
         write_atomic(&self.sweep_path("labels", sweep.index, "label"), &labels)?;
         write_atomic(&self.sweep_path("flow", sweep.index, "bin"), &flow)?;
         write_atomic(&self.sweep_path("time", sweep.index, "bin"), &time)?;
+        if !sweep.rings.is_empty() {
+            let rings: Vec<u8> = sweep.rings.iter().flat_map(|r| r.to_le_bytes()).collect();
+            let dir = self.dir.join("ring");
+            std::fs::create_dir_all(&dir).map_err(|e| DatasetError::io(&dir, e))?;
+            write_atomic(&self.sweep_path("ring", sweep.index, "bin"), &rings)?;
+        }
         write_json(&objects_path, &sweep.objects)
+    }
+
+    /// Writes the ego's own pose estimate of every sweep, `poses_estimated.txt` (KITTI layout, as
+    /// `poses.txt`); call before [`Self::finish`].
+    pub fn write_estimated_poses(&self, poses: &[Pose]) -> Result<()> {
+        let text: String = poses.iter().map(|p| format_kitti_pose(p) + "\n").collect();
+        write_atomic(&self.dir.join(ESTIMATED_POSES), text.as_bytes())
     }
 
     /// Writes `poses.txt`, `times.txt`, `calib.txt`, then the `sequence.json` marker, which

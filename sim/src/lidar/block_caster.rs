@@ -2,7 +2,9 @@
 //! block share is computed once (sensor origin and yaw, the rotation into the reference sensor
 //! frame, the movers' poses and each actor's label), so the work per ray is one `cast_ray` plus a
 //! few flops. The casters of all blocks of a sweep exist at once, so every column of the sweep
-//! can be cast in one parallel loop.
+//! can be cast in one parallel loop. The `ideal` world with the ideal sensor takes the path of
+//! the first release ([`BlockCaster::cast_ray`], byte for byte); any other world or sensor the
+//! realistic one ([`BlockCaster::cast_ray_real`], in `real_return.rs`).
 
 use patchflow_dataset::PointLabel;
 use rand::rngs::Xoshiro256PlusPlus;
@@ -13,6 +15,7 @@ use rapier3d::prelude::{Ray, Vector};
 use super::firing_table::FiringTable;
 use super::intensity::intensity;
 use super::scan::{ColumnSlots, Return};
+use super::sensor_model::SensorModel;
 use crate::motion::MotionState;
 use crate::scenario::LidarConfig;
 use crate::scene::InstantQuery;
@@ -20,7 +23,16 @@ use crate::seed::sub_seed;
 use crate::simulation::MOVING_SPEED_MPS;
 
 /// Rays shorter than this (the origin inside a shape) are not returns, metres.
-const MIN_RANGE_M: f32 = 0.05;
+pub(super) const MIN_RANGE_M: f32 = 0.05;
+
+/// The ego's true and estimated states at a block's instant and at the sweep's reference time:
+/// the beams leave from the true pose, the points are compensated with the estimated ones.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct EgoStates {
+    pub block: MotionState,
+    pub block_estimate: MotionState,
+    pub reference_estimate: MotionState,
+}
 
 /// World rays written ahead of casting (a whole HDL-64E column).
 const RAY_BATCH: usize = 64;
@@ -28,44 +40,48 @@ const RAY_BATCH: usize = 64;
 /// What every ray of one azimuth block shares.
 pub(super) struct BlockCaster<'a> {
     /// Ray queries against the scene at the block's instant.
-    query: InstantQuery<'a>,
-    table: &'a FiringTable,
-    time_in_sweep_secs: f32,
+    pub(super) query: InstantQuery<'a>,
+    pub(super) table: &'a FiringTable,
+    pub(super) sensor: &'a SensorModel,
+    /// Take the realistic path (any world or sensor but the ideal ones).
+    realistic: bool,
+    pub(super) time_in_sweep_secs: f32,
     /// Sensor origin at the block's instant, world frame.
-    origin: Vector,
+    pub(super) origin: Vector,
     /// Sensor yaw at the block's instant, (cos, sin): sensor frame → world directions.
     yaw_cos_sin: (f32, f32),
-    /// The same origin in the reference sensor frame (the sweep start).
-    origin_in_reference: Vector,
-    /// Yaw change since the reference, (cos, sin): sensor frame → reference sensor frame.
-    yaw_since_reference_cos_sin: (f32, f32),
+    /// The same origin in the reference sensor frame (the sweep start), as the ego estimates it.
+    pub(super) origin_in_reference: Vector,
+    /// Yaw change since the reference as the ego estimates it, (cos, sin): sensor frame →
+    /// reference sensor frame.
+    pub(super) yaw_since_reference_cos_sin: (f32, f32),
     /// Label of every actor at the block's instant (moving class once it moves).
-    actor_labels: Vec<PointLabel>,
-    max_range_m: f32,
-    noise_std_m: f32,
+    pub(super) actor_labels: Vec<PointLabel>,
+    pub(super) max_range_m: f32,
+    pub(super) noise_std_m: f32,
     dropout: f32,
-    attenuation_per_m: f32,
+    pub(super) attenuation_per_m: f32,
     noise_key: u64,
 }
 
 impl<'a> BlockCaster<'a> {
     /// The shared facts of a block cast at `time_in_sweep_secs` through `query`, the scene at
-    /// that instant; `ego` is the ego state then and `ego_ref` the ego state at the sweep start
+    /// that instant; `ego` holds the ego's true and estimated states then and at the sweep start
     /// (the reference sensor frame: above the ego centre at the mount height, yawed with it).
     pub(super) fn new(
         query: InstantQuery<'a>,
-        table: &'a FiringTable,
+        (table, sensor, realistic): (&'a FiringTable, &'a SensorModel, bool),
         config: &LidarConfig,
         time_in_sweep_secs: f64,
-        ego: &MotionState,
-        ego_ref: &MotionState,
+        ego: &EgoStates,
         noise_key: u64,
     ) -> Self {
-        let (s, c) = ego.yaw_rad.sin_cos();
-        let (s_ref, c_ref) = ego_ref.yaw_rad.sin_cos();
-        let (sd, cd) = (ego.yaw_rad - ego_ref.yaw_rad).sin_cos();
-        let dx = ego.position_m[0] - ego_ref.position_m[0];
-        let dy = ego.position_m[1] - ego_ref.position_m[1];
+        let (s, c) = ego.block.yaw_rad.sin_cos();
+        let (estimate, reference) = (&ego.block_estimate, &ego.reference_estimate);
+        let (s_ref, c_ref) = reference.yaw_rad.sin_cos();
+        let (sd, cd) = (estimate.yaw_rad - reference.yaw_rad).sin_cos();
+        let dx = estimate.position_m[0] - reference.position_m[0];
+        let dy = estimate.position_m[1] - reference.position_m[1];
         let mount_m = config.mount_height_m as f32;
         let states = query.actor_states();
         let actor_labels = query
@@ -78,8 +94,14 @@ impl<'a> BlockCaster<'a> {
         Self {
             query,
             table,
+            sensor,
+            realistic,
             time_in_sweep_secs: time_in_sweep_secs as f32,
-            origin: Vector::new(ego.position_m[0] as f32, ego.position_m[1] as f32, mount_m),
+            origin: Vector::new(
+                ego.block.position_m[0] as f32,
+                ego.block.position_m[1] as f32,
+                mount_m,
+            ),
             yaw_cos_sin: (c as f32, s as f32),
             origin_in_reference: Vector::new(
                 (c_ref * dx + s_ref * dy) as f32,
@@ -106,16 +128,29 @@ impl<'a> BlockCaster<'a> {
     pub(super) fn cast_column(&self, j: usize, out: &mut ColumnSlots<'_>) {
         let mut rng = Xoshiro256PlusPlus::seed_from_u64(sub_seed(self.noise_key, j as u64));
         let mut rays = [Ray::new(self.origin, Vector::ZERO); RAY_BATCH];
-        for batch in self.table.column(j).chunks(RAY_BATCH) {
-            for (ray, &in_sensor) in rays.iter_mut().zip(batch) {
-                ray.dir = rotate_z(self.yaw_cos_sin, in_sensor);
+        let channels = self.table.channels();
+        let cast = self.table.cast_column(j);
+        for (b, batch) in self.table.column(j).chunks(RAY_BATCH).enumerate() {
+            let first = b * RAY_BATCH;
+            for (ray, &dir) in rays.iter_mut().zip(&cast[first..]) {
+                ray.dir = rotate_z(self.yaw_cos_sin, dir);
             }
-            out.extend(
-                batch
-                    .iter()
-                    .zip(&rays)
-                    .filter_map(|(&in_sensor, ray)| self.cast_ray(in_sensor, ray, &mut rng)),
-            );
+            let ring = |k: usize| (channels - 1 - (first + k)) as u16;
+            if self.realistic {
+                let occluded = self.table.occluded_column(j);
+                out.extend(batch.iter().zip(&rays).enumerate().filter_map(
+                    |(k, (&in_sensor, ray))| {
+                        if occluded.is_some_and(|o| o[first + k]) {
+                            return None;
+                        }
+                        self.cast_ray_real(first + k, ring(k), in_sensor, ray, &mut rng)
+                    },
+                ));
+            } else {
+                out.extend(batch.iter().zip(&rays).enumerate().filter_map(
+                    |(k, (&in_sensor, ray))| self.cast_ray(ring(k), in_sensor, ray, &mut rng),
+                ));
+            }
         }
     }
 
@@ -124,6 +159,7 @@ impl<'a> BlockCaster<'a> {
     #[inline]
     fn cast_ray(
         &self,
+        ring: u16,
         in_sensor: Vector,
         ray: &Ray,
         rng: &mut Xoshiro256PlusPlus,
@@ -169,12 +205,14 @@ impl<'a> BlockCaster<'a> {
             label,
             flow_mps,
             time_in_sweep_secs: self.time_in_sweep_secs,
+            ring,
+            range_m,
         })
     }
 }
 
 /// Rotates `v` about z by the angle with the given (cos, sin).
 #[inline]
-fn rotate_z((c, s): (f32, f32), v: Vector) -> Vector {
+pub(super) fn rotate_z((c, s): (f32, f32), v: Vector) -> Vector {
     Vector::new(c * v.x - s * v.y, s * v.x + c * v.y, v.z)
 }

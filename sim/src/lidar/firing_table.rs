@@ -22,6 +22,11 @@ pub(super) struct BlockSpan {
 pub(super) struct FiringTable {
     channels: usize,
     rays_in_sensor: Vec<Vector>,
+    /// The directions the beams really leave in (nominal plus each channel's elevation error);
+    /// `None` when they are the nominal ones.
+    rays_cast: Option<Vec<Vector>>,
+    /// Beams the ego car's own body stops (never cast), per ray; `None` when none is.
+    occluded: Option<Vec<bool>>,
     blocks: Vec<BlockSpan>,
     /// Index of the block of every column.
     block_of_column: Vec<u32>,
@@ -76,8 +81,72 @@ impl FiringTable {
         Self {
             channels: elevation_sin_cos.len(),
             rays_in_sensor,
+            rays_cast: None,
+            occluded: None,
             blocks,
             block_of_column,
+        }
+    }
+
+    /// The same table with the beams cast `error_rad(c)` above channel `c`'s nominal elevation
+    /// (the points are still written along the nominal directions).
+    pub(super) fn with_elevation_errors(
+        mut self,
+        config: &LidarConfig,
+        error_rad: impl Fn(usize) -> f64,
+    ) -> Self {
+        let elevations = elevations_deg(config);
+        if (0..elevations.len()).all(|c| error_rad(c) == 0.0) {
+            return self;
+        }
+        let steps = config.azimuth_steps;
+        self.rays_cast = Some(
+            (0..steps)
+                .flat_map(|j| {
+                    let (sa, ca) = column_azimuth_rad(config, j).sin_cos();
+                    elevations
+                        .iter()
+                        .enumerate()
+                        .map(move |(c, e)| (c, e, sa, ca))
+                        .collect::<Vec<_>>()
+                })
+                .map(|(c, e, sa, ca)| {
+                    let (se, ce) = (e.to_radians() + error_rad(c)).sin_cos();
+                    Vector::new((ce * ca) as f32, (ce * sa) as f32, se as f32)
+                })
+                .collect(),
+        );
+        self
+    }
+
+    /// The same table with the beams for which `occluded(directions)` (the directions they are
+    /// really cast in, sensor frame, every ray) says true never cast.
+    pub(super) fn with_occlusion(mut self, occluded: impl Fn(&[Vector]) -> Vec<bool>) -> Self {
+        let mask = occluded(self.rays_cast.as_deref().unwrap_or(&self.rays_in_sensor));
+        self.occluded = mask.contains(&true).then_some(mask);
+        self
+    }
+
+    /// Whether each ray of column `j` is stopped by the ego car's body; `None` if none is.
+    #[inline]
+    pub(super) fn occluded_column(&self, j: usize) -> Option<&[bool]> {
+        let mask = self.occluded.as_ref()?;
+        Some(&mask[j * self.channels..(j + 1) * self.channels])
+    }
+
+    /// Share of the rays the ego car's body stops.
+    pub(super) fn occluded_share(&self) -> f64 {
+        self.occluded.as_ref().map_or(0.0, |m| {
+            m.iter().filter(|&&o| o).count() as f64 / m.len().max(1) as f64
+        })
+    }
+
+    /// Directions the rays of column `j` are really cast in, sensor frame.
+    #[inline]
+    pub(super) fn cast_column(&self, j: usize) -> &[Vector] {
+        match &self.rays_cast {
+            Some(rays) => &rays[j * self.channels..(j + 1) * self.channels],
+            None => self.column(j),
         }
     }
 

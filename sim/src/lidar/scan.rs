@@ -21,6 +21,8 @@ pub struct Scan {
     pub flow_in_world_mps: Vec<[f32; 3]>,
     /// Seconds since the sweep started at which the point's block was cast.
     pub time_in_sweep_secs: Vec<f32>,
+    /// Ring (channel counted from the lowest beam, 0) of each point.
+    pub rings: Vec<u16>,
     /// Points per actor (index = actor index, i.e. instance id − 1).
     pub actor_point_counts: Vec<u32>,
 }
@@ -33,6 +35,10 @@ pub(super) struct Return {
     pub label: PointLabel,
     pub flow_mps: [f32; 3],
     pub time_in_sweep_secs: f32,
+    /// Ring of the beam (0 the lowest).
+    pub ring: u16,
+    /// Measured range along the beam, metres (for the range image of the mixed-pixel pass).
+    pub range_m: f32,
 }
 
 /// The slots of one column: its returns go to the front, `len` counts them.
@@ -42,6 +48,9 @@ pub(super) struct ColumnSlots<'a> {
     labels: &'a mut [PointLabel],
     flows: &'a mut [[f32; 3]],
     times: &'a mut [f32],
+    rings: &'a mut [u16],
+    /// The column's range image, one per channel (highest first), NaN where nothing returned.
+    ranges: &'a mut [f32],
     len: usize,
 }
 
@@ -58,14 +67,23 @@ impl ColumnSlots<'_> {
             .zip(tail(self.intensities, start))
             .zip(tail(self.labels, start))
             .zip(tail(self.flows, start))
-            .zip(tail(self.times, start));
+            .zip(tail(self.times, start))
+            .zip(tail(self.rings, start));
         let mut len = start;
-        for (r, ((((point, intensity), label), flow), time)) in returns.zip(slots) {
+        let channels = self.ranges.len();
+        for (r, (((((point, intensity), label), flow), time), ring)) in returns.zip(slots) {
             *point = r.point_in_sensor;
             *intensity = r.intensity;
             *label = r.label;
             *flow = r.flow_mps;
             *time = r.time_in_sweep_secs;
+            *ring = r.ring;
+            if let Some(range) = channels
+                .checked_sub(1 + usize::from(r.ring))
+                .and_then(|c| self.ranges.get_mut(c))
+            {
+                *range = r.range_m;
+            }
             len += 1;
         }
         self.len = len;
@@ -79,6 +97,20 @@ fn tail<T>(slots: &mut [T], start: usize) -> &mut [T] {
     &mut slots[start..]
 }
 
+/// The cast returns of a sweep, column by column, for a pass that moves them in place.
+pub(super) struct ReturnsView<'a> {
+    /// Each column's returns at the front of its `channels` slots.
+    pub points: &'a mut [[f32; 3]],
+    /// The ring of each slot.
+    pub rings: &'a [u16],
+    /// Returns per column.
+    pub counts: &'a [u32],
+    /// The range image (NaN: no return), column by column, highest channel first.
+    pub ranges: &'a [f32],
+    /// Slots per column.
+    pub channels: usize,
+}
+
 /// One slot per ray of a sweep, plus the number of returns of each column (scratch space).
 #[derive(Debug, Clone, Default)]
 pub(super) struct ScanSlots {
@@ -88,6 +120,9 @@ pub(super) struct ScanSlots {
     labels: Vec<PointLabel>,
     flows: Vec<[f32; 3]>,
     times: Vec<f32>,
+    rings: Vec<u16>,
+    /// The range image: one range per ray (NaN where nothing returned).
+    pub(super) ranges: Vec<f32>,
     returns_per_column: Vec<u32>,
 }
 
@@ -101,6 +136,9 @@ impl ScanSlots {
         self.labels.resize(rays, PointLabel::default());
         self.flows.resize(rays, [0.0; 3]);
         self.times.resize(rays, 0.0);
+        self.rings.resize(rays, 0);
+        self.ranges.clear();
+        self.ranges.resize(rays, f32::NAN);
         self.returns_per_column.clear();
         self.returns_per_column.resize(columns, 0);
     }
@@ -118,23 +156,38 @@ impl ScanSlots {
             .zip(self.intensities[rays.clone()].par_chunks_mut(ch))
             .zip(self.labels[rays.clone()].par_chunks_mut(ch))
             .zip(self.flows[rays.clone()].par_chunks_mut(ch))
-            .zip(self.times[rays].par_chunks_mut(ch))
+            .zip(self.times[rays.clone()].par_chunks_mut(ch))
+            .zip(self.rings[rays.clone()].par_chunks_mut(ch))
+            .zip(self.ranges[rays].par_chunks_mut(ch))
             .zip(self.returns_per_column[columns.clone()].par_iter_mut())
             .enumerate()
             .for_each(
-                |(k, (((((points, intensities), labels), flows), times), n))| {
+                |(k, (((((((points, intensities), labels), flows), times), rings), ranges), n))| {
                     let mut slots = ColumnSlots {
                         points,
                         intensities,
                         labels,
                         flows,
                         times,
+                        rings,
+                        ranges,
                         len: 0,
                     };
                     cast(columns.start + k, &mut slots);
                     *n = slots.len as u32;
                 },
             );
+    }
+
+    /// The points, rings and returns per column, for passes that rework the returns in place.
+    pub(super) fn returns_mut(&mut self) -> ReturnsView<'_> {
+        ReturnsView {
+            points: &mut self.points,
+            rings: &self.rings,
+            counts: &self.returns_per_column,
+            ranges: &self.ranges,
+            channels: self.channels,
+        }
     }
 
     /// Gathers the returns in column order (each field by its own task, the tasks paired so two
@@ -144,7 +197,7 @@ impl ScanSlots {
         let (ch, counts) = (self.channels, self.returns_per_column.as_slice());
         let (
             (points_in_sensor, (labels, actor_point_counts)),
-            (flow_in_world_mps, (intensities, time_in_sweep_secs)),
+            (flow_in_world_mps, (intensities, (time_in_sweep_secs, rings))),
         ) = rayon::join(
             || {
                 rayon::join(
@@ -162,7 +215,12 @@ impl ScanSlots {
                     || {
                         rayon::join(
                             || gather(&self.intensities, counts, ch),
-                            || gather(&self.times, counts, ch),
+                            || {
+                                (
+                                    gather(&self.times, counts, ch),
+                                    gather(&self.rings, counts, ch),
+                                )
+                            },
                         )
                     },
                 )
@@ -174,6 +232,7 @@ impl ScanSlots {
             labels,
             flow_in_world_mps,
             time_in_sweep_secs,
+            rings,
             actor_point_counts,
         }
     }
@@ -223,6 +282,8 @@ mod tests {
                 label: PointLabel::from_parts(40, u16::from(j % 2 == 0)),
                 flow_mps: [0.0; 3],
                 time_in_sweep_secs: j as f32,
+                ring: c as u16,
+                range_m: 1.0,
             }));
         });
         let scan = slots.gather(1);

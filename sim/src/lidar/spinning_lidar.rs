@@ -6,30 +6,81 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rapier3d::prelude::{Ray, Vector};
 use rayon::prelude::*;
 
-use super::block_caster::BlockCaster;
+use super::block_caster::{BlockCaster, EgoStates};
 use super::firing_table::FiringTable;
+use super::mixed_pixels::mix_edges;
 use super::scan::{Scan, ScanSlots};
+use super::self_occlusion::occluded_beams;
+use super::sensor_model::SensorModel;
 use crate::motion::MotionState;
-use crate::scenario::LidarConfig;
+use crate::pose_error::PoseError;
+use crate::scenario::{LidarConfig, PoseErrorKnobs, Realism, Scenario, SensorKnobs, WorldKnobs};
 use crate::scene::{QueryTree, Scene, SceneInstant};
+use crate::seed::{hash_name, mix, sub_seed};
 
 /// A spinning multi-beam lidar with its firing pattern computed once.
 #[derive(Debug, Clone)]
 pub struct Lidar {
     config: LidarConfig,
     table: FiringTable,
+    sensor: SensorModel,
+    pose_error: PoseError,
+    /// Cast with the realistic return model (any world or sensor but the ideal ones).
+    realistic: bool,
     /// Scratch slots reused by every sweep (no per-sweep zeroing or page faults).
     slots: ScanSlots,
 }
 
 impl Lidar {
-    /// A lidar with the given settings.
+    /// An ideal lidar with the given settings on a car that knows its pose exactly.
     pub fn new(config: &LidarConfig) -> Self {
+        let channels = config.channels as usize;
         Self {
             config: config.clone(),
             table: FiringTable::new(config),
+            sensor: SensorModel::new(SensorKnobs::of(Realism::Ideal), channels, 0),
+            pose_error: PoseError::new(&PoseErrorKnobs::of(Realism::Ideal), 0, ""),
+            realistic: false,
             slots: ScanSlots::default(),
         }
+    }
+
+    /// The lidar of a scenario: its `[lidar]` settings, its `[sensor]` errors with this unit's
+    /// calibration and the ego's `[pose_error]`, drawn from `seed` and the scenario name.
+    pub fn for_scenario(scenario: &Scenario, seed: u64) -> Self {
+        let config = &scenario.lidar;
+        let key = mix(seed ^ hash_name(&scenario.name));
+        let sensor = SensorModel::new(
+            scenario.sensor.knobs(),
+            config.channels as usize,
+            sub_seed(key, 0x5E45),
+        );
+        let world = scenario.world.knobs();
+        let mut table = FiringTable::new(config)
+            .with_elevation_errors(config, |c| sensor.elevation_error_rad(c));
+        if world.shapes {
+            table = table
+                .with_occlusion(|rays| occluded_beams(rays, &scenario.ego, config.mount_height_m));
+        }
+        let world_ideal = world == WorldKnobs::of(Realism::Ideal);
+        Self {
+            config: config.clone(),
+            table,
+            realistic: !(sensor.is_ideal() && world_ideal),
+            sensor,
+            pose_error: PoseError::new(&scenario.pose_error.knobs(), seed, &scenario.name),
+            slots: ScanSlots::default(),
+        }
+    }
+
+    /// The ego's estimate of its state at `t_secs` given its true state then.
+    pub(crate) fn estimate(&self, truth: &MotionState, t_secs: f64) -> MotionState {
+        self.pose_error.estimate(truth, t_secs)
+    }
+
+    /// Share of the beams the ego car's own body stops (never cast), 0 without vehicle shapes.
+    pub fn self_occluded_share(&self) -> f64 {
+        self.table.occluded_share()
     }
 
     /// The settings.
@@ -68,6 +119,7 @@ impl Lidar {
     /// scratch slots. The scene is left moved to `start_secs`.
     pub fn scan(&mut self, scene: &mut Scene, start_secs: f64, noise_key: u64) -> Scan {
         let ego_ref = scene.ego().trajectory.state_at(start_secs);
+        let ego_ref_estimate = self.pose_error.estimate(&ego_ref, start_secs);
         scene.move_to(start_secs);
         let blocks = self.table.blocks();
         let instants: Vec<SceneInstant> = blocks
@@ -80,17 +132,19 @@ impl Lidar {
             .iter()
             .zip(&instants)
             .map(|(block, instant)| {
-                let ego = scene
-                    .ego()
-                    .trajectory
-                    .state_at(start_secs + block.offset_secs);
+                let t = start_secs + block.offset_secs;
+                let ego = scene.ego().trajectory.state_at(t);
+                let states = EgoStates {
+                    block: ego,
+                    block_estimate: self.pose_error.estimate(&ego, t),
+                    reference_estimate: ego_ref_estimate,
+                };
                 BlockCaster::new(
                     scene.query_at(instant),
-                    &self.table,
+                    (&self.table, &self.sensor, self.realistic),
                     &self.config,
                     block.offset_secs,
-                    &ego,
-                    &ego_ref,
+                    &states,
                     noise_key,
                 )
             })
@@ -104,12 +158,27 @@ impl Lidar {
                 caster.cast_column(j, column);
             }
         });
+        if self.realistic {
+            let origin_of = |j: usize| {
+                casters
+                    .get(table.block_of(j))
+                    .map_or([0.0; 3], |c| c.origin_in_reference.to_array())
+            };
+            let key = sub_seed(noise_key, 0x313D);
+            mix_edges(
+                slots.returns_mut(),
+                self.sensor.mixed_pixels(),
+                &origin_of,
+                key,
+            );
+        }
         slots.gather(scene.actors().len())
     }
 
     /// The bare Rapier loop over the same rays: `cast_ray` only, from the sensor pose at
     /// `start_secs`, into the scene as it stands through `tree`, one rayon task per azimuth
-    /// column like [`Lidar::scan`]. Returns the number of hits. The yardstick of SPEC §8.
+    /// column like [`Lidar::scan`] (the beams the ego car's own body stops are not cast in
+    /// either). Returns the number of hits. The yardstick of SPEC §8.
     pub fn bare_cast_ray_hits(&self, scene: &Scene, start_secs: f64, tree: QueryTree) -> usize {
         let ego = scene.ego().trajectory.state_at(start_secs);
         let origin = Vector::new(
@@ -124,10 +193,15 @@ impl Lidar {
             .into_par_iter()
             .map(|j| {
                 let qp = scene.query_pipeline_on(tree);
+                let occluded = self.table.occluded_column(j);
                 self.table
                     .column(j)
                     .iter()
-                    .filter(|d| {
+                    .enumerate()
+                    .filter(|&(k, d)| {
+                        if occluded.is_some_and(|o| o[k]) {
+                            return false;
+                        }
                         let dir = Vector::new(c * d.x - s * d.y, s * d.x + c * d.y, d.z);
                         qp.cast_ray(&Ray::new(origin, dir), max_range_m, true)
                             .is_some()
@@ -189,7 +263,7 @@ mod tests {
     /// A car 6 m ahead drives across the view at 15 m/s in the direction the beam sweeps.
     fn crossing(rolling: bool) -> patchflow_dataset::Sweep {
         let text = format!(
-            "sweeps = 1\n[lidar]\nchannels = 8\nupper_deg = -4.0\nlower_deg = -12.0\nspacing = \"uniform\"\nazimuth_steps = 3600\nblocks = 3600\nrange_noise_std_m = 0.0\nrolling_shutter = {rolling}\n[ego]\npath_m = [[0.0, 0.0], [1.0, 0.0]]\nspeed_mps = 0.0\n[[actors]]\nname = \"car\"\ntarget = true\npath_m = [[6.0, 30.0], [6.0, -30.0]]\nspeed_mps = 15.0\nstart_secs = -1.95\n"
+            "realism = \"ideal\"\nsweeps = 1\n[lidar]\nchannels = 8\nupper_deg = -4.0\nlower_deg = -12.0\nspacing = \"uniform\"\nazimuth_steps = 3600\nblocks = 3600\nrange_noise_std_m = 0.0\nrolling_shutter = {rolling}\n[ego]\npath_m = [[0.0, 0.0], [1.0, 0.0]]\nspeed_mps = 0.0\n[[actors]]\nname = \"car\"\ntarget = true\npath_m = [[6.0, 30.0], [6.0, -30.0]]\nspeed_mps = 15.0\nstart_secs = -1.95\n"
         );
         let scenario = Scenario::from_toml(&text, "smear.toml", "smear").unwrap();
         Simulation::new(&scenario, 0).unwrap().sweep(0)

@@ -1,5 +1,6 @@
 //! Sizes that follow from several scenario fields (rays in a sweep, the length of the run, boxes
-//! in a row, random traffic's paths, how far the movers get), computed from the fields alone and
+//! in a row, random traffic's paths, how far the movers get, the street world's streets and
+//! pieces, see [`super::world_limits`]), computed from the fields alone and
 //! checked against the limits of [`super::bounds`] before anything is allocated or built. They
 //! run once every field is within its own bounds, so the arithmetic cannot overflow.
 
@@ -8,6 +9,7 @@ use super::bounds::{
     TIME_SECS, show,
 };
 use super::load::{Problem, Seg};
+use super::world_limits::{WorldSize, world_problems};
 use super::{ActorConfig, Scenario};
 use crate::motion::Trajectory;
 
@@ -36,6 +38,9 @@ pub(crate) fn derived_problems(s: &Scenario) -> Vec<Problem> {
     out.extend(traffic_problems(s, end_secs));
     if out.is_empty() {
         out.extend(mover_problems(s, end_secs));
+    }
+    if out.is_empty() {
+        out.extend(world_problems(s));
     }
     out
 }
@@ -133,9 +138,11 @@ fn farthest_m(actor: &ActorConfig, trajectory: &Trajectory, t0: f64, t1: f64) ->
         .fold(0.0, |m: f64, v| m.max(v.abs()))
 }
 
-/// Memory one sweep of the scenario needs while it is cast and written, bytes.
+/// Memory a run of the scenario needs while a sweep is cast and written, bytes: the sweep's
+/// buffers and the street world (ground and pieces) it is cast into.
 pub(crate) fn sweep_memory_bytes(s: &Scenario) -> u64 {
-    u64::from(s.lidar.channels) * u64::from(s.lidar.azimuth_steps) * BYTES_PER_RAY
+    let world = WorldSize::of(s).map_or(0, |w| w.memory_bytes());
+    u64::from(s.lidar.channels) * u64::from(s.lidar.azimuth_steps) * BYTES_PER_RAY + world
 }
 
 /// Bytes as a person reads them: `5.6 GB`, `480 MB`.

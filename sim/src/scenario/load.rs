@@ -26,6 +26,11 @@ pub(super) type Problem = (Vec<Seg<'static>>, String);
 impl Scenario {
     /// Reads, validates and resolves a scenario file; errors name the file and the line.
     pub fn from_file(path: &Path) -> Result<Self> {
+        Self::from_file_at_rung(path, None)
+    }
+
+    /// Like [`Scenario::from_file`], with the realism rung replaced by `rung` if given.
+    pub fn from_file_at_rung(path: &Path, rung: Option<super::Realism>) -> Result<Self> {
         let bytes = patchflow_dataset::read_limited(path, MAX_SCENARIO_BYTES)?;
         let text = String::from_utf8(bytes).map_err(|_| SimError::Scenario {
             file: path.display().to_string(),
@@ -36,7 +41,7 @@ impl Scenario {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        Self::from_toml(&text, &path.display().to_string(), &stem)
+        Self::from_toml_at_rung(&text, &path.display().to_string(), &stem, rung)
     }
 
     /// Parses and validates scenario text. `file` names it in errors; `default_name` is used when
@@ -49,6 +54,17 @@ impl Scenario {
     /// assert_eq!(scenario.lidar.channels, 64);
     /// ```
     pub fn from_toml(text: &str, file: &str, default_name: &str) -> Result<Self> {
+        Self::from_toml_at_rung(text, file, default_name, None)
+    }
+
+    /// Like [`Scenario::from_toml`], with the realism rung replaced by `rung` if given (as
+    /// `generate --realism NAME` does); knobs the file sets on their own still apply.
+    pub fn from_toml_at_rung(
+        text: &str,
+        file: &str,
+        default_name: &str,
+        rung: Option<super::Realism>,
+    ) -> Result<Self> {
         let mut scenario: Scenario = toml::from_str(text).map_err(|e| {
             let offset = e.span().map(|s| s.start).unwrap_or(0);
             SimError::at_offset(file, text, offset, e.message().trim().to_owned())
@@ -59,6 +75,9 @@ impl Scenario {
                 return Err(SimError::at_offset(file, text, offset, reason));
             }
             scenario.name = default_name.to_owned();
+        }
+        if let Some(rung) = rung {
+            scenario.realism = rung;
         }
         let lidar_problems = scenario.lidar.resolve_kind(&keys_of_table(text, "lidar"));
         scenario.resolve();
@@ -88,6 +107,9 @@ impl Scenario {
         for structure in &mut self.structures {
             structure.resolve();
         }
+        self.world.resolve(self.realism);
+        self.sensor.resolve(self.realism);
+        self.pose_error.resolve(self.realism);
     }
 
     /// Every problem of the resolved scenario, in file order.
@@ -194,6 +216,24 @@ impl Scenario {
         }
         for (field, reason) in self.traffic.problems() {
             out.push((vec![Seg::Key("traffic"), Seg::Key(field)], reason));
+        }
+        let tables = [
+            ("world", self.world.problems()),
+            ("sensor", self.sensor.problems()),
+            ("pose_error", self.pose_error.problems()),
+        ];
+        for (table, problems) in tables {
+            for (field, reason) in problems {
+                out.push((vec![Seg::Key(table), Seg::Key(field)], reason));
+            }
+        }
+        for (i, road) in self.roads.iter().enumerate() {
+            for (field, reason) in road.problems() {
+                out.push((
+                    vec![Seg::Key("roads"), Seg::Index(i), Seg::Key(field)],
+                    reason,
+                ));
+            }
         }
         // Sizes derived from several fields, once each field is within its own bounds.
         if out.is_empty() {

@@ -175,6 +175,40 @@ fn a_scenario_built_in_code_is_checked_too() {
 }
 
 #[test]
+fn a_realism_knob_out_of_range_names_its_line_value_and_bound() {
+    let (line, reason) = error_of(&format!("{BASE}[world]\nclutter = 1.0\ncamber = 0.7\n"));
+    assert_eq!(line, 7);
+    assert!(
+        reason.starts_with("camber = 0.7 is above 0.1 (allowed 0 to 0.1: "),
+        "{reason}"
+    );
+}
+
+#[test]
+fn an_unknown_rung_is_rejected_with_its_line() {
+    let (line, reason) = error_of(&format!("realism = \"perfect\"\n{BASE}"));
+    assert_eq!(line, 1);
+    assert!(reason.contains("perfect"), "{reason}");
+}
+
+#[test]
+fn the_default_rung_is_urban_and_a_knob_set_alone_overrides_it() {
+    let s = Scenario::from_toml(
+        &format!("{BASE}[sensor]\nmixed_pixels = 0.0\n"),
+        "ok.toml",
+        "ok",
+    )
+    .unwrap();
+    assert_eq!(s.realism, super::super::Realism::Urban);
+    assert_eq!(s.sensor.knobs().mixed_pixels, 0.0);
+    assert_eq!(s.world.knobs().camber, 0.02);
+    let ideal =
+        Scenario::from_toml_at_rung(BASE, "ok.toml", "ok", Some(super::super::Realism::Ideal))
+            .unwrap();
+    assert!(ideal.world.knobs().flat_ground() && ideal.pose_error.knobs().exact());
+}
+
+#[test]
 fn a_spinner_only_field_in_a_planar_table_points_at_its_line() {
     let (line, reason) = error_of(&format!(
         "{BASE}[lidar]\nkind = \"planar\"\nbeams = 70\nblocks = 10\n"

@@ -3,7 +3,10 @@
 use serde::{Deserialize, Serialize};
 
 use super::bounds::{Bound, COORD_M, MAX_RANDOM_ACTORS, REFLECTIVITY, check_count};
-use super::{ActorConfig, LidarConfig, StructureConfig};
+use super::{
+    ActorConfig, LidarConfig, PoseErrorConfig, Realism, RoadConfig, SensorConfig, StructureConfig,
+    WorldConfig,
+};
 
 /// A seeded random-traffic option for larger training sets: cars and pedestrians on a
 /// Manhattan grid of streets around `centre_m`.
@@ -109,6 +112,22 @@ pub struct Scenario {
     /// Lidar reflectivity of the road surface.
     #[serde(default = "default_ground_reflectivity")]
     pub ground_reflectivity: f64,
+    /// Rung of the realism ladder whose knobs fill every `[world]`, `[sensor]` and
+    /// `[pose_error]` knob the file leaves out (SPEC §3a).
+    #[serde(default)]
+    pub realism: Realism,
+    /// The procedural street world: ground, curbs, sidewalks, clutter, façades, shapes.
+    #[serde(default)]
+    pub world: WorldConfig,
+    /// Sensor errors beyond the ideal lidar.
+    #[serde(default)]
+    pub sensor: SensorConfig,
+    /// The ego's localisation error.
+    #[serde(default)]
+    pub pose_error: PoseErrorConfig,
+    /// Street centre lines for the procedural world (optional; else derived from the paths).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub roads: Vec<RoadConfig>,
     /// The lidar.
     #[serde(default)]
     pub lidar: LidarConfig,

@@ -1,5 +1,6 @@
 //! The Rapier scene: ground, static boxes, kinematic actors and the ego car.
 
+mod actor_tree;
 mod collider_tables;
 mod instant_query;
 mod rapier_scene;
@@ -10,9 +11,9 @@ mod scene_queries;
 mod static_obstacles;
 mod surface;
 
-pub use instant_query::InstantQuery;
+pub use instant_query::{HitPart, InstantQuery};
 pub use rapier_scene::Scene;
 pub use ray_tree::QueryTree;
 pub use scene_actor::SceneActor;
 pub use scene_instant::SceneInstant;
-pub use surface::Surface;
+pub use surface::{Glass, Material, Surface, SurfaceKind};

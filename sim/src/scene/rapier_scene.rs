@@ -6,12 +6,14 @@
 
 use rapier3d::prelude::*;
 
-use super::collider_tables::ColliderTables;
+use super::actor_tree::ActorTree;
+use super::collider_tables::{ColliderTables, MoverPart, StreetCollider};
 use super::ray_tree::RayTree;
 use super::{SceneActor, Surface};
 use crate::error::{Result, SimError};
 use crate::motion::MotionState;
 use crate::scenario::{ActorConfig, Scenario};
+use crate::world::StreetWorld;
 
 /// Half size of the square ground slab, metres (scenarios keep the ego on it).
 const GROUND_HALF_M: f32 = crate::scenario::GROUND_HALF_M as f32;
@@ -28,60 +30,59 @@ pub struct Scene {
     pub(super) surfaces: Vec<Surface>,
     surface_of_collider: Vec<u32>,
     pub(super) actors: Vec<SceneActor>,
-    pub(super) actor_surfaces: Vec<usize>,
     actor_states: Vec<MotionState>,
     pub(super) ego: SceneActor,
-    ego_surface: usize,
+    /// The moving colliders, ego car first (see [`MoverPart`]).
+    pub(super) movers: Vec<MoverPart>,
     pub(super) ray_tree: RayTree,
+    /// The lidar's tree over the actors, in a street world (see [`ActorTree`]).
+    pub(super) actor_tree: ActorTree,
+    /// The street world (`None`: the world of the first release, every collider in the tree).
+    pub(super) street: Option<StreetCollider>,
 }
 
 impl Scene {
     /// Builds the scene of a validated scenario; `actors` are its actors plus any random traffic.
+    /// The `ideal` world is the ground slab, boxes for structures and actors; otherwise the
+    /// street world drawn from `seed` ([`StreetWorld`]).
     pub fn build(scenario: &Scenario, actors: &[ActorConfig]) -> Result<Self> {
+        Self::build_seeded(scenario, actors, 0)
+    }
+
+    /// [`Scene::build`] with the street world drawn from `seed`.
+    pub fn build_seeded(scenario: &Scenario, actors: &[ActorConfig], seed: u64) -> Result<Self> {
+        let knobs = scenario.world.knobs();
+        let street_world = knobs != crate::WorldKnobs::of(crate::Realism::Ideal);
         let mut tables = ColliderTables::default();
-        let ground = ColliderTables::ground(GROUND_HALF_M, scenario.ground_reflectivity as f32);
-        tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5), 0.0);
-        for structure in &scenario.structures {
-            let size = structure.size_m.unwrap_or(structure.kind.default_size());
-            let surface = Surface::new(
-                structure.kind.semantic(),
-                None,
-                [
-                    size[0] as f32 / 2.0,
-                    size[1] as f32 / 2.0,
-                    size[2] as f32 / 2.0,
-                ],
-                structure.reflectivity.unwrap_or(0.5) as f32,
-            );
-            let yaw_rad = structure.yaw_deg.to_radians() as f32;
-            for c in structure.centres_m() {
-                let pose = Pose::new(
-                    Vector::new(c[0] as f32, c[1] as f32, size[2] as f32 / 2.0),
-                    Vector::new(0.0, 0.0, yaw_rad),
-                );
-                tables.add_fixed(surface, pose, yaw_rad);
+        let mut street = None;
+        if street_world {
+            let world = StreetWorld::build(scenario, actors, seed);
+            if world.ground.is_none() {
+                let ground =
+                    ColliderTables::ground(GROUND_HALF_M, scenario.ground_reflectivity as f32);
+                tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5), 0.0);
             }
+            street = Some(tables.add_street(world.ground, &world.pieces));
+        } else {
+            let ground = ColliderTables::ground(GROUND_HALF_M, scenario.ground_reflectivity as f32);
+            tables.add_fixed(ground, Pose::translation(0.0, 0.0, -0.5), 0.0);
+            add_structure_boxes(&mut tables, scenario);
         }
-        let (ego, ego_surface) = tables
-            .add_actor(&scenario.ego, 0, None)
+        let ego = tables
+            .add_actor(&scenario.ego, 0, None, false)
             .map_err(|r| invalid(scenario, r))?;
         let mut scene_actors = Vec::with_capacity(actors.len());
-        let mut actor_surfaces = Vec::with_capacity(actors.len());
         for (i, config) in actors.iter().enumerate() {
             let id = u16::try_from(i + 1)
                 .map_err(|_| invalid(scenario, "more than 65535 actors".to_owned()))?;
-            let (actor, surface) = tables
-                .add_actor(config, id, Some(i))
+            let actor = tables
+                .add_actor(config, id, Some(i), knobs.shapes)
                 .map_err(|r| invalid(scenario, r))?;
             scene_actors.push(actor);
-            actor_surfaces.push(surface);
         }
-        let moving = std::iter::once(&ego)
-            .chain(&scene_actors)
-            .filter_map(|a| tables.bodies.get(a.body))
-            .flat_map(|b| b.colliders().iter().copied())
-            .collect();
+        let moving = tables.movers.iter().map(|m| m.handle).collect();
         let ray_tree = RayTree::new(&tables.colliders, moving);
+        let actor_tree = ActorTree::new(&tables.movers);
         let mut scene = Self {
             bodies: tables.bodies,
             colliders: tables.colliders,
@@ -94,10 +95,11 @@ impl Scene {
             surface_of_collider: tables.surface_of_collider,
             actor_states: Vec::with_capacity(scene_actors.len()),
             actors: scene_actors,
-            actor_surfaces,
             ego,
-            ego_surface,
+            movers: tables.movers,
             ray_tree,
+            actor_tree,
+            street,
         };
         scene.move_to(scenario.start_secs);
         scene.rebuild_ray_tree();
@@ -112,19 +114,20 @@ impl Scene {
         self.actor_states
             .extend(self.actors.iter().map(|a| a.trajectory.state_at(t_secs)));
         let ego_state = self.ego.trajectory.state_at(t_secs);
-        let moves = std::iter::once((&self.ego, &ego_state, self.ego_surface)).chain(
-            self.actors
-                .iter()
-                .zip(&self.actor_states)
-                .zip(&self.actor_surfaces)
-                .map(|((a, s), &i)| (a, s, i)),
-        );
-        for (actor, state, surface) in moves {
-            let pose = actor.pose_of(state);
+        let moves = std::iter::once((&self.ego, &ego_state))
+            .chain(self.actors.iter().zip(&self.actor_states));
+        for (actor, state) in moves {
             if let Some(body) = self.bodies.get_mut(actor.body) {
-                body.set_position(pose, false);
+                body.set_position(actor.pose_of(state), false);
             }
-            if let Some(surface) = self.surfaces.get_mut(surface) {
+        }
+        for part in &self.movers {
+            let (actor, state) = match part.actor {
+                Some(i) => (&self.actors[i], &self.actor_states[i]),
+                None => (&self.ego, &ego_state),
+            };
+            let pose = actor.pose_of(state) * part.relative;
+            if let Some(surface) = self.surfaces.get_mut(part.surface) {
                 surface.place(pose.translation, state.yaw_rad as f32);
             }
         }
@@ -174,6 +177,11 @@ impl Scene {
         self.colliders.len()
     }
 
+    /// Number of static pieces inside the street world's one collider (0 on the `ideal` world).
+    pub fn street_piece_count(&self) -> usize {
+        self.street.as_ref().map_or(0, |s| s.shape.pieces().len())
+    }
+
     /// The velocity Rapier itself derives for actor `index` arriving at its pose at `t_secs` from
     /// its pose at `t_secs − dt_secs` (a backward difference over one physics step); returns
     /// (linear velocity, angular velocity about z). The scene is left at `t_secs`.
@@ -208,11 +216,13 @@ impl Scene {
             &(),
             &(),
         );
-        // Keep the lidar's tables in step with the collider that moved.
-        let surface = *self.actor_surfaces.get(index)?;
-        self.surfaces
-            .get_mut(surface)?
-            .place(after.translation, state.yaw_rad as f32);
+        // Keep the lidar's tables in step with the colliders that moved.
+        for part in self.movers.iter().filter(|m| m.actor == Some(index)) {
+            let pose = after * part.relative;
+            self.surfaces
+                .get_mut(part.surface)?
+                .place(pose.translation, state.yaw_rad as f32);
+        }
         *self.actor_states.get_mut(index)? = state;
         self.ray_tree.refit_moving(&self.colliders);
         let body = self.bodies.get(actor.body)?;
@@ -221,6 +231,31 @@ impl Scene {
             [f64::from(v.x), f64::from(v.y), f64::from(v.z)],
             f64::from(w.z),
         ))
+    }
+}
+
+/// The scenario's structures as fixed boxes standing on z = 0 (the world of the first release).
+fn add_structure_boxes(tables: &mut ColliderTables, scenario: &Scenario) {
+    for structure in &scenario.structures {
+        let size = structure.size_m.unwrap_or(structure.kind.default_size());
+        let surface = Surface::new(
+            structure.kind.semantic(),
+            None,
+            [
+                size[0] as f32 / 2.0,
+                size[1] as f32 / 2.0,
+                size[2] as f32 / 2.0,
+            ],
+            structure.reflectivity.unwrap_or(0.5) as f32,
+        );
+        let yaw_rad = structure.yaw_deg.to_radians() as f32;
+        for c in structure.centres_m() {
+            let pose = Pose::new(
+                Vector::new(c[0] as f32, c[1] as f32, size[2] as f32 / 2.0),
+                Vector::new(0.0, 0.0, yaw_rad),
+            );
+            tables.add_fixed(surface, pose, yaw_rad);
+        }
     }
 }
 
@@ -234,7 +269,7 @@ mod tests {
 
     #[test]
     fn the_analytic_velocity_equals_the_velocity_rapier_derives() {
-        let text = "sweeps = 1\n[ego]\npath_m = [[0.0, 0.0], [50.0, 0.0]]\nspeed_mps = 3.0\n[[actors]]\nname = \"turner\"\npath_m = [[0.0, 10.0], [20.0, 10.0], [20.0, 40.0]]\nturn_radius_m = 6.0\nspeed_mps = 8.0\ninitial_speed_mps = 2.0\n";
+        let text = "realism = \"ideal\"\nsweeps = 1\n[ego]\npath_m = [[0.0, 0.0], [50.0, 0.0]]\nspeed_mps = 3.0\n[[actors]]\nname = \"turner\"\npath_m = [[0.0, 10.0], [20.0, 10.0], [20.0, 40.0]]\nturn_radius_m = 6.0\nspeed_mps = 8.0\ninitial_speed_mps = 2.0\n";
         let scenario = Scenario::from_toml(text, "turn.toml", "turn").unwrap();
         let mut scene = Scene::build(&scenario, &scenario.actors).unwrap();
         let dt = 0.01;

@@ -85,7 +85,7 @@ impl RayTree {
         );
     }
 
-    /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
+    /// The mover index (position in the scene's mover list) of the collider at arena index `index`.
     #[inline]
     pub(super) fn mover_of(&self, index: u32) -> Option<usize> {
         match self.mover_of_collider.get(index as usize) {

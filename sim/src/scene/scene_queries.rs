@@ -19,16 +19,22 @@ impl Scene {
         SceneInstant::new(
             t_secs,
             (&self.ego, &self.actors),
-            (&self.bodies, &self.colliders),
+            &self.movers,
             &self.surfaces,
-            &self.actor_surfaces,
         )
     }
 
-    /// Rebuilds the ray-cast tree from scratch with every mover's leaf covering it as last moved
-    /// and at each of `instants`, so [`Scene::query_at`] gives exact hits at any of them.
+    /// Rebuilds the lidar's tree from scratch with every mover's leaf covering it as last moved
+    /// and at each of `instants`, so [`Scene::query_at`] gives exact hits at any of them: the
+    /// ray-cast tree over every collider, or in a street world the tree over the actors (the
+    /// static world is cast on its own).
     pub fn rebuild_ray_tree_spanning(&mut self, instants: &[SceneInstant]) {
-        self.ray_tree.rebuild_spanning(&self.colliders, instants);
+        match self.street {
+            Some(_) => self
+                .actor_tree
+                .rebuild_spanning(&self.colliders, &self.movers, instants),
+            None => self.ray_tree.rebuild_spanning(&self.colliders, instants),
+        }
     }
 
     /// Ray queries against the scene at `instant` through the ray-cast tree, ego car excluded;
@@ -38,14 +44,26 @@ impl Scene {
             scene: self,
             colliders: &self.colliders,
             bvh: self.ray_tree.bvh(),
+            actor_tree: &self.actor_tree,
             instant,
         }
     }
 
-    /// The mover index (0 the ego car, `1 + i` actor `i`) of the collider at arena index `index`.
+    /// The mover index of the collider at arena index `index` and whether it is the ego car's.
     #[inline]
-    pub(super) fn mover_of_collider(&self, index: u32) -> Option<usize> {
-        self.ray_tree.mover_of(index)
+    pub(super) fn mover_of_collider(&self, index: u32) -> Option<(usize, bool)> {
+        let k = self.ray_tree.mover_of(index)?;
+        Some((k, self.movers.get(k).is_some_and(|m| m.actor.is_none())))
+    }
+
+    /// The street world's ground, if the scene has one.
+    pub fn ground(&self) -> Option<&crate::world::GroundField> {
+        self.street.as_ref()?.shape.ground()
+    }
+
+    /// The street world (ground and static pieces as one shape), if the scene has one.
+    pub fn street(&self) -> Option<&crate::world::StreetShape> {
+        self.street.as_ref().map(|s| &*s.shape)
     }
 
     /// A query pipeline over the scene as last moved, through the ray-cast tree, with the ego

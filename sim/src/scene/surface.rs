@@ -1,10 +1,77 @@
-//! What a collider is to the lidar: its label, reflectivity, box and current placement, and the
-//! analytic normal of a hit on it. Every collider is a cuboid yawed about z, so the face is found
-//! from the hit point alone; this lets the lidar use the cheap `cast_ray` instead of
-//! `cast_ray_and_get_normal`, and never touch the (large, cache-cold) Rapier collider per point.
+//! What a collider is to the lidar: its label, reflectivity, material, shape kind and current
+//! placement, and the analytic normal of a hit on it. A cuboid yawed about z (every collider of
+//! the `ideal` world) finds its face from the hit point alone, so the lidar uses the cheap
+//! `cast_ray` instead of `cast_ray_and_get_normal` and never touches the (large, cache-cold)
+//! Rapier collider per point; the ground reads its normal and material from its height field,
+//! and other shapes ask parry for the normal of the one part that was hit.
 
 use patchflow_dataset::SemanticClass;
 use rapier3d::math::Vector;
+
+/// How the lidar finds the normal of a hit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceKind {
+    /// A cuboid yawed about z: the analytic face normal.
+    Box,
+    /// The street world's ground: normal and material from its height field.
+    Ground,
+    /// Any other shape: the normal parry reports for the hit part.
+    Shape,
+}
+
+/// Which faces of a surface are glass (fewer returns, some rays pass through).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Glass {
+    /// No glass.
+    None,
+    /// Every face.
+    All,
+    /// Faces steeper than 45° (a car cabin: windows all round, a painted roof).
+    Sides,
+    /// Where the shape reports a glass feature (a building's recessed windows).
+    Windows,
+}
+
+/// How a surface treats the beam beyond its reflectivity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Glass faces.
+    pub glass: Glass,
+    /// Mean free path of a beam inside a porous volume (foliage), metres; 0 for a solid.
+    pub porous_m: f32,
+}
+
+impl Material {
+    /// An opaque, solid surface.
+    pub const SOLID: Self = Self {
+        glass: Glass::None,
+        porous_m: 0.0,
+    };
+    /// Glass on every face.
+    pub const GLASS: Self = Self {
+        glass: Glass::All,
+        porous_m: 0.0,
+    };
+    /// A car cabin: glass sides, painted roof.
+    pub const CABIN: Self = Self {
+        glass: Glass::Sides,
+        porous_m: 0.0,
+    };
+
+    /// A building: glass in its window openings.
+    pub const WINDOWS: Self = Self {
+        glass: Glass::Windows,
+        porous_m: 0.0,
+    };
+
+    /// Foliage with the given mean free path.
+    pub const fn foliage(porous_m: f32) -> Self {
+        Self {
+            glass: Glass::None,
+            porous_m,
+        }
+    }
+}
 
 /// Lidar-relevant facts of one collider; `Collider::user_data` indexes a table of these.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -17,6 +84,12 @@ pub struct Surface {
     pub half_extents_m: [f32; 3],
     /// Reflectivity in [0, 1].
     pub reflectivity: f32,
+    /// How the lidar finds a hit's normal.
+    pub kind: SurfaceKind,
+    /// Glass and foliage.
+    pub material: Material,
+    /// Index of this collider among the scene's moving colliders, if it moves.
+    pub mover: Option<u32>,
     /// Box centre, world frame, metres (kept equal to the collider's pose by the scene).
     centre_m: Vector,
     /// Cosine and sine of the box yaw about z.
@@ -38,10 +111,20 @@ impl Surface {
             actor,
             half_extents_m,
             reflectivity,
+            kind: SurfaceKind::Box,
+            material: Material::SOLID,
+            mover: None,
             centre_m: Vector::ZERO,
             yaw_cos_sin: (1.0, 0.0),
             inverse_half_extents: half_extents_m.map(|h| 1.0 / h),
         }
+    }
+
+    /// The same surface with another kind and material.
+    pub fn with(mut self, kind: SurfaceKind, material: Material) -> Self {
+        self.kind = kind;
+        self.material = material;
+        self
     }
 
     /// Moves the box to `centre_m` with yaw `yaw_rad` about z (the pose of its collider).

@@ -1,0 +1,174 @@
+//! The procedural street world of the `urban` and `harsh` rungs (SPEC §3a), built from what a
+//! scenario already says: its streets (from `[[roads]]` or the vehicle paths and the traffic
+//! grid), a height-field ground with cambered roads and uneven terrain, sidewalk slabs with
+//! curbs, seeded street clutter, façades with depth, and recognisable actor shapes. Everything is
+//! drawn from the run seed and the scenario name, and only where the ego's lidar can reach.
+
+mod body_shapes;
+mod clearance;
+mod facade;
+mod facade_shape;
+mod grid_piece;
+mod grid_walk;
+mod ground_field;
+mod ground_recipe;
+mod noise;
+mod piece;
+mod piece_grid;
+mod plane_hull;
+mod street_furniture;
+mod street_map;
+mod street_shape;
+mod terrain_scatter;
+
+use std::sync::Arc;
+
+use patchflow_dataset::SemanticClass;
+
+pub(crate) use body_shapes::body_parts;
+pub use facade_shape::GLASS_FEATURE;
+pub(crate) use grid_piece::GridPiece;
+pub use ground_field::GroundField;
+pub(crate) use piece::{Piece, PieceShape};
+pub use piece_grid::PieceGrid;
+pub use street_shape::{StreetPart, StreetShape};
+
+// Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
+// heights and materials); a larger reach gets larger cells.
+use crate::scenario::{
+    ActorConfig, GROUND_CELL_M, MAX_GROUND_CELLS, Scenario, StructureKind, lidar_reach,
+};
+use crate::seed::{hash_name, mix, sub_seed};
+use clearance::Clearance;
+use ground_field::GroundRecipe;
+use street_furniture::SideBuilder;
+use street_map::StreetMap;
+
+/// The static part of a street world.
+pub(crate) struct StreetWorld {
+    /// The ground, or `None` for the flat plane of the first release.
+    pub ground: Option<Arc<GroundField>>,
+    /// Every static piece: sidewalks, clutter, façades, structures.
+    pub pieces: Vec<Piece>,
+}
+
+impl StreetWorld {
+    /// The world of `scenario` with all its actors `actors` (listed and random), seeded by `seed`.
+    pub(crate) fn build(scenario: &Scenario, actors: &[ActorConfig], seed: u64) -> Self {
+        let knobs = scenario.world.knobs();
+        let world_seed = sub_seed(mix(seed ^ hash_name(&scenario.name)), 0x3011D);
+        let streets = StreetMap::of(scenario, actors, knobs.road_half_width_m);
+        let recipe = GroundRecipe {
+            streets: &streets,
+            knobs,
+            road_reflectivity: scenario.ground_reflectivity,
+            seed: world_seed,
+        };
+        let (min, max) = lidar_reach(scenario);
+        let area = (max[0] - min[0]) * (max[1] - min[1]);
+        let cell_m = GROUND_CELL_M.max((area / MAX_GROUND_CELLS).sqrt());
+        let field = GroundField::build(&recipe, min, max, cell_m);
+        let t0 = scenario.start_secs - 1.0;
+        let t1 = scenario.sweep_start_secs(scenario.sweeps) + 1.0;
+        let movers: Vec<&ActorConfig> = std::iter::once(&scenario.ego).chain(actors).collect();
+        let mut clearance = Clearance::new(&movers, &scenario.structures, t0, t1);
+        let mut pieces = structure_pieces(scenario, &field, world_seed);
+        for (index, street) in streets.streets.iter().enumerate() {
+            for (side_index, side) in [1.0, -1.0].into_iter().enumerate() {
+                let builder = SideBuilder {
+                    recipe: &recipe,
+                    field: &field,
+                    street,
+                    side,
+                    seed: sub_seed(world_seed, 16 + 2 * index as u64 + side_index as u64),
+                };
+                for interval in builder.free_intervals(&|p| streets.on_carriageway(p)) {
+                    if knobs.curb_height_m > 0.0 && knobs.sidewalk_width_m > 0.0 {
+                        pieces.extend(builder.slabs(interval));
+                    }
+                    pieces.extend(builder.clutter(interval, &mut clearance));
+                }
+            }
+        }
+        if knobs.clutter > 0.0 {
+            let scatter_seed = sub_seed(world_seed, 0x5CA7);
+            pieces.extend(terrain_scatter::scatter(
+                &field,
+                knobs.clutter,
+                scatter_seed,
+                &mut clearance,
+            ));
+        }
+        let ground = (!knobs.flat_ground()).then(|| Arc::new(field));
+        Self { ground, pieces }
+    }
+}
+
+/// The scenario's own structures as pieces standing on the ground: buildings with façades
+/// (if asked for), parked cars with car shapes (if asked for), the rest as boxes.
+fn structure_pieces(scenario: &Scenario, field: &GroundField, seed: u64) -> Vec<Piece> {
+    let knobs = scenario.world.knobs();
+    let mut out = Vec::new();
+    for (i, structure) in scenario.structures.iter().enumerate() {
+        let size = structure.size_m.unwrap_or(structure.kind.default_size());
+        let reflectivity = structure.reflectivity.unwrap_or(0.5);
+        let yaw = structure.yaw_deg.to_radians();
+        for (j, c) in structure.centres_m().into_iter().enumerate() {
+            let ground = f64::from(field.height_at(c[0] as f32, c[1] as f32));
+            let key = sub_seed(seed, (i as u64) << 20 | j as u64);
+            match structure.kind {
+                StructureKind::Building if knobs.facade_detail => {
+                    out.extend(facade::facade_pieces(
+                        c,
+                        ground - 0.3,
+                        [size[0], size[1], size[2] + 0.3],
+                        yaw,
+                        reflectivity,
+                        key,
+                    ));
+                }
+                StructureKind::ParkedCar if knobs.shapes => {
+                    let (sin, cos) = yaw.sin_cos();
+                    out.extend(
+                        body_parts(
+                            patchflow_dataset::ActorClass::Car,
+                            size,
+                            reflectivity as f32,
+                        )
+                        .into_iter()
+                        .map(|mut part| {
+                            let [u, v, z] = part.centre_m;
+                            let (u, v) = (f64::from(u), f64::from(v));
+                            part.centre_m = [
+                                (c[0] + cos * u - sin * v) as f32,
+                                (c[1] + sin * u + cos * v) as f32,
+                                (ground + size[2] / 2.0) as f32 + z,
+                            ];
+                            part.yaw_rad += yaw as f32;
+                            part.semantic = SemanticClass::Car;
+                            part
+                        }),
+                    );
+                }
+                kind => {
+                    // Sunk 0.3 m into uneven ground, so no gap opens under it.
+                    let sunk = if knobs.flat_ground() { 0.0 } else { 0.3 };
+                    let base = if knobs.flat_ground() { 0.0 } else { ground } - sunk;
+                    out.push(Piece::block(
+                        c,
+                        base,
+                        [size[0], size[1], size[2] + sunk],
+                        yaw,
+                        kind.semantic(),
+                        reflectivity,
+                    ));
+                }
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+#[path = "world_tests.rs"]
+mod tests;

@@ -1,0 +1,341 @@
+//! What stands along the streets: raised sidewalk slabs whose road-facing faces are the curbs,
+//! and seeded clutter at a density per 100 m of street side: trees (a trunk and a porous canopy),
+//! bushes, signs, bollards, street lights, bins, traffic lights at the corners and parked cars.
+//! Every item keeps clear of the actors' corridors, the scenario's own structures and the items
+//! placed before it.
+
+use patchflow_dataset::{ActorClass, SemanticClass};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::body_shapes::body_parts;
+use super::clearance::Clearance;
+use super::ground_field::{GroundField, GroundRecipe};
+use super::piece::{Piece, PieceShape};
+use super::street_map::Street;
+use crate::scene::Material;
+use crate::seed::sub_seed;
+
+/// Longest sidewalk slab, metres.
+const SLAB_M: f64 = 8.0;
+/// Depth of a sidewalk slab below its top, metres.
+const SLAB_DEPTH_M: f64 = 0.6;
+
+/// Everything placed along one side of one street.
+pub(crate) struct SideBuilder<'a> {
+    pub recipe: &'a GroundRecipe<'a>,
+    pub field: &'a GroundField,
+    pub street: &'a Street,
+    /// +1 for the left side of the street's direction, −1 for the right.
+    pub side: f64,
+    pub seed: u64,
+}
+
+impl SideBuilder<'_> {
+    /// The intervals `[from, to]` (metres along the street) where this side's sidewalk is off
+    /// every carriageway and on the ground field.
+    pub(crate) fn free_intervals(
+        &self,
+        on_carriageway: &dyn Fn([f64; 2]) -> bool,
+    ) -> Vec<(f64, f64)> {
+        let k = &self.recipe.knobs;
+        let (w, band) = (self.street.half_width_m, k.sidewalk_width_m);
+        let (lo, hi) = self.field.bounds();
+        let inside = |p: [f64; 2]| {
+            p[0] > f64::from(lo[0]) + 1.0
+                && p[1] > f64::from(lo[1]) + 1.0
+                && p[0] < f64::from(hi[0]) - 1.0
+                && p[1] < f64::from(hi[1]) - 1.0
+        };
+        let length = self.street.length_m();
+        let mut out = Vec::new();
+        let mut start: Option<f64> = None;
+        let steps = (length / 0.5).floor() as usize;
+        for k in 0..=steps {
+            let s = k as f64 * 0.5;
+            let free = [w + 0.05, w + band / 2.0, w + band - 0.05]
+                .iter()
+                .all(|&d| {
+                    let p = self.street.point_at(s, self.side * d);
+                    inside(p) && !on_carriageway(p)
+                });
+            match (free, start) {
+                (true, None) => start = Some(s),
+                (false, Some(a)) => {
+                    if s - 0.5 - a > 1.0 {
+                        out.push((a, s - 0.5));
+                    }
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        if let Some(a) = start
+            && length - a > 1.0
+        {
+            out.push((a, length));
+        }
+        out
+    }
+
+    /// The sidewalk slabs over `[from, to]`, at most [`SLAB_M`] long, each topped at the local
+    /// sidewalk height (its road-facing face is the curb).
+    pub(crate) fn slabs(&self, (from, to): (f64, f64)) -> Vec<Piece> {
+        let k = &self.recipe.knobs;
+        let (w, band) = (self.street.half_width_m, k.sidewalk_width_m);
+        let count = ((to - from) / SLAB_M).ceil().max(1.0) as usize;
+        let length = (to - from) / count as f64;
+        (0..count)
+            .map(|i| {
+                let s = from + (i as f64 + 0.5) * length;
+                let centre = self.street.point_at(s, self.side * (w + band / 2.0));
+                let top = self
+                    .recipe
+                    .sidewalk_top_m(self.street.point_at(s, self.side * w), w);
+                let shade = ValueJitter(sub_seed(self.seed, i as u64)).unit();
+                Piece::block(
+                    centre,
+                    top - SLAB_DEPTH_M,
+                    [length, band, SLAB_DEPTH_M],
+                    self.street.yaw_rad(),
+                    SemanticClass::Sidewalk,
+                    0.28 + 0.06 * shade,
+                )
+            })
+            .collect()
+    }
+
+    /// Seeded clutter and parked cars along `[from, to]`; `corner` marks interval ends that are
+    /// street corners (traffic lights stand there).
+    pub(crate) fn clutter(&self, (from, to): (f64, f64), clearance: &mut Clearance) -> Vec<Piece> {
+        let k = self.recipe.knobs;
+        let mut rng = ChaCha8Rng::seed_from_u64(sub_seed(self.seed, 0xC1u64));
+        let (w, band) = (self.street.half_width_m, k.sidewalk_width_m.max(1.0));
+        let per_100m = (to - from) / 100.0;
+        let mut out = Vec::new();
+        let kinds: [(Item, f64); 9] = [
+            (Item::Hedge, 6.0 * k.clutter),
+            (Item::ParkedCar, k.parked_cars_per_100m),
+            (Item::Tree, 4.0 * k.clutter),
+            (Item::Bush, 4.0 * k.clutter),
+            (Item::StreetLight, 2.5 * k.clutter),
+            (Item::Sign, 1.5 * k.clutter),
+            (Item::Bollard, 3.0 * k.clutter),
+            (Item::Bin, 1.5 * k.clutter),
+            (Item::TrafficLight, if k.clutter > 0.0 { 2.0 } else { 0.0 }),
+        ];
+        for (item, density) in kinds {
+            let expected = density * per_100m;
+            let count =
+                expected.floor() as usize + usize::from(rng.random::<f64>() < expected.fract());
+            for _ in 0..count {
+                let s = match item {
+                    // Traffic lights stand at the ends of a sidewalk run: the corners.
+                    Item::TrafficLight => {
+                        if rng.random::<bool>() {
+                            from + 0.8
+                        } else {
+                            to - 0.8
+                        }
+                    }
+                    _ => rng.random_range(from..to),
+                };
+                let across = match item {
+                    Item::ParkedCar => w - 1.1,
+                    Item::Tree => w + rng.random_range(0.8..band.max(1.0) + 2.5),
+                    Item::Bush => w + band + rng.random_range(0.6..4.0),
+                    Item::StreetLight | Item::TrafficLight => w + 0.6,
+                    Item::Sign => w + 0.4,
+                    Item::Bollard => w + 0.35,
+                    Item::Bin => w + band - 0.4,
+                    Item::Hedge => w + band + 0.6,
+                };
+                if item == Item::ParkedCar && (s - from < 3.0 || to - s < 3.0) {
+                    continue;
+                }
+                let p = self.street.point_at(s, self.side * across);
+                let radius = item.radius_m();
+                if !clearance.is_free(p, radius, item.lateral_m(), 0.3) {
+                    continue;
+                }
+                let base = f64::from(self.field.height_at(p[0] as f32, p[1] as f32));
+                let pieces = self.item_pieces(item, p, base, &mut rng);
+                if pieces.is_empty() {
+                    continue;
+                }
+                clearance.occupy(p, radius);
+                out.extend(pieces);
+            }
+        }
+        out
+    }
+
+    fn item_pieces(&self, item: Item, p: [f64; 2], base: f64, rng: &mut ChaCha8Rng) -> Vec<Piece> {
+        let yaw = self.street.yaw_rad();
+        let (x, y) = (p[0] as f32, p[1] as f32);
+        let column = |half: f32, r: f32, z0: f64, semantic, reflectivity: f32| Piece {
+            shape: PieceShape::Column(half, r),
+            centre_m: [x, y, z0 as f32 + half],
+            yaw_rad: 0.0,
+            semantic,
+            reflectivity,
+            material: Material::SOLID,
+        };
+        match item {
+            Item::Tree => {
+                let trunk_h = rng.random_range(2.2f32..3.5);
+                let crown = rng.random_range(1.4f32..2.8);
+                vec![
+                    column(
+                        trunk_h / 2.0 + 0.1,
+                        rng.random_range(0.12..0.25),
+                        base - 0.1,
+                        SemanticClass::Trunk,
+                        0.35,
+                    ),
+                    Piece {
+                        shape: PieceShape::Ball(crown),
+                        centre_m: [x, y, (base as f32) + trunk_h + 0.7 * crown],
+                        yaw_rad: 0.0,
+                        semantic: SemanticClass::Vegetation,
+                        reflectivity: 0.5,
+                        material: Material::foliage(0.6),
+                    },
+                ]
+            }
+            Item::Bush => {
+                let r = rng.random_range(0.5f32..1.1);
+                vec![Piece {
+                    shape: PieceShape::Ball(r),
+                    centre_m: [x, y, base as f32 + 0.55 * r],
+                    yaw_rad: 0.0,
+                    semantic: SemanticClass::Vegetation,
+                    reflectivity: 0.45,
+                    material: Material::foliage(0.3),
+                }]
+            }
+            Item::StreetLight => vec![column(3.6, 0.09, base - 0.1, SemanticClass::Pole, 0.5)],
+            Item::Hedge => {
+                let length = rng.random_range(3.0..10.0);
+                let height = rng.random_range(0.9..1.8);
+                vec![
+                    Piece::block(
+                        p,
+                        base - 0.1,
+                        [length, 0.9, height + 0.1],
+                        yaw,
+                        SemanticClass::Vegetation,
+                        0.45,
+                    )
+                    .with_material(Material::foliage(0.25)),
+                ]
+            }
+            Item::Bollard => vec![column(0.5, 0.09, base - 0.1, SemanticClass::Pole, 0.45)],
+            Item::Bin => vec![column(
+                0.55,
+                0.3,
+                base - 0.1,
+                SemanticClass::OtherObject,
+                0.3,
+            )],
+            Item::Sign => vec![
+                column(1.3, 0.04, base - 0.1, SemanticClass::Pole, 0.5),
+                Piece::block(
+                    p,
+                    base + 2.0,
+                    [0.04, 0.65, 0.65],
+                    yaw,
+                    SemanticClass::TrafficSign,
+                    0.9,
+                ),
+            ],
+            Item::TrafficLight => vec![
+                column(1.9, 0.08, base - 0.1, SemanticClass::Pole, 0.45),
+                Piece::block(
+                    p,
+                    base + 2.5,
+                    [0.35, 0.35, 1.0],
+                    yaw,
+                    SemanticClass::TrafficSign,
+                    0.3,
+                ),
+            ],
+            Item::ParkedCar => {
+                let size = match rng.random_range(0..3u8) {
+                    0 => [3.9, 1.7, 1.45],
+                    1 => [4.7, 1.8, 1.45],
+                    _ => [5.1, 1.95, 1.95],
+                };
+                let heading = if self.side > 0.0 {
+                    yaw + std::f64::consts::PI
+                } else {
+                    yaw
+                };
+                let (sin, cos) = heading.sin_cos();
+                let reflectivity = rng.random_range(0.1f32..0.8);
+                body_parts(ActorClass::Car, size, reflectivity)
+                    .into_iter()
+                    .map(|mut part| {
+                        let [u, v, z] = part.centre_m;
+                        let (u, v) = (f64::from(u), f64::from(v));
+                        part.centre_m = [
+                            (p[0] + cos * u - sin * v) as f32,
+                            (p[1] + sin * u + cos * v) as f32,
+                            (base + size[2] / 2.0) as f32 + z,
+                        ];
+                        part.yaw_rad += heading as f32;
+                        part.semantic = SemanticClass::Car;
+                        part
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
+/// Kinds of street clutter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Item {
+    ParkedCar,
+    Tree,
+    Bush,
+    StreetLight,
+    Sign,
+    Bollard,
+    Bin,
+    TrafficLight,
+    Hedge,
+}
+
+impl Item {
+    /// Footprint radius for spacing, metres.
+    fn radius_m(self) -> f64 {
+        match self {
+            Self::ParkedCar => 2.6,
+            Self::Tree => 0.6,
+            Self::Bush => 1.0,
+            Self::Bin => 0.35,
+            Self::Hedge => 5.0,
+            Self::StreetLight | Self::Sign | Self::Bollard | Self::TrafficLight => 0.2,
+        }
+    }
+
+    /// Half width across a driver's corridor, metres (a parked car lies along the street).
+    fn lateral_m(self) -> f64 {
+        match self {
+            Self::ParkedCar => 1.0,
+            Self::Tree => 0.3,
+            Self::Hedge => 0.5,
+            other => other.radius_m(),
+        }
+    }
+}
+
+/// A hash of a seed as a value in [−1, 1].
+struct ValueJitter(u64);
+
+impl ValueJitter {
+    fn unit(&self) -> f64 {
+        (crate::seed::mix(self.0) >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
