@@ -154,7 +154,7 @@ fn append(path: &Path, text: &str) -> Result<(), EvalError> {
     let mut content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
     content.push('\n');
     content.push_str(text);
-    std::fs::write(path, content).map_err(|e| EvalError::io(path, e))
+    Ok(patchflow_dataset::write_atomic(path, content.as_bytes())?)
 }
 
 fn missing(what: &str) -> EvalError {

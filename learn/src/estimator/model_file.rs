@@ -153,15 +153,8 @@ impl MotionEstimator {
         };
         let mut bytes = serde_json::to_vec(&file).map_err(|e| model_err(e.to_string()))?;
         bytes.push(b'\n');
-        let tmp = path.with_extension("json.tmp");
-        std::fs::write(&tmp, bytes).map_err(|source| LearnError::Io {
-            path: tmp.clone(),
-            source,
-        })?;
-        std::fs::rename(&tmp, path).map_err(|source| LearnError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
+        patchflow_dataset::write_atomic(path, &bytes)?;
+        Ok(())
     }
 
     /// Reads a model written by [`MotionEstimator::save`]; another format or version, or a
