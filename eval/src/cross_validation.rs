@@ -12,7 +12,7 @@
 //! folds hold drawn samples only, and a sample's mirror never serves to test it.
 
 use nalgebra::{DMatrix, DVector};
-use patchflow_dataset::Dataset;
+use patchflow_dataset::{Dataset, wrap_angle_rad};
 use patchflow_learn::{
     FeatureKind, FeatureParams, GaborBank, GpKind, GpParams, GpPrediction, Patch, SampleSet,
 };
@@ -21,7 +21,7 @@ use rand::seq::SliceRandom;
 use rand_chacha::ChaCha8Rng;
 
 use crate::error::EvalError;
-use crate::metrics::{rmse, wrap_angle_rad};
+use crate::metrics::rmse;
 use crate::report::{CvFeature, CvGp, CvReport, CvRow};
 
 /// Settings of a cross-validation run; `Default` is the thesis setup with 5 folds.

@@ -56,7 +56,6 @@ pub use kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
 pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{
     MIN_SCORED_SPEED_MPS, MethodMetrics, heading_error_deg, mean_abs, rmse, score_method,
-    wrap_angle_rad,
 };
 pub use objects::{
     MIN_OBJECT_POINTS, ObjectGroup, ObjectMetrics, ObjectScan, POINT_BINS, RANGE_BINS_M,

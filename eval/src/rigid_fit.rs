@@ -104,9 +104,7 @@ mod tests {
             let (r, tr) = fit_rigid_svd(&source, &target).unwrap();
             let iso = fit_rigid_closed_form(&source, &target).unwrap();
             let svd_angle = r[(1, 0)].atan2(r[(0, 0)]);
-            let wrap = |a: f64| {
-                (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
-            };
+            let wrap = patchflow_dataset::wrap_angle_rad;
             assert!(wrap(svd_angle - angle).abs() < 1e-9);
             assert!(wrap(iso.rotation.angle() - angle).abs() < 1e-9);
             assert!((tr.x - t[0]).abs() < 1e-9 && (tr.y - t[1]).abs() < 1e-9);

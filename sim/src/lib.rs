@@ -23,9 +23,7 @@ pub use generate::{
     GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset, generate_sequence,
 };
 pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
-pub use motion::{
-    MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory, wrap_angle,
-};
+pub use motion::{MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory};
 pub use patchflow_dataset as dataset;
 pub use scenario::{
     ActorConfig, CarModel, EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, ElevationSpacing,

@@ -12,8 +12,8 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
 use crate::error::EvalError;
-use crate::metrics::wrap_angle_rad;
 use crate::result::SituationResult;
+use patchflow_dataset::wrap_angle_rad;
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVu-LICENSE.txt`).
 const FONT_TTF: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");

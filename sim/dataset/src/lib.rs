@@ -11,6 +11,7 @@
 //! assert_eq!(label.instance(), 7);
 //! ```
 
+mod angle;
 mod atomic_file;
 mod error;
 mod folder_lock;
@@ -28,6 +29,7 @@ mod sweep;
 mod sweep_checks;
 mod writer;
 
+pub use angle::{wrap_angle_rad, wrap_angle_upper_rad};
 pub use atomic_file::write_atomic;
 pub use error::{DatasetError, Result};
 pub use folder_lock::{FolderLock, LOCK_FILE};
