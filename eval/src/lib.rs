@@ -2,6 +2,7 @@
 //! five-situation benchmark (thesis 4.4), cross-validation tables (thesis 4.3), reports and plots;
 //! and the occupancy-map evaluation (the DGPOM paper's Table 1 and Figure 6).
 
+mod baseline_params;
 mod baseline_step;
 mod baselines;
 mod bench;
@@ -35,8 +36,9 @@ mod thesis_tables;
 mod tracker;
 mod truth_at_scan;
 
+pub use baseline_params::BaselineParams;
 pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
-pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
+pub use baselines::{BaselineMethod, run_all_baselines, run_baseline};
 pub use bench::{
     BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, collect_samples_with_bar,
     cross_validate_with_bar, evaluate_with_bar, generate_with_progress, occupancy_with_bar,

@@ -10,7 +10,7 @@ use patchflow_learn::{FeatureKind, FeatureParams, MotionEstimator, SampleSet};
 use patchflow_occupancy::{OccupancyParams, OccupancySequence};
 use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, generate_dataset};
 
-use crate::baselines::BaselineParams;
+use crate::baseline_params::BaselineParams;
 use crate::cross_validation::{CvParams, cross_validate_samples};
 use crate::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 use crate::error::EvalError;

@@ -24,6 +24,7 @@ mod error;
 mod fit;
 mod fitc;
 mod full;
+mod gemm;
 mod hyper;
 mod init;
 mod kernel;

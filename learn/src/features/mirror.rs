@@ -15,7 +15,8 @@
 
 use crate::features::gabor::GABOR_FILTERS;
 use crate::features::patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
-use crate::features::samples::{Sample, SampleSet};
+use crate::features::sample::Sample;
+use crate::features::samples::SampleSet;
 use crate::features::sweep_features::FeatureKind;
 
 impl Patch {

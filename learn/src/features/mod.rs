@@ -22,6 +22,7 @@ mod params;
 mod patch;
 mod reflection_map;
 mod render;
+mod sample;
 mod sampler;
 mod samples;
 mod sampling;
@@ -29,9 +30,9 @@ mod scan_stream;
 mod slice;
 mod spread_kernel;
 mod sweep_features;
-pub mod synthetic;
 mod synthetic_canopy;
 mod synthetic_ground;
+mod synthetic_scene;
 mod synthetic_world;
 mod top_n;
 
@@ -46,8 +47,18 @@ pub use ground_grid::GroundGrid;
 pub use params::{FeatureParams, GaborParams, GroundMode, MAX_MAP_SIDE_CELLS};
 pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
 pub use render::{render_png, write_png};
-pub use samples::{Sample, SampleSet};
+pub use sample::Sample;
+pub use samples::SampleSet;
 pub use sampling::importance_sample;
 pub use scan_stream::{Scan, ScanStream};
 pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
 pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};
+
+/// Hand-made sweeps for tests, benchmarks and demos: boxes on flat or uneven ground under tree
+/// canopies, scanned by an ideal spinning lidar (no noise, no rolling shutter).
+pub mod synthetic {
+    pub use super::synthetic_canopy::SyntheticCanopy;
+    pub use super::synthetic_ground::{SyntheticGround, SyntheticRoad};
+    pub use super::synthetic_scene::{SceneBox, SyntheticLidar, SyntheticScene, rotate_about};
+    pub use super::synthetic_world::SyntheticWorld;
+}

@@ -9,7 +9,7 @@ use patchflow_dataset::{SequenceReader, Sweep};
 use crate::features::difference_map::MapPair;
 use crate::features::gabor::GaborBank;
 use crate::features::patch::Patch;
-use crate::features::samples::Sample;
+use crate::features::sample::Sample;
 use crate::features::sampling::{DrawKey, hashed_normal, hashed_uniform, name_hash};
 use crate::features::slice::HeightSlice;
 use crate::features::sweep_features::{FeatureKind, SweepFeatures};

@@ -8,6 +8,7 @@ mod embedded;
 mod lidar_config;
 mod load;
 mod planar_config;
+mod problem;
 mod schema;
 mod structure_config;
 mod traffic;
