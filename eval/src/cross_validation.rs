@@ -15,6 +15,7 @@ use nalgebra::{DMatrix, DVector};
 use patchflow_dataset::{Dataset, wrap_angle_rad};
 use patchflow_learn::{
     FeatureKind, FeatureParams, GaborBank, GpKind, GpParams, GpPrediction, Patch, SampleSet,
+    rows_to_matrix,
 };
 use rand::SeedableRng;
 use rand::seq::SliceRandom;
@@ -119,19 +120,20 @@ pub fn cross_validate_samples(
         let gabor = GaborBank::new(&feature_params.gabor, feature_params.cell_m);
         let mirrored = params.mirror_images.then(|| set.mirror_images());
         for feature in [CvFeature::Patch, CvFeature::Gabor] {
-            let fold_data = |set: &SampleSet| {
+            let fold_data = |set: &SampleSet| -> Result<FoldData, EvalError> {
                 let target = |f: fn(&patchflow_learn::Sample) -> f64| {
                     DVector::from_iterator(set.samples.len(), set.samples.iter().map(f))
                 };
-                FoldData {
-                    heading_x: features_of(set, feature, &gabor, |s| &s.heading_features),
-                    speed_x: features_of(set, feature, &gabor, |s| &s.speed_features),
+                Ok(FoldData {
+                    heading_x: features_of(set, feature, &gabor, |s| &s.heading_features)?,
+                    speed_x: features_of(set, feature, &gabor, |s| &s.speed_features)?,
                     sin: target(|s| s.sin_rel),
                     cos: target(|s| s.cos_rel),
                     speed: target(|s| s.speed_mps),
-                }
+                })
             };
-            let (data, mirror) = (fold_data(set), mirrored.as_ref().map(fold_data));
+            let data = fold_data(set)?;
+            let mirror = mirrored.as_ref().map(fold_data).transpose()?;
             // The thesis judges speed on map patches only, with the prior that served heading best (0.5).
             let with_speed = feature == CvFeature::Patch && (prior - 0.5).abs() < 1e-12;
             for gp in [CvGp::Spgp, CvGp::SpgpHet] {
@@ -201,29 +203,29 @@ fn features_of(
     feature: CvFeature,
     gabor: &GaborBank,
     pick: impl Fn(&patchflow_learn::Sample) -> &Vec<f64>,
-) -> DMatrix<f64> {
+) -> Result<DMatrix<f64>, EvalError> {
     let d = match feature {
         CvFeature::Patch => FeatureKind::Patch.names().len(),
         CvFeature::Gabor => FeatureKind::Gabor.names().len(),
     };
-    let mut x = DMatrix::zeros(set.samples.len(), d);
-    for (r, sample) in set.samples.iter().enumerate() {
-        let values = pick(sample);
-        let row: Vec<f64> = match feature {
-            CvFeature::Patch => values.clone(),
-            CvFeature::Gabor => {
-                let mut patch = Patch {
-                    values: [0.0; patchflow_learn::PATCH_LEN],
-                };
-                patch.values.copy_from_slice(values);
-                gabor.responses(&patch).to_vec()
+    let rows: Vec<Vec<f64>> = set
+        .samples
+        .iter()
+        .map(|sample| {
+            let values = pick(sample);
+            match feature {
+                CvFeature::Patch => values.clone(),
+                CvFeature::Gabor => {
+                    let mut patch = Patch {
+                        values: [0.0; patchflow_learn::PATCH_LEN],
+                    };
+                    patch.values.copy_from_slice(values);
+                    gabor.responses(&patch).to_vec()
+                }
             }
-        };
-        for (c, v) in row.into_iter().enumerate() {
-            x[(r, c)] = v;
-        }
-    }
-    x
+        })
+        .collect();
+    Ok(rows_to_matrix(rows.iter().map(Vec::as_slice), d)?)
 }
 
 /// Per-test-sample errors of one fold and which samples count as low-variance.

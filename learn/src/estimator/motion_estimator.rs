@@ -4,6 +4,7 @@
 use nalgebra::{DMatrix, DVector};
 use patchflow_dataset::Dataset;
 
+use super::feature_matrix::rows_to_matrix;
 use super::params::EstimatorParams;
 use crate::{
     FeatureKind, FeatureParams, GpKind, GpModel, GpParams, LearnError, Result, SampleSet,
@@ -190,27 +191,6 @@ impl MotionEstimator {
         let d = self.feature.names().len();
         rows_to_matrix(rows.iter().map(Vec::as_slice), d)
     }
-}
-
-/// Stacks feature rows into an N × D matrix, checking every row's length.
-fn rows_to_matrix<'a>(
-    rows: impl ExactSizeIterator<Item = &'a [f64]>,
-    d: usize,
-) -> Result<DMatrix<f64>> {
-    let n = rows.len();
-    let mut x = DMatrix::zeros(n, d);
-    for (r, row) in rows.enumerate() {
-        if row.len() != d {
-            return Err(LearnError::DegenerateData(format!(
-                "feature row {r} has {} values, expected {d}",
-                row.len()
-            )));
-        }
-        for (c, v) in row.iter().enumerate() {
-            x[(r, c)] = *v;
-        }
-    }
-    Ok(x)
 }
 
 #[cfg(test)]
