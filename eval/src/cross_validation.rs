@@ -5,8 +5,8 @@
 //! Samples are drawn once per prior by importance sampling (thesis 3.1.2) with map-patch features;
 //! the Gabor features of the same samples are the bank's responses to those patches, so both
 //! features are judged on the same points. Folds are a seeded shuffle of the samples. RMSEs are
-//! averaged over the folds as in the thesis. "Low variance" (thesis 4.3.1): a test patch whose
-//! predicted log variance is more than one standard deviation below the mean of the fold's
+//! averaged over the folds as in the thesis. "Low variance" (thesis 4.3.1; the low-log-variance
+//! rule, unlike the BEST merge's raw one): a test patch whose predicted log variance is more than one standard deviation below the mean of the fold's
 //! predicted log variances, for the heading on both the sine and the cosine GP. Training folds include the
 //! mirror images of their samples when the estimator trains with them (`mirror_images`); test
 //! folds hold drawn samples only, and a sample's mirror never serves to test it.
@@ -280,7 +280,10 @@ impl Fold<'_> {
                 wrap_angle_rad(predicted - truth).to_degrees()
             })
             .collect();
-        let (low_sin, low_cos) = (low_variance(&sin_pred.var_y), low_variance(&cos_pred.var_y));
+        let (low_sin, low_cos) = (
+            low_log_variance(&sin_pred.var_y),
+            low_log_variance(&cos_pred.var_y),
+        );
         let low_var = low_sin
             .iter()
             .zip(&low_cos)
@@ -301,7 +304,7 @@ impl Fold<'_> {
             .collect();
         Ok(FoldErrors {
             errors,
-            low_var: low_variance(&predicted.var_y),
+            low_var: low_log_variance(&predicted.var_y),
         })
     }
 
@@ -336,11 +339,13 @@ impl Fold<'_> {
     }
 }
 
-/// Variance more than one standard deviation below the mean of the variances (thesis 4.3.1:
-/// "we fit a Gaussian distribution to the predicted variances"). The Gaussian is fitted to the
-/// logarithms: variances are positive and right-skewed, and for map patches a few large ones
-/// pull the raw mean − 1 std below the smallest variance, which would leave the subset empty.
-fn low_variance(var: &DVector<f64>) -> Vec<bool> {
+/// The low-log-variance rule: variance more than one standard deviation below the mean of the
+/// variances (thesis 4.3.1: "we fit a Gaussian distribution to the predicted variances"). The
+/// Gaussian is fitted to the logarithms: variances are positive and right-skewed, and for map
+/// patches a few large ones pull the raw mean − 1 std below the smallest variance, which would
+/// leave the subset empty. The BEST merge (`learn/src/estimator/merge.rs`) keeps the thesis'
+/// raw-variance rule, since it falls back to ALL when its subset is empty.
+fn low_log_variance(var: &DVector<f64>) -> Vec<bool> {
     let log_var: Vec<f64> = var.iter().map(|v| v.max(f64::MIN_POSITIVE).ln()).collect();
     let n = log_var.len().max(1) as f64;
     let mean = log_var.iter().sum::<f64>() / n;
@@ -400,14 +405,14 @@ mod tests {
         let z = [-2.0, -1.0, -1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 2.0];
         let var = DVector::<f64>::from_iterator(z.len(), z.iter().map(|z: &f64| z.exp()));
         assert!(var.mean() - var.variance().sqrt() < var.min());
-        let low = low_variance(&var);
+        let low = low_log_variance(&var);
         let expected: Vec<bool> = z.iter().map(|z| *z < -1.5).collect();
         assert_eq!(low, expected);
     }
 
     #[test]
     fn equal_variances_have_no_low_variance_subset() {
-        let low = low_variance(&DVector::from_element(5, 0.3));
+        let low = low_log_variance(&DVector::from_element(5, 0.3));
         assert!(low.iter().all(|l| !l));
     }
 }
