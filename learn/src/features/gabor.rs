@@ -116,7 +116,7 @@ mod tests {
         let prev = HeightSlice::cut(&scene.scan(&lidar, [-0.5, 0.0], 0.0, 0), &fp).unwrap();
         let sweep = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
         let curr = HeightSlice::cut(&sweep, &fp).unwrap();
-        let maps = MapPair::build(&prev, &curr, &fp);
+        let maps = MapPair::build(&prev, &curr, fp.map_window(curr.sensor_xy), &fp);
         let bank = GaborBank::new(params, fp.cell_m);
         let b = &scene.advanced(0.1).boxes[0];
         let (mut sum, mut n) = (0.0, 0.0);

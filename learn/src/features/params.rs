@@ -1,5 +1,6 @@
 //! Parameters of the feature pipeline with the thesis defaults (SPEC §5, thesis 2.1-2.2 and 4.3).
 
+use crate::features::grid::GridWindow;
 use crate::{LearnError, Result};
 
 /// Every knob of the feature pipeline; `Default` gives the thesis values.
@@ -73,6 +74,12 @@ pub const MAX_MAP_SIDE_CELLS: f64 = 2000.0;
 const MAP_BYTES_PER_CELL: f64 = 64.0;
 
 impl FeatureParams {
+    /// The map window of a sweep: centred on its sensor, `half_extent_m` each way, `cell_m`
+    /// cells. Built once per sweep and handed to the maps, the points and the clusters.
+    pub fn map_window(&self, sensor_xy: [f64; 2]) -> GridWindow {
+        GridWindow::centred(sensor_xy, self.half_extent_m, self.cell_m)
+    }
+
     /// Cells along a side of the map window.
     pub fn map_side_cells(&self) -> f64 {
         (2.0 * self.half_extent_m / self.cell_m).ceil()

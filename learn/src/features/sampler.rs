@@ -60,10 +60,11 @@ impl Sampler<'_> {
         for t in range.clone() {
             let (curr_sweep, curr) = self.slice(reader, t)?;
             // 2.1.1-2.1.2 for every prior, the beams traced once.
-            let maps = MapPair::build_for_priors(&prev, &curr, self.params, self.priors);
+            let window = self.params.map_window(curr.sensor_xy);
+            let maps = MapPair::build_for_priors(&prev, &curr, window, self.params, self.priors);
             let features: Vec<SweepFeatures> = maps
                 .into_iter()
-                .map(|m| SweepFeatures::without_clusters(&curr, m, self.params, self.gabor.clone()))
+                .map(|m| SweepFeatures::without_clusters(&curr, m, self.gabor.clone()))
                 .collect();
             let Some(first) = features.first() else {
                 break;

@@ -104,16 +104,17 @@ impl SweepFeatures {
         let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
         // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
+        let window = params.map_window(curr_slice.sensor_xy);
         let (mut maps_secs, mut clusters_secs) = (0.0, 0.0);
         let (maps, (points, clusters)) = rayon::join(
             || {
                 timed(&mut maps_secs, || {
-                    MapPair::build(prev_slice, curr_slice, params)
+                    MapPair::build(prev_slice, curr_slice, window, params)
                 })
             },
             || {
                 timed(&mut clusters_secs, || {
-                    let points = points_in_window(curr_slice, params);
+                    let points = points_in_window(curr_slice, &window);
                     let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
                     let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
                     (points, clusters)
@@ -136,16 +137,16 @@ impl SweepFeatures {
     }
 
     /// The features of a current slice from maps built elsewhere (the training sampler builds
-    /// the maps of several priors at once), without clusters: [`Self::clusters`] is empty.
+    /// the maps of several priors at once, on one window), without clusters: [`Self::clusters`]
+    /// is empty.
     pub(crate) fn without_clusters(
         curr_slice: &HeightSlice,
         maps: MapPair,
-        params: &FeatureParams,
         gabor: GaborBank,
     ) -> Self {
         Self {
             sensor_xy: curr_slice.sensor_xy,
-            points: points_in_window(curr_slice, params),
+            points: points_in_window(curr_slice, maps.reflection.window()),
             clusters: Clusters::default(),
             maps,
             gabor,
@@ -279,9 +280,8 @@ impl SweepFeatures {
     }
 }
 
-/// The sliced end points inside the map window centred on the current sensor.
-fn points_in_window(curr_slice: &HeightSlice, params: &FeatureParams) -> Vec<SlicedPoint> {
-    let window = GridWindow::centred(curr_slice.sensor_xy, params.half_extent_m, params.cell_m);
+/// The sliced end points inside the map window.
+fn points_in_window(curr_slice: &HeightSlice, window: &GridWindow) -> Vec<SlicedPoint> {
     curr_slice
         .points
         .iter()
