@@ -98,7 +98,7 @@ pub fn cross_validate_samples(
     let mut done = 0;
     let mut rows = Vec::new();
     for set in sets {
-        let prior = set.prior;
+        let prior = set.prior();
         if set.kind != FeatureKind::Patch {
             return Err(EvalError::BadParameter {
                 name: "SampleSet.kind",

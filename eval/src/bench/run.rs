@@ -84,7 +84,7 @@ pub fn run_bench(
     })?;
     let training_set = sets
         .iter()
-        .find(|s| (s.prior - 0.5).abs() < 1e-12)
+        .find(|s| (s.prior() - 0.5).abs() < 1e-12)
         .ok_or_else(|| missing("a sample set with prior 0.5 (CvParams::priors)"))?;
     // 3. One estimator per GP kind on the same samples (thesis 3.1.3).
     stage("train SPGP and SPGP-HET", &mut || {

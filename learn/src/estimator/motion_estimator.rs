@@ -73,10 +73,35 @@ impl MotionEstimator {
         Ok(estimator)
     }
 
-    /// Fits the three GPs to an already drawn sample set (thesis 3.1.1, 3.1.3).
+    /// Fits the three GPs to an already drawn sample set (thesis 3.1.1, 3.1.3): its first
+    /// `params.samples` samples (they are in dataset order, so these are a sample too). A set
+    /// drawn with another feature kind or other feature parameters than `params` holds is an
+    /// error: the model carries `params.features` and its GPs must have seen such features.
     pub fn fit_samples(set: &SampleSet, params: &EstimatorParams) -> Result<Self> {
         params.validate()?;
         let start = std::time::Instant::now();
+        if set.kind != params.feature {
+            return Err(LearnError::InvalidParams(format!(
+                "the samples carry {:?} features but the estimator parameters ask for {:?}",
+                set.kind, params.feature
+            )));
+        }
+        if set.features != params.features {
+            return Err(LearnError::InvalidParams(format!(
+                "the samples were drawn with feature parameters {:?} but the estimator parameters hold {:?}; draw them with EstimatorParams::features",
+                set.features, params.features
+            )));
+        }
+        let first;
+        let set = if set.samples.len() > params.samples {
+            first = SampleSet {
+                samples: set.samples[..params.samples].to_vec(),
+                ..set.clone()
+            };
+            &first
+        } else {
+            set
+        };
         if set.samples.len() < 2 {
             return Err(LearnError::DegenerateData(format!(
                 "{} training samples on moving actors; the dataset needs moving actors in the height slice",
@@ -135,10 +160,7 @@ impl MotionEstimator {
         Ok(Self {
             gp: params.gp,
             feature: set.kind,
-            features: FeatureParams {
-                prior: set.prior,
-                ..params.features.clone()
-            },
+            features: params.features.clone(),
             heading_sin,
             heading_cos,
             speed,
@@ -166,6 +188,24 @@ impl MotionEstimator {
     /// Feature parameters the model was trained with; run-time maps must use the same.
     pub fn feature_params(&self) -> &FeatureParams {
         &self.features
+    }
+
+    /// Refuses features computed with other map, slice or cluster parameters than this model
+    /// was trained with (the training-only `speed_jitter_deg` aside): its GPs never saw them.
+    pub(super) fn check_features(&self, features: &SweepFeatures) -> Result<()> {
+        let run_time = FeatureParams {
+            speed_jitter_deg: self.features.speed_jitter_deg,
+            ..features.params().clone()
+        };
+        if run_time == self.features {
+            Ok(())
+        } else {
+            Err(LearnError::InvalidParams(format!(
+                "features computed with {:?}, but the model was trained with {:?}; compute them with MotionEstimator::feature_params",
+                features.params(),
+                self.features
+            )))
+        }
     }
 
     /// What the training saw.

@@ -25,7 +25,7 @@ impl MapPair {
         window: GridWindow,
         params: &FeatureParams,
     ) -> Self {
-        Self::build_for_priors(prev, curr, window, params, &[params.prior])
+        Self::build_for_priors(prev, curr, window, params.spread, &[params.prior])
             .into_iter()
             .next()
             .unwrap_or_else(|| Self {
@@ -34,13 +34,14 @@ impl MapPair {
             })
     }
 
-    /// Like [`Self::build`] once per prior (`params.prior` is not used): the beams are traced
-    /// once (in parallel for the two sweeps), since the prior only fills unobserved cells.
+    /// Like [`Self::build`] once per prior, with the hit-and-miss `spread` of
+    /// [`FeatureParams::spread`]: the beams are traced once (in parallel for the two sweeps),
+    /// since the prior only fills unobserved cells.
     pub fn build_for_priors(
         prev: &HeightSlice,
         curr: &HeightSlice,
         window: GridWindow,
-        params: &FeatureParams,
+        spread: f64,
         priors: &[f64],
     ) -> Vec<Self> {
         // 2.1.1: hits and misses of both sweeps' sliced beams on the current window.
@@ -49,7 +50,7 @@ impl MapPair {
             || BeamCounts::trace(&curr.beams, &window),
         );
         // Eq. 2.8-2.9: spread, divide, subtract.
-        let maps = reflection_and_difference(&prev_counts, &curr_counts, priors, params.spread);
+        let maps = reflection_and_difference(&prev_counts, &curr_counts, priors, spread);
         maps.into_iter()
             .zip(priors)
             .map(|(values, &prior)| Self::from_values(window, values, prior))
@@ -158,7 +159,7 @@ mod tests {
             &prev,
             &curr,
             params.map_window(curr.sensor_xy),
-            &params,
+            params.spread,
             &[0.01, 0.5],
         );
         for (pair, prior) in both.iter().zip([0.01, 0.5]) {

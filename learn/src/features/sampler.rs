@@ -61,10 +61,18 @@ impl Sampler<'_> {
             let (curr_sweep, curr) = self.slice(reader, t)?;
             // 2.1.1-2.1.2 for every prior, the beams traced once.
             let window = self.params.map_window(curr.sensor_xy);
-            let maps = MapPair::build_for_priors(&prev, &curr, window, self.params, self.priors);
+            let maps =
+                MapPair::build_for_priors(&prev, &curr, window, self.params.spread, self.priors);
             let features: Vec<SweepFeatures> = maps
                 .into_iter()
-                .map(|m| SweepFeatures::without_clusters(&curr, m, self.gabor.clone()))
+                .zip(self.priors)
+                .map(|(m, &prior)| {
+                    let params = FeatureParams {
+                        prior,
+                        ..self.params.clone()
+                    };
+                    SweepFeatures::without_clusters(&curr, m, params, self.gabor.clone())
+                })
                 .collect();
             let Some(first) = features.first() else {
                 break;

@@ -18,8 +18,9 @@ use crate::{FeatureParams, LearnError, Result};
 pub struct SampleSet {
     /// Feature kind of both feature vectors.
     pub kind: FeatureKind,
-    /// Map prior the features were computed with.
-    pub prior: f64,
+    /// The feature parameters the samples were drawn with (their map prior included); a model
+    /// trained on the set carries them and refuses features computed otherwise.
+    pub features: FeatureParams,
     /// Number of candidate points the samples were drawn from.
     pub pool_size: usize,
     /// The samples, in dataset order (sequence name, sweep, point).
@@ -58,7 +59,8 @@ impl SampleSet {
         })
     }
 
-    /// One sample set per map prior (`params.prior` is not used), each drawing `n` samples from
+    /// One sample set per map prior, set `i` drawn with `params` but prior `priors[i]` (the
+    /// set's [`features`](Self::features) record which), each drawing `n` samples from
     /// the same candidates, in one pass over the dataset: every sweep is read and sliced once,
     /// every sweep pair's beams traced once for all priors (the prior only fills unobserved
     /// cells), and `progress(done, total)` is called as sweep pairs finish.
@@ -81,12 +83,15 @@ impl SampleSet {
         if priors.is_empty() {
             return Ok(Vec::new());
         }
-        for &prior in priors {
-            FeatureParams {
+        let per_prior: Vec<FeatureParams> = priors
+            .iter()
+            .map(|&prior| FeatureParams {
                 prior,
                 ..params.clone()
-            }
-            .validate()?;
+            })
+            .collect();
+        for features in &per_prior {
+            features.validate()?;
         }
         let readers = dataset
             .sequences()
@@ -126,19 +131,24 @@ impl SampleSet {
         }
         Ok(draws
             .into_iter()
-            .zip(priors)
-            .map(|(draw, &prior)| {
+            .zip(per_prior)
+            .map(|(draw, features)| {
                 let mut kept: Vec<(Rank, Sample)> = draw.into_items().collect();
                 // Dataset order (sequence, sweep, point).
                 kept.sort_unstable_by_key(|(rank, _)| (rank.1).0);
                 Self {
                     kind,
-                    prior,
+                    features,
                     pool_size,
                     samples: kept.into_iter().map(|(_, s)| s).collect(),
                 }
             })
             .collect())
+    }
+
+    /// The map prior the features were computed with.
+    pub fn prior(&self) -> f64 {
+        self.features.prior
     }
 
     /// Names of the feature columns.

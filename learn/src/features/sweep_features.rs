@@ -59,6 +59,7 @@ pub struct SweepFeatures {
     clusters: Clusters,
     maps: MapPair,
     gabor: GaborBank,
+    params: FeatureParams,
     timing: FeatureTiming,
 }
 
@@ -127,6 +128,7 @@ impl SweepFeatures {
             clusters,
             maps,
             gabor: GaborBank::new(&params.gabor, params.cell_m),
+            params: params.clone(),
             timing: FeatureTiming {
                 slice_secs: 0.0,
                 maps_secs,
@@ -142,6 +144,7 @@ impl SweepFeatures {
     pub(crate) fn without_clusters(
         curr_slice: &HeightSlice,
         maps: MapPair,
+        params: FeatureParams,
         gabor: GaborBank,
     ) -> Self {
         Self {
@@ -150,8 +153,14 @@ impl SweepFeatures {
             clusters: Clusters::default(),
             maps,
             gabor,
+            params,
             timing: FeatureTiming::default(),
         }
+    }
+
+    /// The feature parameters these features were computed with.
+    pub fn params(&self) -> &FeatureParams {
+        &self.params
     }
 
     /// The sliced end points inside the map window, in sweep order.
