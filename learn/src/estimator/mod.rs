@@ -14,7 +14,6 @@ pub use cluster_estimate::{
     ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming, ScanEstimate, ScanMotion,
 };
 pub use feature_matrix::rows_to_matrix;
-pub use merge::{Gaussian, HeadingVote, MergeRule, MergedHeading, merge_heading, merge_scalar};
-pub use model_file::{MOTION_MODEL_FORMAT, MOTION_MODEL_VERSION};
+pub use merge::{Gaussian, MergeRule, MergedHeading};
 pub use motion_estimator::{MotionEstimator, TrainingRecord};
 pub use params::EstimatorParams;

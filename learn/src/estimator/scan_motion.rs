@@ -6,7 +6,8 @@ use std::time::Instant;
 use patchflow_dataset::Sweep;
 
 use super::cluster_estimate::{ClusterEstimate, ScanEstimate, ScanMotion};
-use crate::{CellSamples, MotionEstimator, Result, SweepFeatures};
+use crate::features::CellSamples;
+use crate::{MotionEstimator, Result, SweepFeatures};
 
 impl MotionEstimator {
     /// Thesis Algorithm 3.1 on one scan given the previous one. To process a sequence in order,

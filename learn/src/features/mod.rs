@@ -36,22 +36,21 @@ mod synthetic_scene;
 mod synthetic_world;
 mod top_n;
 
-pub use cell_samples::CellSamples;
+pub(crate) use cell_samples::CellSamples;
 pub use cluster::Clusters;
-pub use cluster_shape::{ClusterShape, MAX_OBJECT_LENGTH_M};
-pub use csv::{Alignment, META_COLUMNS};
-pub use difference_map::MapPair;
-pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
-pub use grid::{GridMap, GridWindow};
+pub use cluster_shape::ClusterShape;
+pub use csv::Alignment;
+pub use gabor::GaborBank;
+pub use grid::GridMap;
 pub use ground_grid::GroundGrid;
-pub use params::{FeatureParams, GaborParams, GroundMode, MAX_MAP_SIDE_CELLS};
-pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
-pub use render::{render_png, write_png};
+pub use params::{FeatureParams, GaborParams, GroundMode};
+pub use patch::{PATCH_LEN, Patch};
+pub use render::write_png;
 pub use sample::Sample;
 pub use samples::SampleSet;
 pub use sampling::importance_sample;
 pub use scan_stream::{Scan, ScanStream};
-pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
+pub use slice::{HeightSlice, SlicedPoint};
 pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};
 
 /// Hand-made sweeps for tests, benchmarks and demos: boxes on flat or uneven ground under tree
