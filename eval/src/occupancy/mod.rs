@@ -9,12 +9,8 @@ mod plot;
 mod run;
 mod writer;
 
-pub use json::occupancy_json;
-pub use markdown::{occupancy_markdown, occupancy_section};
-pub use paper_table::{PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow};
-pub use plot::plot_occupancy_figure;
+pub use markdown::occupancy_section;
 pub use run::{
-    MethodsFor, OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes,
-    occupancy_sequences,
+    OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
 };
-pub use writer::{OccupancyFiles, write_occupancy_report};
+pub use writer::write_occupancy_report;

@@ -18,7 +18,6 @@ mod writer;
 
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
 pub(crate) use files::{create_dir, write_atomic};
-pub use json::{metrics_json, metrics_json_value};
+pub use json::metrics_json;
 pub(crate) use plot::{FONT, ensure_font};
-pub use plot::{plot_heading, plot_speed};
 pub use writer::{ReportFiles, write_report};

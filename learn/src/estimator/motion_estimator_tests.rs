@@ -1,8 +1,8 @@
 //! Tests of the motion estimator: training, the per-scan step, model files.
 
 use super::*;
-use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 use crate::estimator::merge::{HeadingVote, merge_heading, merge_scalar};
+use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 use crate::{ClusterEstimate, ClusterMotion, Gaussian, MergeRule, SweepFeatures};
 use patchflow_dataset::{Pose, SequenceWriter, Sweep};
 

@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::{PerceptionSummary, evaluate_with_bar, write_report};
+use patchflow_eval::stages::evaluate_with_bar;
+use patchflow_eval::{PerceptionSummary, write_report};
 use patchflow_learn::MotionEstimator;
 
 /// Arguments of `patchflow evaluate`.

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use patchflow_eval::generate_with_progress;
+use patchflow_eval::stages::generate_with_progress;
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 /// Arguments of `patchflow generate`.
