@@ -25,8 +25,8 @@ mod timing;
 pub use error::{LearnError, Result};
 
 // ── Parameters (thesis defaults, 4.3) ───────────────────────────────────────────────────────
-pub use estimator::EstimatorParams;
-pub use features::{FeatureParams, GaborParams, GroundMode};
+pub use estimator::{EstimatorParams, EstimatorValidParams};
+pub use features::{FeatureParams, FeatureValidParams, GaborParams, GroundMode};
 
 // ── One sweep's features (thesis Chapter 2) ─────────────────────────────────────────────────
 pub use features::{

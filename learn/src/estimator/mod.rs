@@ -16,4 +16,4 @@ pub use cluster_estimate::{
 pub use feature_matrix::rows_to_matrix;
 pub use merge::{Gaussian, MergeRule, MergedHeading};
 pub use motion_estimator::{MotionEstimator, TrainingRecord};
-pub use params::EstimatorParams;
+pub use params::{EstimatorParams, EstimatorValidParams};

@@ -141,7 +141,7 @@ impl MotionEstimator {
             generator: concat!("patchflow ", env!("CARGO_PKG_VERSION")).to_owned(),
             gp: self.gp,
             feature: feature_name(self.feature).to_owned(),
-            features: FeatureRecord::from(&self.features),
+            features: FeatureRecord::from(self.features.params()),
             training: self.training.clone(),
             heading_sin: without_timing(self.heading_sin.to_json_value()?),
             heading_cos: without_timing(self.heading_cos.to_json_value()?),
@@ -191,7 +191,7 @@ impl MotionEstimator {
             ground,
             ..FeatureParams::from(file.features)
         };
-        features.validate().map_err(|e| model_err(e.to_string()))?;
+        let features = features.check().map_err(|e| model_err(e.to_string()))?;
         let estimator = Self {
             gp: file.gp,
             feature,

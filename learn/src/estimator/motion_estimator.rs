@@ -5,10 +5,10 @@ use nalgebra::{DMatrix, DVector};
 use patchflow_dataset::Dataset;
 
 use super::feature_matrix::rows_to_matrix;
-use super::params::EstimatorParams;
+use super::params::{EstimatorParams, EstimatorValidParams};
 use crate::{
-    FeatureKind, FeatureParams, GpKind, GpModel, GpParams, LearnError, Result, SampleSet,
-    SweepFeatures,
+    FeatureKind, FeatureParams, FeatureValidParams, GpKind, GpModel, GpParams, LearnError, Result,
+    SampleSet, SweepFeatures,
 };
 
 /// A trained motion estimator: GPs for sin and cos of the heading relative to the bearing, and
@@ -17,7 +17,7 @@ use crate::{
 pub struct MotionEstimator {
     pub(crate) gp: GpKind,
     pub(crate) feature: FeatureKind,
-    pub(crate) features: FeatureParams,
+    pub(crate) features: FeatureValidParams,
     pub(crate) heading_sin: GpModel,
     pub(crate) heading_cos: GpModel,
     pub(crate) speed: GpModel,
@@ -57,7 +57,7 @@ impl MotionEstimator {
         params: &EstimatorParams,
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Self> {
-        params.validate()?;
+        let params = params.check()?;
         let start = std::time::Instant::now();
         // 3.1.2: importance-sample points on moving actors by the motion their patch shows.
         let set = SampleSet::collect_with_progress(
@@ -68,7 +68,7 @@ impl MotionEstimator {
             params.seed,
             progress,
         )?;
-        let mut estimator = Self::fit_samples(&set, params)?.with_sequences(dataset);
+        let mut estimator = Self::fit_checked(&set, &params)?.with_sequences(dataset);
         estimator.training.seconds = start.elapsed().as_secs_f64();
         Ok(estimator)
     }
@@ -78,7 +78,11 @@ impl MotionEstimator {
     /// drawn with another feature kind or other feature parameters than `params` holds is an
     /// error: the model carries `params.features` and its GPs must have seen such features.
     pub fn fit_samples(set: &SampleSet, params: &EstimatorParams) -> Result<Self> {
-        params.validate()?;
+        Self::fit_checked(set, &params.check()?)
+    }
+
+    /// [`Self::fit_samples`] with parameters checked beforehand.
+    pub fn fit_checked(set: &SampleSet, params: &EstimatorValidParams) -> Result<Self> {
         let start = std::time::Instant::now();
         if set.kind != params.feature {
             return Err(LearnError::InvalidParams(format!(
@@ -160,7 +164,7 @@ impl MotionEstimator {
         Ok(Self {
             gp: params.gp,
             feature: set.kind,
-            features: params.features.clone(),
+            features: params.features().clone(),
             heading_sin,
             heading_cos,
             speed,
@@ -197,13 +201,13 @@ impl MotionEstimator {
             speed_jitter_deg: self.features.speed_jitter_deg,
             ..features.params().clone()
         };
-        if run_time == self.features {
+        if run_time == *self.features.params() {
             Ok(())
         } else {
             Err(LearnError::InvalidParams(format!(
                 "features computed with {:?}, but the model was trained with {:?}; compute them with MotionEstimator::feature_params",
                 features.params(),
-                self.features
+                self.features.params()
             )))
         }
     }

@@ -35,6 +35,7 @@ mod synthetic_ground;
 mod synthetic_scene;
 mod synthetic_world;
 mod top_n;
+mod valid_params;
 
 pub(crate) use cell_samples::CellSamples;
 pub use cluster::Clusters;
@@ -52,6 +53,7 @@ pub use sampling::importance_sample;
 pub use scan_stream::{Scan, ScanStream};
 pub use slice::{HeightSlice, SlicedPoint};
 pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};
+pub use valid_params::FeatureValidParams;
 
 /// Hand-made sweeps for tests, benchmarks and demos: boxes on flat or uneven ground under tree
 /// canopies, scanned by an ideal spinning lidar (no noise, no rolling shutter).

@@ -9,7 +9,7 @@ use crate::{LearnError, Result};
 /// let params = patchflow_learn::FeatureParams::default();
 /// assert_eq!(params.cell_m, 0.10);
 /// assert_eq!(params.prior, 0.5);
-/// params.validate().unwrap();
+/// let checked = params.check().unwrap();
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeatureParams {
@@ -93,8 +93,9 @@ impl FeatureParams {
         }
     }
 
-    /// Checks ranges; every stage assumes validated parameters.
-    pub fn validate(&self) -> Result<()> {
+    /// Checks ranges; [`Self::check`] runs this once at the boundary, and every stage below
+    /// takes the checked [`FeatureValidParams`](crate::FeatureValidParams).
+    pub(crate) fn validate(&self) -> Result<()> {
         let bad = |what: &str| Err(LearnError::InvalidParams(what.to_owned()));
         let finite = [
             self.slice_min_m,

@@ -83,16 +83,17 @@ impl SampleSet {
         if priors.is_empty() {
             return Ok(Vec::new());
         }
-        let per_prior: Vec<FeatureParams> = priors
+        // Each prior's parameters checked once, here.
+        let per_prior = priors
             .iter()
-            .map(|&prior| FeatureParams {
-                prior,
-                ..params.clone()
+            .map(|&prior| {
+                FeatureParams {
+                    prior,
+                    ..params.clone()
+                }
+                .check()
             })
-            .collect();
-        for features in &per_prior {
-            features.validate()?;
-        }
+            .collect::<Result<Vec<_>>>()?;
         let readers = dataset
             .sequences()
             .iter()
@@ -138,7 +139,7 @@ impl SampleSet {
                 kept.sort_unstable_by_key(|(rank, _)| (rank.1).0);
                 Self {
                     kind,
-                    features,
+                    features: features.params().clone(),
                     pool_size,
                     samples: kept.into_iter().map(|(_, s)| s).collect(),
                 }

@@ -15,7 +15,7 @@ use crate::features::grid::{GridMap, GridWindow};
 use crate::features::patch::Patch;
 use crate::features::slice::{HeightSlice, SlicedPoint};
 use crate::timing::timed;
-use crate::{FeatureParams, Result};
+use crate::{FeatureParams, FeatureValidParams, Result};
 
 /// Which feature vector a point gets (thesis 2.2.2 and 2.2.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -78,9 +78,18 @@ pub struct FeatureTiming {
 }
 
 impl SweepFeatures {
-    /// Runs the per-sweep pipeline on two consecutive sweeps.
+    /// Runs the per-sweep pipeline on two consecutive sweeps (checking `params` first; a loop
+    /// over sweeps checks them once and calls [`Self::compute_checked`]).
     pub fn compute(prev: &Sweep, curr: &Sweep, params: &FeatureParams) -> Result<Self> {
-        params.validate()?;
+        Self::compute_checked(prev, curr, &params.check()?)
+    }
+
+    /// [`Self::compute`] with parameters checked beforehand.
+    pub fn compute_checked(
+        prev: &Sweep,
+        curr: &Sweep,
+        params: &FeatureValidParams,
+    ) -> Result<Self> {
         let start = Instant::now();
         // 2.1.1: cut both sweeps to the height slice.
         let (prev_slice, curr_slice) = rayon::join(
@@ -99,9 +108,8 @@ impl SweepFeatures {
     pub fn from_slices(
         prev_slice: &HeightSlice,
         curr_slice: &HeightSlice,
-        params: &FeatureParams,
+        params: &FeatureValidParams,
     ) -> Result<Self> {
-        params.validate()?;
         let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
         // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
@@ -128,7 +136,7 @@ impl SweepFeatures {
             clusters,
             maps,
             gabor: GaborBank::new(&params.gabor, params.cell_m),
-            params: params.clone(),
+            params: params.params().clone(),
             timing: FeatureTiming {
                 slice_secs: 0.0,
                 maps_secs,
