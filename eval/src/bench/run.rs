@@ -1,5 +1,6 @@
 //! One benchmark run from scenarios to report, stage by stage (SPEC §7, `patchflow bench`).
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use patchflow_dataset::Dataset;
@@ -14,10 +15,12 @@ use crate::bench::stages::{
 };
 use crate::cpu_time::load_average;
 use crate::error::EvalError;
+use crate::method::Method;
+use crate::metrics::MethodMetrics;
 use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
 use crate::perception_summary::PerceptionSummary;
 use crate::progress::{StageTimer, StageTiming, spinner};
-use crate::report::{CvReport, ReportFiles, write_cv_report, write_report};
+use crate::report::{CvReport, ReportFiles, write_cv_report, write_report_scored};
 use crate::result::BenchmarkReport;
 
 /// What a benchmark run produced.
@@ -29,6 +32,9 @@ pub struct BenchOutcome {
     pub cv: CvReport,
     /// The report files written.
     pub files: ReportFiles,
+    /// Each situation's per-target metrics, as scored once for the report files (in report
+    /// order): the numbers to print.
+    pub situation_metrics: Vec<(String, BTreeMap<Method, MethodMetrics>)>,
     /// The perception cost per sequence and over all scans.
     pub perception: Vec<PerceptionSummary>,
     /// The occupancy maps' scores (`OUT/occupancy.json`, `occupancy.md`), if the plan maps any.
@@ -133,7 +139,7 @@ pub fn run_bench(
     report.notes = notes(plan, &estimators, load);
     report.cv = Some(cv.clone());
     report.timings = timer.timings().to_vec();
-    let files = write_report(&report, out)?;
+    let (files, scores) = write_report_scored(&report, out)?;
     write_cv_report(&cv, out)?;
     if let Some(occupancy) = &occupancy {
         write_occupancy_report(occupancy, out)?;
@@ -144,6 +150,11 @@ pub fn run_bench(
         report,
         cv,
         files,
+        situation_metrics: scores
+            .situations
+            .into_iter()
+            .map(|(name, _, metrics)| (name, metrics))
+            .collect(),
         perception,
         occupancy,
     })

@@ -20,4 +20,5 @@ pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
 pub(crate) use files::{create_dir, write_atomic};
 pub use json::metrics_json;
 pub(crate) use plot::{FONT, ensure_font};
+pub(crate) use writer::write_report_scored;
 pub use writer::{ReportFiles, write_report};

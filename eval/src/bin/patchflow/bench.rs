@@ -1,9 +1,10 @@
 //! `patchflow bench`: the main job on embedded defaults, run by the library's benchmark driver
 //! ([`patchflow_eval::run_bench`]); this command only picks the plan and prints.
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use patchflow_eval::{BenchPlan, BenchmarkReport, Method, run_bench};
+use patchflow_eval::{BenchPlan, Method, MethodMetrics, run_bench};
 
 /// Arguments of `patchflow bench`.
 #[derive(Debug, clap::Args)]
@@ -26,7 +27,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let outcome = run_bench(&plan, &args.out, &|t| {
         println!("{:>28}: {:7.1} s", t.stage, t.seconds);
     })?;
-    print_headline(&outcome.report)?;
+    print_headline(&outcome.situation_metrics);
     if let Some(occupancy) = &outcome.occupancy {
         crate::occupancy::print_table(occupancy);
     }
@@ -37,8 +38,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Prints one line per situation: heading and speed RMSE and coverage of the headline methods.
-fn print_headline(report: &BenchmarkReport) -> anyhow::Result<()> {
+/// Prints one line per situation: heading and speed RMSE and coverage of the headline methods,
+/// from the scores the report files were written with.
+fn print_headline(situations: &[(String, BTreeMap<Method, MethodMetrics>)]) {
     let methods = [Method::SpgpHetAll, Method::SpgpAll, Method::Kf, Method::Icp];
     println!(
         "\n{:<12} {}",
@@ -52,8 +54,7 @@ fn print_headline(report: &BenchmarkReport) -> anyhow::Result<()> {
             .map(|_| format!("{:>28}", "heading° / speed m/s / cov"))
             .join("")
     );
-    for situation in &report.situations {
-        let metrics = situation.metrics()?;
+    for (name, metrics) in situations {
         let cells = methods.map(|m| match metrics.get(&m) {
             Some(x) => format!(
                 "{:>28}",
@@ -66,7 +67,6 @@ fn print_headline(report: &BenchmarkReport) -> anyhow::Result<()> {
             ),
             None => format!("{:>28}", "-"),
         });
-        println!("{:<12} {}", situation.name, cells.join(""));
+        println!("{:<12} {}", name, cells.join(""));
     }
-    Ok(())
 }
