@@ -23,6 +23,8 @@ mod bench;
 mod cluster_association;
 mod cpu_time;
 mod cross_validation;
+mod cv_fold;
+mod cv_params;
 mod dataset_evaluation;
 mod error;
 mod estimate;
@@ -81,7 +83,8 @@ pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion};
 pub use tracker::{MultiTargetTracker, TrackerParams};
 
 // ── Cross-validation (thesis 4.3) ───────────────────────────────────────────────────────────
-pub use cross_validation::{CvParams, cross_validate, cross_validate_samples};
+pub use cross_validation::{cross_validate, cross_validate_samples};
+pub use cv_params::CvParams;
 
 // ── Occupancy maps (DGPOM paper, SPEC §5b) ──────────────────────────────────────────────────
 pub use occupancy::{

@@ -11,7 +11,8 @@ use patchflow_occupancy::{OccupancyParams, OccupancySequence};
 use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, generate_dataset};
 
 use crate::baseline_params::BaselineParams;
-use crate::cross_validation::{CvParams, cross_validate_samples};
+use crate::cross_validation::cross_validate_samples;
+use crate::cv_params::CvParams;
 use crate::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 use crate::error::EvalError;
 use crate::occupancy::{

@@ -142,7 +142,7 @@ fn usable_var(var: f64) -> bool {
 /// spreads (thesis 3.1.4), falling back to everything when none qualifies.
 ///
 /// This is the *BEST-merge rule*, on raw variances as the thesis states it; cross-validation's
-/// *low-log-variance rule* (`eval/src/cross_validation.rs`, thesis 4.3.1) fits its Gaussian to
+/// *low-log-variance rule* (`eval/src/cv_fold.rs`, thesis 4.3.1) fits its Gaussian to
 /// log variances instead. They differ on purpose: the merge falls back to ALL when its subset is
 /// empty, so an empty subset costs nothing, while cross-validation has no fallback and on
 /// right-skewed map-patch variances the raw rule leaves its subset empty.
