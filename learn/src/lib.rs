@@ -30,7 +30,7 @@ pub use features::{FeatureParams, FeatureValidParams, GaborParams, GroundMode};
 
 // ── One sweep's features (thesis Chapter 2) ─────────────────────────────────────────────────
 pub use features::{
-    ClusterShape, Clusters, FeatureKind, FeatureTiming, GaborBank, GridMap, GroundGrid,
+    ClusterShape, Clusters, FeatureKind, FeatureTiming, GaborBank, GridMap, GridWindow, GroundGrid,
     HeightSlice, PATCH_LEN, Patch, Scan, ScanStream, SlicedPoint, SweepFeatures, synthetic,
     write_png,
 };

@@ -42,7 +42,7 @@ pub use cluster::Clusters;
 pub use cluster_shape::ClusterShape;
 pub use csv::Alignment;
 pub use gabor::GaborBank;
-pub use grid::GridMap;
+pub use grid::{GridMap, GridWindow};
 pub use ground_grid::GroundGrid;
 pub use params::{FeatureParams, GaborParams, GroundMode};
 pub use patch::{PATCH_LEN, Patch};
