@@ -70,9 +70,10 @@ pub use dataset_evaluation::evaluate_dataset;
 pub use estimate::MotionEstimate;
 pub use flow_export::export_flow;
 pub use method::{CANONICAL_METHODS, GpReadout, Method};
-pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
+pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
 pub use perception_summary::PerceptionSummary;
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
+pub use truth_at_scan::TruthAtScan;
 
 // ── Baselines (thesis 3.2) ──────────────────────────────────────────────────────────────────
 pub use baseline_params::BaselineParams;
