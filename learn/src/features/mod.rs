@@ -8,6 +8,7 @@ mod cluster;
 mod cluster_shape;
 mod csv;
 mod difference_map;
+mod feature_kind;
 mod gabor;
 mod grid;
 mod ground_cells;
@@ -41,6 +42,7 @@ pub(crate) use cell_samples::CellSamples;
 pub use cluster::Clusters;
 pub use cluster_shape::ClusterShape;
 pub use csv::Alignment;
+pub use feature_kind::FeatureKind;
 pub use gabor::GaborBank;
 pub use grid::{GridMap, GridWindow};
 pub use ground_grid::GroundGrid;
@@ -52,7 +54,7 @@ pub use samples::SampleSet;
 pub use sampling::importance_sample;
 pub use scan_stream::{Scan, ScanStream};
 pub use slice::{HeightSlice, SlicedPoint};
-pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};
+pub use sweep_features::{FeatureTiming, SweepFeatures};
 pub use valid_params::FeatureValidParams;
 
 /// Hand-made sweeps for tests, benchmarks and demos: boxes on flat or uneven ground under tree

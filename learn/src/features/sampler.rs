@@ -7,12 +7,13 @@ use std::cmp::Reverse;
 use patchflow_dataset::{SequenceReader, Sweep};
 
 use crate::features::difference_map::MapPair;
+use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GaborBank;
 use crate::features::patch::Patch;
 use crate::features::sample::Sample;
 use crate::features::sampling::{DrawKey, hashed_normal, hashed_uniform, name_hash};
 use crate::features::slice::HeightSlice;
-use crate::features::sweep_features::{FeatureKind, SweepFeatures};
+use crate::features::sweep_features::SweepFeatures;
 use crate::features::top_n::TopN;
 use crate::{FeatureParams, LearnError, Result};
 

@@ -6,10 +6,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use patchflow_dataset::Dataset;
 use rayon::prelude::*;
 
+use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GaborBank;
 use crate::features::sample::Sample;
 use crate::features::sampler::{Rank, Run, Sampler, merge};
-use crate::features::sweep_features::FeatureKind;
 use crate::features::top_n::TopN;
 use crate::{FeatureParams, LearnError, Result};
 

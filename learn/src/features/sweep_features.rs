@@ -10,31 +10,13 @@ use crate::features::cell_samples::CellSamples;
 use crate::features::cluster::Clusters;
 use crate::features::cluster_shape::ClusterShape;
 use crate::features::difference_map::MapPair;
+use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::{GABOR_FILTERS, GaborBank};
 use crate::features::grid::{GridMap, GridWindow};
 use crate::features::patch::Patch;
 use crate::features::slice::{HeightSlice, SlicedPoint};
 use crate::timing::timed;
 use crate::{FeatureParams, FeatureValidParams, Result};
-
-/// Which feature vector a point gets (thesis 2.2.2 and 2.2.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum FeatureKind {
-    /// The 242 patch values (difference map, then reflection map).
-    Patch,
-    /// The 16 Gabor responses of the difference half of the patch.
-    Gabor,
-}
-
-impl FeatureKind {
-    /// Column names of this feature, in value order.
-    pub fn names(self) -> Vec<String> {
-        match self {
-            Self::Patch => Patch::feature_names(),
-            Self::Gabor => GaborBank::feature_names(),
-        }
-    }
-}
 
 /// The features of the current sweep given the previous one. Point indices `i` below index
 /// [`Self::points`], the sliced end points inside the map window; `points()[i].index` is the
