@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 
 use rayon::prelude::*;
 
-use crate::baselines::BaselineParams;
+use crate::baseline_params::BaselineParams;
 use crate::cluster_association::CentroidAssociator;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;

@@ -16,15 +16,12 @@
 
 use std::collections::BTreeMap;
 
+use crate::baseline_params::BaselineParams;
 use crate::baseline_step::BaselineTrackers;
-use crate::cluster_association::CentroidAssociationParams;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
-use crate::icp::IcpParams;
-use crate::kalman::KalmanParams;
 use crate::method::Method;
 use crate::observation::ScanObservation;
-use crate::tracker::TrackerParams;
 
 /// The four baselines.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -52,19 +49,6 @@ impl BaselineMethod {
             Self::KfAuto => Method::KfAuto,
         }
     }
-}
-
-/// Parameters of all baselines.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct BaselineParams {
-    /// ICP (both modes).
-    pub icp: IcpParams,
-    /// Kalman filter of `KF`.
-    pub kalman: KalmanParams,
-    /// Tracker of `KF-AUTO`.
-    pub tracker: TrackerParams,
-    /// Association of `ICP-AUTO`.
-    pub association: CentroidAssociationParams,
 }
 
 /// Runs `method` over a situation's scans (in time order). `situation` labels errors.

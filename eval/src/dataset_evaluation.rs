@@ -4,7 +4,7 @@
 use patchflow_dataset::{Dataset, SequenceReader};
 use patchflow_learn::MotionEstimator;
 
-use crate::baselines::BaselineParams;
+use crate::baseline_params::BaselineParams;
 use crate::error::EvalError;
 use crate::result::BenchmarkReport;
 use crate::scene_evaluation::evaluate_sequence;

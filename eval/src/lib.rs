@@ -1,13 +1,30 @@
 //! patchflow's evaluation: ICP and constant-velocity Kalman baselines (thesis 3.2), metrics, the
 //! five-situation benchmark (thesis 4.4), cross-validation tables (thesis 4.3), reports and plots;
 //! and the occupancy-map evaluation (the DGPOM paper's Table 1 and Figure 6).
+//!
+//! The top level re-exports what a user of the library needs: the benchmark driver, the methods
+//! and their results, the baselines, cross-validation, the occupancy evaluation and the reports.
+//! Progress bars live in [`progress`], the thesis' published numbers in [`thesis_tables`], and
+//! the progress-bar wrappers of the benchmark's stages (for the binary) in [`stages`].
+//!
+//! | thesis / paper | file |
+//! |---|---|
+//! | 3.2 ICP baseline | `icp.rs`, `rigid_fit.rs`, `rigid_motion.rs` |
+//! | 3.2 Kalman filter baseline | `kalman.rs`, `tracker.rs` (KF-AUTO), `cluster_association.rs` (ICP-AUTO) |
+//! | 4.1 metrics (Eq. 4.1) | `metrics.rs`, `scene_flow.rs`, `objects.rs` |
+//! | 4.3 cross-validation (Tables 4.1-4.4) | `cross_validation.rs` |
+//! | 4.4 the five situations, scan by scan | `scene_evaluation.rs`, `baseline_step.rs` |
+//! | DGPOM Table 1, Figure 6 | `occupancy/` |
 
+mod baseline_params;
 mod baseline_step;
 mod baselines;
 mod bench;
 mod cluster_association;
 mod cpu_time;
 mod cross_validation;
+mod cv_fold;
+mod cv_params;
 mod dataset_evaluation;
 mod error;
 mod estimate;
@@ -22,7 +39,7 @@ mod occupancy;
 mod oracle;
 mod perception_summary;
 mod perception_timing;
-mod progress;
+pub mod progress;
 mod report;
 mod result;
 mod rigid_fit;
@@ -31,68 +48,57 @@ mod scan_scoring;
 mod scene_evaluation;
 mod scene_flow;
 mod scene_point;
-mod thesis_tables;
+pub mod thesis_tables;
 mod tracker;
 mod truth_at_scan;
 
-pub use baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
-pub use baselines::{BaselineMethod, BaselineParams, run_all_baselines, run_baseline};
+// ── The benchmark ──────────────────────────────────────────────────────────────────────────
 pub use bench::{
     BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, MethodSpread, QUICK_SWEEP_SHARE,
-    SeedFigure, SeedSpread, collect_draws_with_bar, collect_samples_with_bar,
-    cross_validate_with_bar, evaluate_with_bar, generate_with_progress, occupancy_with_bar,
-    run_bench,
+    SeedFigure, SeedSpread, run_bench,
 };
-pub use cluster_association::{
-    CentroidAssociationParams, CentroidAssociator, nearest_centroid_matches,
-};
-pub use cpu_time::{load_average, process_cpu_secs};
-pub use cross_validation::{CvParams, cross_validate, cross_validate_samples};
-pub use dataset_evaluation::{evaluate_dataset, scans_to_evaluate, sequences_to_evaluate};
 pub use error::EvalError;
+
+/// The benchmark's stages one by one, each with its progress bar (the binary's `cv`,
+/// `evaluate`, `generate` and `occupancy` commands run them).
+pub mod stages {
+    pub use crate::bench::{
+        collect_draws_with_bar, collect_samples_with_bar, cross_validate_with_bar,
+        evaluate_with_bar, generate_with_progress, occupancy_with_bar,
+    };
+}
+
+// ── Methods, their estimates and scores (thesis 4.1, 4.4) ──────────────────────────────────
+pub use dataset_evaluation::evaluate_dataset;
 pub use estimate::MotionEstimate;
 pub use flow_export::export_flow;
-pub use icp::{IcpAlignment, IcpParams, align_icp};
-pub use kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
 pub use method::{CANONICAL_METHODS, GpReadout, Method};
-pub use metrics::{
-    MIN_SCORED_SPEED_MPS, MethodMetrics, heading_error_deg, mean_abs, rmse, score_method,
-    wrap_angle_rad,
-};
-pub use objects::{
-    MIN_OBJECT_POINTS, ObjectGroup, ObjectMetrics, ObjectScan, POINT_BINS, RANGE_BINS_M,
-    score_objects,
-};
-pub use observation::{ActorCluster, ClusterObservation, ScanObservation, centroid_of};
+pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
+pub use perception_summary::PerceptionSummary;
+pub use result::{BenchmarkReport, SceneResult, SituationResult};
+pub use truth_at_scan::TruthAtScan;
+
+// ── Baselines (thesis 3.2) ──────────────────────────────────────────────────────────────────
+pub use baseline_params::BaselineParams;
+pub use baselines::{BaselineMethod, run_baseline};
+pub use icp::{IcpAlignment, IcpParams, align_icp};
+pub use kalman::{ConstantVelocityKalman, KalmanParams};
+pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion};
+pub use tracker::{MultiTargetTracker, TrackerParams};
+
+// ── Cross-validation (thesis 4.3) ───────────────────────────────────────────────────────────
+pub use cross_validation::{cross_validate, cross_validate_samples};
+pub use cv_params::CvParams;
+
+// ── Occupancy maps (DGPOM paper, SPEC §5b) ──────────────────────────────────────────────────
 pub use occupancy::{
-    MethodsFor, OccupancyFiles, OccupancyReport, PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow,
-    dgpom_method, dgpom_notes, evaluate_occupancy, learn_motion_map, occupancy_json,
-    occupancy_markdown, occupancy_methods, occupancy_notes, occupancy_section, occupancy_sequences,
-    plot_ahead, plot_motion_map, plot_occupancy_figure, predict_ahead, write_occupancy_report,
+    OccupancyReport, dgpom_method, evaluate_occupancy, learn_motion_map, occupancy_methods,
+    predict_ahead, write_occupancy_report,
 };
-pub use perception_summary::{PerceptionSummary, STAGES, StageOf};
-pub use perception_timing::{ScanTiming, Spread, StepTiming};
-pub use progress::{
-    ProgressLines, StageTimer, StageTiming, progress_bar, progress_line, spinner,
-    stderr_is_terminal,
-};
+
+// ── Reports ─────────────────────────────────────────────────────────────────────────────────
 pub use report::{
     CvFeature, CvGp, CvReport, CvRow, ReportFiles, SceneFigures, add_to_metrics, metrics_json,
-    metrics_json_value, plot_heading, plot_speed, write_cv_report, write_dataset_scene_figures,
-    write_map_figure, write_report, write_scene_figures,
+    write_cv_report, write_dataset_scene_figures, write_map_figure, write_report,
+    write_scene_figures,
 };
-pub use result::{BenchmarkReport, SceneResult, SituationResult};
-pub use rigid_fit::{fit_rigid_closed_form, fit_rigid_svd};
-pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion};
-pub use scene_evaluation::{SequenceRun, evaluate_sequence};
-pub use scene_flow::{
-    DYNAMIC_SPEED_MPS, SPEED_BUCKETS, SceneFlowMetrics, SceneFlowTally, end_point_error,
-};
-pub use scene_point::{FlowClass, ScenePoints};
-pub use thesis_tables::{
-    THESIS_CV_HEADING_LOW_VAR_RMSE_DEG, THESIS_CV_HEADING_RMSE_DEG,
-    THESIS_CV_SPEED_LOW_VAR_RMSE_MPS, THESIS_CV_SPEED_RMSE_MPS, THESIS_SITUATIONS, ThesisRow,
-    ThesisSituation, thesis_row, thesis_situation,
-};
-pub use tracker::{MultiTargetTracker, Track, TrackStatus, TrackerParams};
-pub use truth_at_scan::TruthAtScan;

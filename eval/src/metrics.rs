@@ -3,6 +3,7 @@
 //! RMSE and mean absolute error in m/s, coverage, and velocity end-point error in m/s.
 //! RMSE and ME follow thesis eq. 4.1; "ME" is the mean of the absolute errors.
 
+use patchflow_dataset::wrap_angle_rad;
 use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
@@ -11,11 +12,6 @@ use crate::truth_at_scan::TruthAtScan;
 
 /// Below this true speed the heading is ill-defined and not scored (AV2's dynamic threshold).
 pub const MIN_SCORED_SPEED_MPS: f64 = 0.5;
-
-/// An angle wrapped to [−π, π).
-pub fn wrap_angle_rad(angle_rad: f64) -> f64 {
-    (angle_rad + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
-}
 
 /// Signed heading error `wrap(estimate − truth)` in degrees, in [−180°, 180°).
 pub fn heading_error_deg(estimate_rad: f64, truth_rad: f64) -> f64 {

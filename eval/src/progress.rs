@@ -20,7 +20,7 @@ pub struct StageTiming {
 /// Records wall-clock seconds per stage, in the order the stages ran.
 ///
 /// ```
-/// use patchflow_eval::StageTimer;
+/// use patchflow_eval::progress::StageTimer;
 /// let mut timer = StageTimer::new();
 /// let answer = timer.time("think", || 6 * 7);
 /// assert_eq!(answer, 42);

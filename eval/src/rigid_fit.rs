@@ -1,7 +1,7 @@
 //! Closed-form least-squares rigid alignment of paired 2-D points (thesis eq. 3.38-3.41, Arun et
 //! al. 1987), with Umeyama's reflection fix so the rotation always has det = +1.
 
-use nalgebra::{Isometry2, Matrix2, Vector2};
+use nalgebra::{Matrix2, Vector2};
 
 /// Rotation matrix and translation that best map `source[i]` onto `target[i]` in the least-squares
 /// sense, solved by SVD of the cross-covariance `Σ = Σᵢ (qᵢ − q̄)(pᵢ − p̄)ᵀ = U D Vᵀ`:
@@ -30,8 +30,12 @@ pub fn fit_rigid_svd(
 }
 
 /// The same least-squares fit through the 2-D closed form `θ = atan2(Σ pᵢ × qᵢ, Σ pᵢ · qᵢ)` on centred
-/// pairs. It needs no SVD and cannot reflect; used to cross-check [`fit_rigid_svd`] and by ICP.
-pub fn fit_rigid_closed_form(source: &[[f64; 2]], target: &[[f64; 2]]) -> Option<Isometry2<f64>> {
+/// pairs. It needs no SVD and cannot reflect; the tests cross-check [`fit_rigid_svd`] with it.
+#[cfg(test)]
+pub(crate) fn fit_rigid_closed_form(
+    source: &[[f64; 2]],
+    target: &[[f64; 2]],
+) -> Option<nalgebra::Isometry2<f64>> {
     let (source_mean, target_mean, cross) = centred_cross_covariance(source, target)?;
     // Σ pᵢ · qᵢ = trace(Σ) and Σ pᵢ × qᵢ = Σ₁₀ − Σ₀₁ for Σ = Σ q pᵀ.
     let dot = cross[(0, 0)] + cross[(1, 1)];
@@ -43,7 +47,7 @@ pub fn fit_rigid_closed_form(source: &[[f64; 2]], target: &[[f64; 2]]) -> Option
     };
     let rotation = nalgebra::Rotation2::new(angle);
     let translation = target_mean - rotation * source_mean;
-    Some(Isometry2::new(translation, angle))
+    Some(nalgebra::Isometry2::new(translation, angle))
 }
 
 /// Means of both sets and the cross-covariance `Σᵢ (qᵢ − q̄)(pᵢ − p̄)ᵀ` (unnormalised).
@@ -104,9 +108,7 @@ mod tests {
             let (r, tr) = fit_rigid_svd(&source, &target).unwrap();
             let iso = fit_rigid_closed_form(&source, &target).unwrap();
             let svd_angle = r[(1, 0)].atan2(r[(0, 0)]);
-            let wrap = |a: f64| {
-                (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
-            };
+            let wrap = patchflow_dataset::wrap_angle_rad;
             assert!(wrap(svd_angle - angle).abs() < 1e-9);
             assert!(wrap(iso.rotation.angle() - angle).abs() < 1e-9);
             assert!((tr.x - t[0]).abs() < 1e-9 && (tr.y - t[1]).abs() < 1e-9);

@@ -11,8 +11,9 @@ use patchflow_learn::{
     SweepFeatures,
 };
 
+use crate::baseline_params::BaselineParams;
 use crate::baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
-use crate::baselines::{BaselineMethod, BaselineParams};
+use crate::baselines::BaselineMethod;
 use crate::cpu_time::process_cpu_secs;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;

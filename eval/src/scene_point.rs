@@ -109,11 +109,6 @@ impl ScenePoints {
         self.xy.len()
     }
 
-    /// True if the scan has no scored point.
-    pub fn is_empty(&self) -> bool {
-        self.xy.is_empty()
-    }
-
     /// A world-frame ground-plane velocity as a displacement over the interval.
     pub fn displacement_of(&self, velocity_xy_mps: [f64; 2]) -> [f64; 3] {
         [

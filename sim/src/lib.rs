@@ -29,9 +29,7 @@ pub use generate::{
 };
 pub use kitti_names::write_kitti_names;
 pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
-pub use motion::{
-    MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory, wrap_angle,
-};
+pub use motion::{MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory};
 pub use patchflow_dataset as dataset;
 pub use scenario::{
     ActorConfig, CarModel, EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, ElevationSpacing,

@@ -4,7 +4,7 @@
 use patchflow_learn::GpKind;
 use patchflow_sim::ScenarioSource;
 
-use crate::cross_validation::CvParams;
+use crate::cv_params::CvParams;
 
 /// The seed of every stage of the default benchmark, recorded in its outputs.
 pub const BENCH_SEED: u64 = 7;

@@ -1,5 +1,6 @@
 //! One benchmark run from scenarios to report, stage by stage (SPEC §7, `patchflow bench`).
 
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Instant;
 
@@ -21,12 +22,14 @@ use crate::bench::stages::{
 use crate::bench::target_runs::evaluate_targets;
 use crate::cpu_time::load_average;
 use crate::error::EvalError;
+use crate::method::Method;
+use crate::metrics::MethodMetrics;
 use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
 use crate::perception_summary::PerceptionSummary;
 use crate::progress::{StageTimer, StageTiming, progress_line, spinner};
 use crate::report::{
     CvReport, ReportFiles, add_to_metrics, write_cv_report, write_dataset_scene_figures,
-    write_report,
+    write_report_scored,
 };
 use crate::result::BenchmarkReport;
 
@@ -39,6 +42,9 @@ pub struct BenchOutcome {
     pub cv: CvReport,
     /// The report files written.
     pub files: ReportFiles,
+    /// Each situation's per-target metrics, as scored once for the report files (in report
+    /// order): the numbers to print.
+    pub situation_metrics: Vec<(String, BTreeMap<Method, MethodMetrics>)>,
     /// The perception cost per sequence and over all scans.
     pub perception: Vec<PerceptionSummary>,
     /// The occupancy maps' scores (`OUT/occupancy.json`, `occupancy.md`), if the plan maps any.
@@ -103,7 +109,7 @@ pub fn run_bench(
     })?;
     let training_set = sets
         .iter()
-        .find(|s| (s.prior - 0.5).abs() < 1e-12)
+        .find(|s| (s.prior() - 0.5).abs() < 1e-12)
         .ok_or_else(|| missing("a sample set with prior 0.5 (CvParams::priors)"))?;
     // 3. One estimator per GP kind on the same samples (thesis 3.1.3).
     stage("train SPGP and SPGP-HET", &mut || {
@@ -195,7 +201,7 @@ pub fn run_bench(
     report.notes = notes(plan, &estimators, load);
     report.cv = Some(cv.clone());
     report.timings = timer.timings().to_vec();
-    let files = write_report(&report, out)?;
+    let (files, scores) = write_report_scored(&report, out)?;
     write_cv_report(&cv, out)?;
     let mut runs = vec![report.situations.clone()];
     runs.extend(further_targets);
@@ -213,6 +219,11 @@ pub fn run_bench(
         report,
         cv,
         files,
+        situation_metrics: scores
+            .situations
+            .into_iter()
+            .map(|(name, _, metrics)| (name, metrics))
+            .collect(),
         perception,
         occupancy,
         spread,

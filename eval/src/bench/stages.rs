@@ -12,8 +12,9 @@ use patchflow_learn::{FeatureKind, FeatureParams, MotionEstimator, SampleSet};
 use patchflow_occupancy::{AheadParams, OccupancyParams, OccupancySequence};
 use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, generate_dataset};
 
-use crate::baselines::BaselineParams;
-use crate::cross_validation::{CvParams, cross_validate_samples};
+use crate::baseline_params::BaselineParams;
+use crate::cross_validation::cross_validate_samples;
+use crate::cv_params::CvParams;
 use crate::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 use crate::error::EvalError;
 use crate::occupancy::{

@@ -116,7 +116,7 @@ mod tests {
     use patchflow_learn::{EstimatorParams, GpKind};
     use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
-    use crate::baselines::BaselineParams;
+    use crate::baseline_params::BaselineParams;
     use crate::dataset_evaluation::evaluate_dataset;
 
     #[test]
@@ -128,6 +128,7 @@ mod tests {
             seed: 5,
             shard: Shard::ALL,
             overwrite: false,
+            realism: None,
         };
         generate_dataset(&[ScenarioSource::File(tiny.into())], &options, &|_| {}).unwrap();
         let dataset = Dataset::open(dir.path()).unwrap();

@@ -12,13 +12,8 @@ mod run;
 mod writer;
 
 pub use dgpom::{dgpom_method, dgpom_notes, learn_motion_map, predict_ahead};
-pub use json::occupancy_json;
-pub use markdown::{occupancy_markdown, occupancy_section};
-pub use paper_table::{PAPER_QUERY_TIMES, PAPER_TABLE_1, PaperRow};
-pub use plot::plot_occupancy_figure;
-pub use plot_dgpom::{plot_ahead, plot_motion_map};
+pub use markdown::occupancy_section;
 pub use run::{
-    MethodsFor, OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes,
-    occupancy_sequences,
+    OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,
 };
-pub use writer::{OccupancyFiles, write_occupancy_report};
+pub use writer::write_occupancy_report;

@@ -1,18 +1,13 @@
-//! Atomic file writes: write a sibling temporary file, then rename, so no half-written report survives.
+//! Report files: written atomically (the dataset crate's one atomic write), folders, numbers in tables.
 
 use std::path::Path;
 
 use crate::error::EvalError;
 
-/// Writes `bytes` to `path` through a temporary sibling and a rename.
+/// Writes `bytes` to `path` atomically, through the workspace's one atomic write
+/// ([`patchflow_dataset::write_atomic`]).
 pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), EvalError> {
-    let file_name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = path.with_file_name(format!(".{file_name}.tmp"));
-    std::fs::write(&tmp, bytes).map_err(|e| EvalError::io(&tmp, e))?;
-    std::fs::rename(&tmp, path).map_err(|e| EvalError::io(path, e))
+    Ok(patchflow_dataset::write_atomic(path, bytes)?)
 }
 
 /// Creates a folder and its parents.

@@ -25,12 +25,12 @@ mod writer;
 
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
 pub(crate) use files::{create_dir, fmt_opt, write_atomic};
-pub use json::{metrics_json, metrics_json_value};
+pub use json::metrics_json;
 pub use map_view::write_map_figure;
 pub use metrics_extras::add_to_metrics;
 pub(crate) use plot::{FONT, ensure_font};
-pub use plot::{plot_heading, plot_speed};
 pub use scene_figure::{SceneFigures, write_dataset_scene_figures, write_scene_figures};
 #[cfg(test)]
 pub(crate) use synthetic::synthetic_report;
+pub(crate) use writer::write_report_scored;
 pub use writer::{ReportFiles, write_report};

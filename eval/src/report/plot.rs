@@ -15,9 +15,9 @@ use plotters::style::{FontStyle, register_font};
 
 use crate::error::EvalError;
 use crate::method::Method;
-use crate::metrics::wrap_angle_rad;
 use crate::report::chart::{Axes, Curve, Decor, draw};
 use crate::result::SituationResult;
+use patchflow_dataset::wrap_angle_rad;
 
 /// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVu-LICENSE.txt`).
 const FONT_TTF: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");

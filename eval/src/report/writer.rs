@@ -43,6 +43,15 @@ pub struct ReportFiles {
 /// println!("{}", files.report_md.display());
 /// ```
 pub fn write_report(report: &BenchmarkReport, dir: &Path) -> Result<ReportFiles, EvalError> {
+    Ok(write_report_scored(report, dir)?.0)
+}
+
+/// [`write_report`], also handing back the scores it computed once, so that callers print the
+/// same numbers without scoring again.
+pub(crate) fn write_report_scored(
+    report: &BenchmarkReport,
+    dir: &Path,
+) -> Result<(ReportFiles, ReportScores), EvalError> {
     check_names(report)?;
     let scores = ReportScores::of(report)?;
 
@@ -110,7 +119,7 @@ pub fn write_report(report: &BenchmarkReport, dir: &Path) -> Result<ReportFiles,
             files.plots.push(path);
         }
     }
-    Ok(files)
+    Ok((files, scores))
 }
 
 fn check_names(report: &BenchmarkReport) -> Result<(), EvalError> {

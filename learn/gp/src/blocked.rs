@@ -5,7 +5,7 @@
 
 use nalgebra::{DMatrix, DMatrixViewMut};
 
-use super::linalg::mul;
+use super::gemm::mul;
 
 /// Largest block factored column by column.
 const LEAF: usize = 32;

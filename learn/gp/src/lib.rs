@@ -26,6 +26,7 @@ mod exp;
 mod fit;
 mod fitc;
 mod full;
+mod gemm;
 mod hyper;
 mod init;
 mod kernel;

@@ -1,7 +1,7 @@
 //! Small dense linear-algebra helpers: transposed views for gemm, a jittered Cholesky (gp.md §5.1)
 //! and triangular inverses, so the O(NM²) products run as matrix-matrix products.
 
-use nalgebra::{DMatrix, DVector, Dyn, Matrix, MatrixView, Storage};
+use nalgebra::{DMatrix, DVector, Dyn, MatrixView};
 
 /// A dense matrix view with arbitrary strides (e.g. a transpose).
 pub(crate) type StridedView<'a> = MatrixView<'a, f64, Dyn, Dyn, Dyn, Dyn>;
@@ -12,8 +12,8 @@ use crate::{GpError, Result};
 /// How many times the jitter is multiplied by 10 before a factorisation is declared failed.
 const JITTER_RETRIES: usize = 5;
 
-/// nalgebra's threshold below which `gemm` does not call matrixmultiply.
-const SMALL_DIM: usize = 5;
+use super::gemm::SMALL_DIM;
+pub(crate) use super::gemm::mul;
 
 /// A view of the transpose of the column-major `rows × cols` matrix stored in `data`.
 ///
@@ -25,25 +25,6 @@ pub(crate) fn transposed(data: &[f64], rows: usize, cols: usize) -> StridedView<
 /// The transpose of `a` as a view (see [`transposed`]).
 pub(crate) fn t_view(a: &DMatrix<f64>) -> StridedView<'_> {
     transposed(a.as_slice(), a.nrows(), a.ncols())
-}
-
-/// `a * b` through matrixmultiply's gemm (strided views included, no copies).
-pub(crate) fn mul<S1, S2>(
-    a: &Matrix<f64, Dyn, Dyn, S1>,
-    b: &Matrix<f64, Dyn, Dyn, S2>,
-) -> DMatrix<f64>
-where
-    S1: Storage<f64, Dyn, Dyn>,
-    S2: Storage<f64, Dyn, Dyn>,
-{
-    // nalgebra's fallback for small dimensions (≤ 5) mis-handles strided views (its axcpy loops
-    // over the view's slice length), so small products go through owned copies.
-    if a.nrows().min(a.ncols()).min(b.ncols()) <= SMALL_DIM {
-        return a.clone_owned() * b.clone_owned();
-    }
-    // Above the threshold nalgebra hands both views' strides to matrixmultiply and writes the
-    // result without zeroing it first.
-    a * b
 }
 
 /// `l * b` for a lower-triangular `l`, skipping the zero upper-right quarter (¾ of the work).

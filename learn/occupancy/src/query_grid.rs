@@ -79,7 +79,10 @@ impl QueryGrid {
                     origin_m[1] + row as f64 * spacing_m,
                 ];
                 let (dx, dy) = (p[0] - sx, p[1] - sy);
-                let (distance, bearing) = (dx.hypot(dy), wrap(dy.atan2(dx) - scan.yaw_rad));
+                let (distance, bearing) = (
+                    dx.hypot(dy),
+                    patchflow_dataset::wrap_angle_rad(dy.atan2(dx) - scan.yaw_rad),
+                );
                 if distance > r || bearing < first || bearing > last {
                     continue;
                 }
@@ -145,11 +148,6 @@ fn fan_rad(sensor: &SensorInfo) -> (f64, f64) {
     // Half a step of margin on each edge: the edge beams observe up to there.
     let half_step = sensor.azimuth_step_deg.abs().to_radians() / 2.0;
     (a.min(b) - half_step, a.max(b) + half_step)
-}
-
-/// An angle wrapped into [−π, π).
-fn wrap(a: f64) -> f64 {
-    (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
 }
 
 #[cfg(test)]

@@ -75,6 +75,7 @@ impl MotionEstimator {
         features: &SweepFeatures,
         clusters: &[&[[f64; 2]]],
     ) -> Result<ClusterPredictions> {
+        self.check_features(features)?;
         let mut timing = PredictionTiming {
             clusters: clusters.len(),
             rows: clusters.iter().map(|m| m.len()).sum(),

@@ -2,8 +2,9 @@
 //!
 //! ALL multiplies every prediction's Gaussian (eqs. 3.35-3.37): the result is a vote weighted by
 //! inverse variance. BEST first fits a Gaussian to the predicted variances and keeps only the
-//! predictions whose variance lies more than one standard deviation below their mean, then
-//! multiplies those; when none qualifies it falls back to ALL.
+//! predictions whose variance lies more than one standard deviation below their mean (the
+//! BEST-merge rule, on raw variances; cross-validation's low-log-variance rule differs, see
+//! [`best_merge_subset`]), then multiplies those; when none qualifies it falls back to ALL.
 //!
 //! Headings are merged in the world frame as 2-D Gaussians over the unit vector
 //! (cos α, sin α): each point's prediction relative to its own bearing is rotated by that bearing,
@@ -83,7 +84,7 @@ pub fn merge_scalar(predictions: &[Gaussian], rule: MergeRule) -> Option<Gaussia
         .copied()
         .filter(|g| usable_var(g.var) && g.mean.is_finite())
         .collect();
-    let chosen = select(&usable, |g| g.var, rule);
+    let chosen = best_merge_subset(&usable, |g| g.var, rule);
     let precision: f64 = chosen.iter().map(|g| 1.0 / g.var).sum();
     if chosen.is_empty() || !precision.is_finite() || precision <= 0.0 {
         return None;
@@ -101,7 +102,7 @@ pub fn merge_heading(votes: &[HeadingVote], rule: MergeRule) -> Option<MergedHea
         .filter(|v| v.mean.iter().all(|x| x.is_finite()) && usable_var(v.spread()))
         .filter_map(|v| v.cov.try_inverse().map(|info| (*v, info)))
         .collect();
-    let chosen = select(&usable, |(v, _)| v.spread(), rule);
+    let chosen = best_merge_subset(&usable, |(v, _)| v.spread(), rule);
     if chosen.is_empty() {
         return None;
     }
@@ -137,9 +138,15 @@ fn usable_var(var: f64) -> bool {
     var.is_finite() && var > 0.0
 }
 
-/// ALL keeps everything; BEST keeps the items whose spread is below mean − 1 std (thesis 3.1.4),
-/// falling back to everything when none qualifies.
-fn select<T: Copy>(items: &[T], spread: impl Fn(&T) -> f64, rule: MergeRule) -> Vec<T> {
+/// ALL keeps everything; BEST keeps the items whose spread is below mean − 1 std of the raw
+/// spreads (thesis 3.1.4), falling back to everything when none qualifies.
+///
+/// This is the *BEST-merge rule*, on raw variances as the thesis states it; cross-validation's
+/// *low-log-variance rule* (`eval/src/cv_fold.rs`, thesis 4.3.1) fits its Gaussian to
+/// log variances instead. They differ on purpose: the merge falls back to ALL when its subset is
+/// empty, so an empty subset costs nothing, while cross-validation has no fallback and on
+/// right-skewed map-patch variances the raw rule leaves its subset empty.
+fn best_merge_subset<T: Copy>(items: &[T], spread: impl Fn(&T) -> f64, rule: MergeRule) -> Vec<T> {
     if rule == MergeRule::All || items.len() < 2 {
         return items.to_vec();
     }

@@ -3,6 +3,7 @@
 
 mod cluster_estimate;
 mod cluster_prediction;
+mod feature_matrix;
 mod merge;
 mod model_file;
 mod motion_estimator;
@@ -12,7 +13,7 @@ mod scan_motion;
 pub use cluster_estimate::{
     ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming, ScanEstimate, ScanMotion,
 };
-pub use merge::{Gaussian, HeadingVote, MergeRule, MergedHeading, merge_heading, merge_scalar};
-pub use model_file::{MOTION_MODEL_FORMAT, MOTION_MODEL_VERSION};
+pub use feature_matrix::rows_to_matrix;
+pub use merge::{Gaussian, MergeRule, MergedHeading};
 pub use motion_estimator::{MotionEstimator, TrainingRecord};
-pub use params::EstimatorParams;
+pub use params::{EstimatorParams, EstimatorValidParams};

@@ -141,7 +141,7 @@ impl MotionEstimator {
             generator: concat!("patchflow ", env!("CARGO_PKG_VERSION")).to_owned(),
             gp: self.gp,
             feature: feature_name(self.feature).to_owned(),
-            features: FeatureRecord::from(&self.features),
+            features: FeatureRecord::from(self.features.params()),
             training: self.training.clone(),
             heading_sin: without_timing(self.heading_sin.to_json_value()?),
             heading_cos: without_timing(self.heading_cos.to_json_value()?),
@@ -153,15 +153,8 @@ impl MotionEstimator {
         };
         let mut bytes = serde_json::to_vec(&file).map_err(|e| model_err(e.to_string()))?;
         bytes.push(b'\n');
-        let tmp = path.with_extension("json.tmp");
-        std::fs::write(&tmp, bytes).map_err(|source| LearnError::Io {
-            path: tmp.clone(),
-            source,
-        })?;
-        std::fs::rename(&tmp, path).map_err(|source| LearnError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
+        patchflow_dataset::write_atomic(path, &bytes)?;
+        Ok(())
     }
 
     /// Reads a model written by [`MotionEstimator::save`]; another format or version, or a
@@ -198,7 +191,7 @@ impl MotionEstimator {
             ground,
             ..FeatureParams::from(file.features)
         };
-        features.validate().map_err(|e| model_err(e.to_string()))?;
+        let features = features.check().map_err(|e| model_err(e.to_string()))?;
         let estimator = Self {
             gp: file.gp,
             feature,

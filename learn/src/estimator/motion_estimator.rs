@@ -4,10 +4,11 @@
 use nalgebra::{DMatrix, DVector};
 use patchflow_dataset::Dataset;
 
-use super::params::EstimatorParams;
+use super::feature_matrix::rows_to_matrix;
+use super::params::{EstimatorParams, EstimatorValidParams};
 use crate::{
-    FeatureKind, FeatureParams, GpKind, GpModel, GpParams, LearnError, Result, SampleSet,
-    SweepFeatures,
+    FeatureKind, FeatureParams, FeatureValidParams, GpKind, GpModel, GpParams, LearnError, Result,
+    SampleSet, SweepFeatures,
 };
 
 /// A trained motion estimator: GPs for sin and cos of the heading relative to the bearing, and
@@ -16,7 +17,7 @@ use crate::{
 pub struct MotionEstimator {
     pub(crate) gp: GpKind,
     pub(crate) feature: FeatureKind,
-    pub(crate) features: FeatureParams,
+    pub(crate) features: FeatureValidParams,
     pub(crate) heading_sin: GpModel,
     pub(crate) heading_cos: GpModel,
     pub(crate) speed: GpModel,
@@ -56,7 +57,7 @@ impl MotionEstimator {
         params: &EstimatorParams,
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Self> {
-        params.validate()?;
+        let params = params.check()?;
         let start = std::time::Instant::now();
         // 3.1.2: importance-sample points on moving actors by the motion their patch shows.
         let set = SampleSet::collect_with_progress(
@@ -67,15 +68,44 @@ impl MotionEstimator {
             params.seed,
             progress,
         )?;
-        let mut estimator = Self::fit_samples(&set, params)?.with_sequences(dataset);
+        let mut estimator = Self::fit_checked(&set, &params)?.with_sequences(dataset);
         estimator.training.seconds = start.elapsed().as_secs_f64();
         Ok(estimator)
     }
 
-    /// Fits the three GPs to an already drawn sample set (thesis 3.1.1, 3.1.3).
+    /// Fits the three GPs to an already drawn sample set (thesis 3.1.1, 3.1.3): its first
+    /// `params.samples` samples (they are in dataset order, so these are a sample too). A set
+    /// drawn with another feature kind or other feature parameters than `params` holds is an
+    /// error: the model carries `params.features` and its GPs must have seen such features.
     pub fn fit_samples(set: &SampleSet, params: &EstimatorParams) -> Result<Self> {
-        params.validate()?;
+        Self::fit_checked(set, &params.check()?)
+    }
+
+    /// [`Self::fit_samples`] with parameters checked beforehand.
+    pub fn fit_checked(set: &SampleSet, params: &EstimatorValidParams) -> Result<Self> {
         let start = std::time::Instant::now();
+        if set.kind != params.feature {
+            return Err(LearnError::InvalidParams(format!(
+                "the samples carry {:?} features but the estimator parameters ask for {:?}",
+                set.kind, params.feature
+            )));
+        }
+        if set.features != params.features {
+            return Err(LearnError::InvalidParams(format!(
+                "the samples were drawn with feature parameters {:?} but the estimator parameters hold {:?}; draw them with EstimatorParams::features",
+                set.features, params.features
+            )));
+        }
+        let first;
+        let set = if set.samples.len() > params.samples {
+            first = SampleSet {
+                samples: set.samples[..params.samples].to_vec(),
+                ..set.clone()
+            };
+            &first
+        } else {
+            set
+        };
         if set.samples.len() < 2 {
             return Err(LearnError::DegenerateData(format!(
                 "{} training samples on moving actors; the dataset needs moving actors in the height slice",
@@ -134,10 +164,7 @@ impl MotionEstimator {
         Ok(Self {
             gp: params.gp,
             feature: set.kind,
-            features: FeatureParams {
-                prior: set.prior,
-                ..params.features.clone()
-            },
+            features: params.features().clone(),
             heading_sin,
             heading_cos,
             speed,
@@ -167,6 +194,24 @@ impl MotionEstimator {
         &self.features
     }
 
+    /// Refuses features computed with other map, slice or cluster parameters than this model
+    /// was trained with (the training-only `speed_jitter_deg` aside): its GPs never saw them.
+    pub(super) fn check_features(&self, features: &SweepFeatures) -> Result<()> {
+        let run_time = FeatureParams {
+            speed_jitter_deg: self.features.speed_jitter_deg,
+            ..features.params().clone()
+        };
+        if run_time == *self.features.params() {
+            Ok(())
+        } else {
+            Err(LearnError::InvalidParams(format!(
+                "features computed with {:?}, but the model was trained with {:?}; compute them with MotionEstimator::feature_params",
+                features.params(),
+                self.features.params()
+            )))
+        }
+    }
+
     /// What the training saw.
     pub fn training(&self) -> &TrainingRecord {
         &self.training
@@ -190,27 +235,6 @@ impl MotionEstimator {
         let d = self.feature.names().len();
         rows_to_matrix(rows.iter().map(Vec::as_slice), d)
     }
-}
-
-/// Stacks feature rows into an N × D matrix, checking every row's length.
-fn rows_to_matrix<'a>(
-    rows: impl ExactSizeIterator<Item = &'a [f64]>,
-    d: usize,
-) -> Result<DMatrix<f64>> {
-    let n = rows.len();
-    let mut x = DMatrix::zeros(n, d);
-    for (r, row) in rows.enumerate() {
-        if row.len() != d {
-            return Err(LearnError::DegenerateData(format!(
-                "feature row {r} has {} values, expected {d}",
-                row.len()
-            )));
-        }
-        for (c, v) in row.iter().enumerate() {
-            x[(r, c)] = *v;
-        }
-    }
-    Ok(x)
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! Training parameters of the motion estimator, with the thesis defaults (4.3).
 
-use crate::{FeatureKind, FeatureParams, GpKind, LearnError, Result};
+use crate::{FeatureKind, FeatureParams, FeatureValidParams, GpKind, LearnError, Result};
 
 /// Everything that decides how a [`MotionEstimator`](super::MotionEstimator) is trained.
 ///
@@ -66,9 +66,22 @@ impl EstimatorParams {
         }
     }
 
-    /// Checks the parameters once, before any work.
-    pub fn validate(&self) -> Result<()> {
-        self.features.validate()?;
+    /// Checks the parameters once, before any work, and returns them as
+    /// [`EstimatorValidParams`]: training takes those and checks nothing again.
+    ///
+    /// ```
+    /// let p = patchflow_learn::EstimatorParams::default();
+    /// assert_eq!(p.check().unwrap().samples, 1600);
+    /// ```
+    pub fn check(&self) -> Result<EstimatorValidParams> {
+        self.validate()?;
+        Ok(EstimatorValidParams {
+            features: self.features.check()?,
+            params: self.clone(),
+        })
+    }
+
+    fn validate(&self) -> Result<()> {
         if self.samples < 10 {
             return Err(LearnError::InvalidParams(format!(
                 "samples must be at least 10, got {}",
@@ -86,5 +99,28 @@ impl EstimatorParams {
             ));
         }
         Ok(())
+    }
+}
+
+/// [`EstimatorParams`] that passed [`EstimatorParams::check`] (their feature parameters checked
+/// too); reads as the parameters it wraps.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EstimatorValidParams {
+    params: EstimatorParams,
+    features: FeatureValidParams,
+}
+
+impl EstimatorValidParams {
+    /// The checked feature parameters.
+    pub fn features(&self) -> &FeatureValidParams {
+        &self.features
+    }
+}
+
+impl std::ops::Deref for EstimatorValidParams {
+    type Target = EstimatorParams;
+
+    fn deref(&self) -> &EstimatorParams {
+        &self.params
     }
 }

@@ -6,7 +6,8 @@ use std::time::Instant;
 use patchflow_dataset::Sweep;
 
 use super::cluster_estimate::{ClusterEstimate, ScanEstimate, ScanMotion};
-use crate::{CellSamples, MotionEstimator, Result, SweepFeatures};
+use crate::features::CellSamples;
+use crate::{MotionEstimator, Result, SweepFeatures};
 
 impl MotionEstimator {
     /// Thesis Algorithm 3.1 on one scan given the previous one. To process a sequence in order,
@@ -30,7 +31,7 @@ impl MotionEstimator {
     /// ```
     pub fn estimate_scan(&self, previous: &Sweep, current: &Sweep) -> Result<ScanEstimate> {
         // Steps 1 and 2: clusters of the scan (2.2.1), difference of the maps at t and t−1 (2.1.2).
-        let features = SweepFeatures::compute(previous, current, &self.features)?;
+        let features = SweepFeatures::compute_checked(previous, current, &self.features)?;
         // Steps 3 and 4: heading, then speed, of every object hypothesis.
         let motion = self.estimate_features(&features)?;
         Ok(ScanEstimate { features, motion })

@@ -9,7 +9,8 @@
 
 use std::collections::BTreeMap;
 
-use crate::{GridWindow, SlicedPoint};
+use crate::SlicedPoint;
+use crate::features::grid::GridWindow;
 
 /// Cell samples of one cluster.
 #[derive(Debug, Clone, PartialEq)]

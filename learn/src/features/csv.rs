@@ -118,7 +118,7 @@ mod tests {
     fn a_csv_in_a_missing_folder_is_an_error_naming_it() {
         let set = SampleSet {
             kind: FeatureKind::Gabor,
-            prior: 0.5,
+            features: crate::FeatureParams::default(),
             pool_size: 0,
             samples: Vec::new(),
         };

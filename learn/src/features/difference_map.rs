@@ -17,11 +17,15 @@ pub struct MapPair {
 }
 
 impl MapPair {
-    /// Builds both sweeps' reflection maps on the window centred on the current sensor and
-    /// their difference (thesis Eq. 2.8-2.9).
-    pub fn build(prev: &HeightSlice, curr: &HeightSlice, params: &FeatureParams) -> Self {
-        let window = GridWindow::centred(curr.sensor_xy, params.half_extent_m, params.cell_m);
-        Self::build_for_priors(prev, curr, params, &[params.prior])
+    /// Builds both sweeps' reflection maps on `window` (the current sweep's map window,
+    /// [`FeatureParams::map_window`]) and their difference (thesis Eq. 2.8-2.9).
+    pub fn build(
+        prev: &HeightSlice,
+        curr: &HeightSlice,
+        window: GridWindow,
+        params: &FeatureParams,
+    ) -> Self {
+        Self::build_for_priors(prev, curr, window, params.spread, &[params.prior])
             .into_iter()
             .next()
             .unwrap_or_else(|| Self {
@@ -30,22 +34,23 @@ impl MapPair {
             })
     }
 
-    /// Like [`Self::build`] once per prior (`params.prior` is not used): the beams are traced
-    /// once (in parallel for the two sweeps), since the prior only fills unobserved cells.
+    /// Like [`Self::build`] once per prior, with the hit-and-miss `spread` of
+    /// [`FeatureParams::spread`]: the beams are traced once (in parallel for the two sweeps),
+    /// since the prior only fills unobserved cells.
     pub fn build_for_priors(
         prev: &HeightSlice,
         curr: &HeightSlice,
-        params: &FeatureParams,
+        window: GridWindow,
+        spread: f64,
         priors: &[f64],
     ) -> Vec<Self> {
-        let window = GridWindow::centred(curr.sensor_xy, params.half_extent_m, params.cell_m);
         // 2.1.1: hits and misses of both sweeps' sliced beams on the current window.
         let (prev_counts, curr_counts) = rayon::join(
             || BeamCounts::trace(&prev.beams, &window),
             || BeamCounts::trace(&curr.beams, &window),
         );
         // Eq. 2.8-2.9: spread, divide, subtract.
-        let maps = reflection_and_difference(&prev_counts, &curr_counts, priors, params.spread);
+        let maps = reflection_and_difference(&prev_counts, &curr_counts, priors, spread);
         maps.into_iter()
             .zip(priors)
             .map(|(values, &prior)| Self::from_values(window, values, prior))
@@ -77,7 +82,7 @@ mod tests {
         let prev = HeightSlice::cut(&scene.scan(&lidar, [0.0, 0.0], 0.0, 0), &params).unwrap();
         let next = scene.advanced(0.1);
         let curr = HeightSlice::cut(&next.scan(&lidar, [0.0, 0.0], 0.0, 1), &params).unwrap();
-        MapPair::build(&prev, &curr, &params)
+        MapPair::build(&prev, &curr, params.map_window(curr.sensor_xy), &params)
     }
 
     /// Mean of the map over the rectangle `[x0, x1] × [y0, y1]` (cell centres inside).
@@ -150,11 +155,18 @@ mod tests {
         let prev = HeightSlice::cut(&scene.scan(&lidar, [0.0, 0.0], 0.0, 0), &params).unwrap();
         let next = scene.advanced(0.1);
         let curr = HeightSlice::cut(&next.scan(&lidar, [0.3, 0.0], 0.0, 1), &params).unwrap();
-        let both = MapPair::build_for_priors(&prev, &curr, &params, &[0.01, 0.5]);
+        let both = MapPair::build_for_priors(
+            &prev,
+            &curr,
+            params.map_window(curr.sensor_xy),
+            params.spread,
+            &[0.01, 0.5],
+        );
         for (pair, prior) in both.iter().zip([0.01, 0.5]) {
             let one = MapPair::build(
                 &prev,
                 &curr,
+                params.map_window(curr.sensor_xy),
                 &FeatureParams {
                     prior,
                     ..params.clone()

@@ -92,11 +92,6 @@ impl GaborBank {
     }
 }
 
-/// Sum of squared responses: how strongly the bank answers a patch.
-pub fn bank_energy(responses: &[f64]) -> f64 {
-    responses.iter().map(|r| r * r).sum()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -104,6 +99,11 @@ mod tests {
     use crate::features::difference_map::MapPair;
     use crate::features::slice::HeightSlice;
     use crate::features::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
+
+    /// Sum of squared responses: how strongly the bank answers a patch.
+    fn bank_energy(responses: &[f64]) -> f64 {
+        responses.iter().map(|r| r * r).sum()
+    }
 
     /// Mean bank energy over the heading patches of the points on `scene`'s box 0, with the ego
     /// driving 0.5 m along +x between the sweeps (so static structure is seen from two places).
@@ -116,7 +116,7 @@ mod tests {
         let prev = HeightSlice::cut(&scene.scan(&lidar, [-0.5, 0.0], 0.0, 0), &fp).unwrap();
         let sweep = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
         let curr = HeightSlice::cut(&sweep, &fp).unwrap();
-        let maps = MapPair::build(&prev, &curr, &fp);
+        let maps = MapPair::build(&prev, &curr, fp.map_window(curr.sensor_xy), &fp);
         let bank = GaborBank::new(params, fp.cell_m);
         let b = &scene.advanced(0.1).boxes[0];
         let (mut sum, mut n) = (0.0, 0.0);

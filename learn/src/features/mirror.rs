@@ -13,10 +13,11 @@
 //! learns the side as a prior and gets a crossing from the other side wrong. The rolling shutter
 //! spins one way and is not mirrored; its smear is a few centimetres, under a 10 cm cell.
 
+use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GABOR_FILTERS;
 use crate::features::patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
-use crate::features::samples::{Sample, SampleSet};
-use crate::features::sweep_features::FeatureKind;
+use crate::features::sample::Sample;
+use crate::features::samples::SampleSet;
 
 impl Patch {
     /// The patch reflected across its reference axis: row `r` becomes row `10 − r` in both halves.

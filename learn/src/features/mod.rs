@@ -8,6 +8,7 @@ mod cluster;
 mod cluster_shape;
 mod csv;
 mod difference_map;
+mod feature_kind;
 mod gabor;
 mod grid;
 mod ground_cells;
@@ -22,6 +23,7 @@ mod params;
 mod patch;
 mod reflection_map;
 mod render;
+mod sample;
 mod sampler;
 mod samples;
 mod sampling;
@@ -29,25 +31,37 @@ mod scan_stream;
 mod slice;
 mod spread_kernel;
 mod sweep_features;
-pub mod synthetic;
 mod synthetic_canopy;
 mod synthetic_ground;
+mod synthetic_scene;
 mod synthetic_world;
 mod top_n;
+mod valid_params;
 
-pub use cell_samples::CellSamples;
+pub(crate) use cell_samples::CellSamples;
 pub use cluster::Clusters;
-pub use cluster_shape::{ClusterShape, MAX_OBJECT_LENGTH_M};
-pub use csv::{Alignment, META_COLUMNS};
-pub use difference_map::MapPair;
-pub use gabor::{GABOR_FILTERS, GaborBank, bank_energy};
+pub use cluster_shape::ClusterShape;
+pub use csv::Alignment;
+pub use feature_kind::FeatureKind;
+pub use gabor::GaborBank;
 pub use grid::{GridMap, GridWindow};
 pub use ground_grid::GroundGrid;
-pub use params::{FeatureParams, GaborParams, GroundMode, MAX_MAP_SIDE_CELLS};
-pub use patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
-pub use render::{render_png, write_png};
-pub use samples::{Sample, SampleSet};
+pub use params::{FeatureParams, GaborParams, GroundMode};
+pub use patch::{PATCH_LEN, Patch};
+pub use render::write_png;
+pub use sample::Sample;
+pub use samples::SampleSet;
 pub use sampling::importance_sample;
 pub use scan_stream::{Scan, ScanStream};
-pub use slice::{HeightSlice, SlicedBeam, SlicedPoint};
-pub use sweep_features::{FeatureKind, FeatureTiming, SweepFeatures};
+pub use slice::{HeightSlice, SlicedPoint};
+pub use sweep_features::{FeatureTiming, SweepFeatures};
+pub use valid_params::FeatureValidParams;
+
+/// Hand-made sweeps for tests, benchmarks and demos: boxes on flat or uneven ground under tree
+/// canopies, scanned by an ideal spinning lidar (no noise, no rolling shutter).
+pub mod synthetic {
+    pub use super::synthetic_canopy::SyntheticCanopy;
+    pub use super::synthetic_ground::{SyntheticGround, SyntheticRoad};
+    pub use super::synthetic_scene::{SceneBox, SyntheticLidar, SyntheticScene, rotate_about};
+    pub use super::synthetic_world::SyntheticWorld;
+}

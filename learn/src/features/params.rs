@@ -1,5 +1,6 @@
 //! Parameters of the feature pipeline with the thesis defaults (SPEC §5, thesis 2.1-2.2 and 4.3).
 
+use crate::features::grid::GridWindow;
 use crate::{LearnError, Result};
 
 /// Every knob of the feature pipeline; `Default` gives the thesis values.
@@ -8,7 +9,7 @@ use crate::{LearnError, Result};
 /// let params = patchflow_learn::FeatureParams::default();
 /// assert_eq!(params.cell_m, 0.10);
 /// assert_eq!(params.prior, 0.5);
-/// params.validate().unwrap();
+/// let checked = params.check().unwrap();
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeatureParams {
@@ -73,6 +74,12 @@ pub const MAX_MAP_SIDE_CELLS: f64 = 2000.0;
 const MAP_BYTES_PER_CELL: f64 = 64.0;
 
 impl FeatureParams {
+    /// The map window of a sweep: centred on its sensor, `half_extent_m` each way, `cell_m`
+    /// cells. Built once per sweep and handed to the maps, the points and the clusters.
+    pub fn map_window(&self, sensor_xy: [f64; 2]) -> GridWindow {
+        GridWindow::centred(sensor_xy, self.half_extent_m, self.cell_m)
+    }
+
     /// Cells along a side of the map window.
     pub fn map_side_cells(&self) -> f64 {
         (2.0 * self.half_extent_m / self.cell_m).ceil()
@@ -86,8 +93,9 @@ impl FeatureParams {
         }
     }
 
-    /// Checks ranges; every stage assumes validated parameters.
-    pub fn validate(&self) -> Result<()> {
+    /// Checks ranges; [`Self::check`] runs this once at the boundary, and every stage below
+    /// takes the checked [`FeatureValidParams`](crate::FeatureValidParams).
+    pub(crate) fn validate(&self) -> Result<()> {
         let bad = |what: &str| Err(LearnError::InvalidParams(what.to_owned()));
         let finite = [
             self.slice_min_m,

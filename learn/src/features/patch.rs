@@ -147,7 +147,10 @@ mod tests {
         let prev = HeightSlice::cut(&scene.scan(&lidar, sensor_xy, yaw, 0), &params).unwrap();
         let curr_sweep = scene.advanced(0.1).scan(&lidar, sensor_xy, yaw, 1);
         let curr = HeightSlice::cut(&curr_sweep, &params).unwrap();
-        (MapPair::build(&prev, &curr, &params), curr)
+        (
+            MapPair::build(&prev, &curr, params.map_window(curr.sensor_xy), &params),
+            curr,
+        )
     }
 
     #[test]

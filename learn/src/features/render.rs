@@ -99,10 +99,7 @@ pub fn render_png(features: &SweepFeatures, sweep: &Sweep) -> Result<Vec<u8>> {
 /// Writes [`render_png`] to `path`.
 pub fn write_png(features: &SweepFeatures, sweep: &Sweep, path: &Path) -> Result<()> {
     let bytes = render_png(features, sweep)?;
-    std::fs::write(path, bytes).map_err(|source| LearnError::Io {
-        path: path.to_owned(),
-        source,
-    })
+    Ok(patchflow_dataset::write_atomic(path, &bytes)?)
 }
 
 /// White at 0, red towards −1 (loss), green towards +1 (gain).

@@ -7,12 +7,13 @@ use std::cmp::Reverse;
 use patchflow_dataset::{SequenceReader, Sweep};
 
 use crate::features::difference_map::MapPair;
+use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GaborBank;
 use crate::features::patch::Patch;
-use crate::features::samples::Sample;
+use crate::features::sample::Sample;
 use crate::features::sampling::{DrawKey, hashed_normal, hashed_uniform, name_hash};
 use crate::features::slice::HeightSlice;
-use crate::features::sweep_features::{FeatureKind, SweepFeatures};
+use crate::features::sweep_features::SweepFeatures;
 use crate::features::top_n::TopN;
 use crate::{FeatureParams, LearnError, Result};
 
@@ -62,10 +63,19 @@ impl Sampler<'_> {
         for t in range.clone() {
             let (curr_sweep, curr) = self.slice(reader, t)?;
             // 2.1.1-2.1.2 for every prior, the beams traced once.
-            let maps = MapPair::build_for_priors(&prev, &curr, self.params, self.priors);
+            let window = self.params.map_window(curr.sensor_xy);
+            let maps =
+                MapPair::build_for_priors(&prev, &curr, window, self.params.spread, self.priors);
             let features: Vec<SweepFeatures> = maps
                 .into_iter()
-                .map(|m| SweepFeatures::without_clusters(&curr, m, self.params, self.gabor.clone()))
+                .zip(self.priors)
+                .map(|(m, &prior)| {
+                    let params = FeatureParams {
+                        prior,
+                        ..self.params.clone()
+                    };
+                    SweepFeatures::without_clusters(&curr, m, params, self.gabor.clone())
+                })
                 .collect();
             let Some(first) = features.first() else {
                 break;

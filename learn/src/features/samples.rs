@@ -6,48 +6,21 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use patchflow_dataset::Dataset;
 use rayon::prelude::*;
 
+use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GaborBank;
+use crate::features::sample::Sample;
 use crate::features::sampler::{Rank, Run, Sampler, merge};
-use crate::features::sweep_features::FeatureKind;
 use crate::features::top_n::TopN;
 use crate::{FeatureParams, LearnError, Result};
-
-/// One training sample: a sliced point on a moving actor at sweep `scan ≥ 1`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Sample {
-    /// Sequence name.
-    pub sequence: String,
-    /// Sweep index within the sequence.
-    pub scan: u32,
-    /// Index of the point among the sweep's points.
-    pub point: usize,
-    /// Actor id (instance id of the point's label).
-    pub actor: u16,
-    /// Importance weight: mean absolute difference value of the heading patch (thesis Eq. 3.1).
-    pub weight: f64,
-    /// Bearing of sensor → point, world frame.
-    pub bearing_rad: f64,
-    /// sin(heading − bearing): the first heading target (thesis 3.1.1).
-    pub sin_rel: f64,
-    /// cos(heading − bearing): the second heading target.
-    pub cos_rel: f64,
-    /// The actor's true heading, world frame.
-    pub heading_rad: f64,
-    /// The actor's true speed: the speed target.
-    pub speed_mps: f64,
-    /// Features of the patch aligned to the bearing (input of the heading GPs).
-    pub heading_features: Vec<f64>,
-    /// Features of the patch aligned to the true heading (input of the speed GP).
-    pub speed_features: Vec<f64>,
-}
 
 /// A set of importance-sampled training samples drawn from a whole dataset.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SampleSet {
     /// Feature kind of both feature vectors.
     pub kind: FeatureKind,
-    /// Map prior the features were computed with.
-    pub prior: f64,
+    /// The feature parameters the samples were drawn with (their map prior included); a model
+    /// trained on the set carries them and refuses features computed otherwise.
+    pub features: FeatureParams,
     /// Number of candidate points the samples were drawn from.
     pub pool_size: usize,
     /// The samples, in dataset order (sequence name, sweep, point).
@@ -86,7 +59,8 @@ impl SampleSet {
         })
     }
 
-    /// One sample set per map prior (`params.prior` is not used), each drawing `n` samples from
+    /// One sample set per map prior, set `i` drawn with `params` but prior `priors[i]` (the
+    /// set's [`features`](Self::features) record which), each drawing `n` samples from
     /// the same candidates, in one pass over the dataset: every sweep is read and sliced once,
     /// every sweep pair's beams traced once for all priors (the prior only fills unobserved
     /// cells), and `progress(done, total)` is called as sweep pairs finish.
@@ -128,11 +102,12 @@ impl SampleSet {
         let mut priors: Vec<f64> = Vec::new();
         let mut draw_of: Vec<(usize, u64)> = Vec::with_capacity(draws.len());
         for &(prior, seed) in draws {
+            // Each draw's parameters checked once, here.
             FeatureParams {
                 prior,
                 ..params.clone()
             }
-            .validate()?;
+            .check()?;
             let p = match priors.iter().position(|q| q.to_bits() == prior.to_bits()) {
                 Some(p) => p,
                 None => {
@@ -187,12 +162,20 @@ impl SampleSet {
                 kept.sort_unstable_by_key(|(rank, _)| (rank.1).0);
                 Self {
                     kind,
-                    prior,
+                    features: FeatureParams {
+                        prior,
+                        ..params.clone()
+                    },
                     pool_size,
                     samples: kept.into_iter().map(|(_, s)| s).collect(),
                 }
             })
             .collect())
+    }
+
+    /// The map prior the features were computed with.
+    pub fn prior(&self) -> f64 {
+        self.features.prior
     }
 
     /// Names of the feature columns.

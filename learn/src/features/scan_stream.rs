@@ -7,7 +7,7 @@ use std::time::Instant;
 use patchflow_dataset::{SequenceReader, Sweep};
 
 use crate::features::slice::HeightSlice;
-use crate::{FeatureParams, Result, SweepFeatures};
+use crate::{FeatureParams, FeatureValidParams, Result, SweepFeatures};
 
 /// One scan of a stream: the current sweep and its features for every parameter set asked for.
 #[derive(Debug, Clone)]
@@ -37,7 +37,7 @@ pub struct Scan {
 #[derive(Debug)]
 pub struct ScanStream<'a> {
     sequence: &'a SequenceReader,
-    params: Vec<FeatureParams>,
+    params: Vec<FeatureValidParams>,
     next: usize,
     previous: Vec<HeightSlice>,
 }
@@ -46,9 +46,10 @@ impl<'a> ScanStream<'a> {
     /// A stream over `sequence` computing features once per parameter set (usually one; several
     /// when estimators were trained with different map parameters). Parameters are checked here.
     pub fn new(sequence: &'a SequenceReader, params: Vec<FeatureParams>) -> Result<Self> {
-        for p in &params {
-            p.validate()?;
-        }
+        let params = params
+            .iter()
+            .map(FeatureParams::check)
+            .collect::<Result<Vec<_>>>()?;
         Ok(Self {
             sequence,
             params,

@@ -10,31 +10,13 @@ use crate::features::cell_samples::CellSamples;
 use crate::features::cluster::Clusters;
 use crate::features::cluster_shape::ClusterShape;
 use crate::features::difference_map::MapPair;
+use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::{GABOR_FILTERS, GaborBank};
 use crate::features::grid::{GridMap, GridWindow};
 use crate::features::patch::Patch;
 use crate::features::slice::{HeightSlice, SlicedPoint};
 use crate::timing::timed;
-use crate::{FeatureParams, Result};
-
-/// Which feature vector a point gets (thesis 2.2.2 and 2.2.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum FeatureKind {
-    /// The 242 patch values (difference map, then reflection map).
-    Patch,
-    /// The 16 Gabor responses of the difference half of the patch.
-    Gabor,
-}
-
-impl FeatureKind {
-    /// Column names of this feature, in value order.
-    pub fn names(self) -> Vec<String> {
-        match self {
-            Self::Patch => Patch::feature_names(),
-            Self::Gabor => GaborBank::feature_names(),
-        }
-    }
-}
+use crate::{FeatureParams, FeatureValidParams, Result};
 
 /// The features of the current sweep given the previous one. Point indices `i` below index
 /// [`Self::points`], the sliced end points inside the map window; `points()[i].index` is the
@@ -59,6 +41,7 @@ pub struct SweepFeatures {
     clusters: Clusters,
     maps: MapPair,
     gabor: GaborBank,
+    params: FeatureParams,
     timing: FeatureTiming,
 }
 
@@ -77,9 +60,18 @@ pub struct FeatureTiming {
 }
 
 impl SweepFeatures {
-    /// Runs the per-sweep pipeline on two consecutive sweeps.
+    /// Runs the per-sweep pipeline on two consecutive sweeps (checking `params` first; a loop
+    /// over sweeps checks them once and calls [`Self::compute_checked`]).
     pub fn compute(prev: &Sweep, curr: &Sweep, params: &FeatureParams) -> Result<Self> {
-        params.validate()?;
+        Self::compute_checked(prev, curr, &params.check()?)
+    }
+
+    /// [`Self::compute`] with parameters checked beforehand.
+    pub fn compute_checked(
+        prev: &Sweep,
+        curr: &Sweep,
+        params: &FeatureValidParams,
+    ) -> Result<Self> {
         let start = Instant::now();
         // 2.1.1: cut both sweeps to the height slice.
         let (prev_slice, curr_slice) = rayon::join(
@@ -98,22 +90,22 @@ impl SweepFeatures {
     pub fn from_slices(
         prev_slice: &HeightSlice,
         curr_slice: &HeightSlice,
-        params: &FeatureParams,
+        params: &FeatureValidParams,
     ) -> Result<Self> {
-        params.validate()?;
         let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
         // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
+        let window = params.map_window(curr_slice.sensor_xy);
         let (mut maps_secs, mut clusters_secs) = (0.0, 0.0);
         let (maps, (points, clusters)) = rayon::join(
             || {
                 timed(&mut maps_secs, || {
-                    MapPair::build(prev_slice, curr_slice, params)
+                    MapPair::build(prev_slice, curr_slice, window, params)
                 })
             },
             || {
                 timed(&mut clusters_secs, || {
-                    let points = points_in_window(curr_slice, params);
+                    let points = points_in_window(curr_slice, &window);
                     let xy: Vec<[f64; 2]> = points.iter().map(|p| [p.x_m, p.y_m]).collect();
                     let clusters = Clusters::single_link(&xy, params.cluster_gap_m);
                     (points, clusters)
@@ -126,6 +118,7 @@ impl SweepFeatures {
             clusters,
             maps,
             gabor: GaborBank::new(&params.gabor, params.cell_m),
+            params: params.params().clone(),
             timing: FeatureTiming {
                 slice_secs: 0.0,
                 maps_secs,
@@ -136,21 +129,28 @@ impl SweepFeatures {
     }
 
     /// The features of a current slice from maps built elsewhere (the training sampler builds
-    /// the maps of several priors at once), without clusters: [`Self::clusters`] is empty.
+    /// the maps of several priors at once, on one window), without clusters: [`Self::clusters`]
+    /// is empty.
     pub(crate) fn without_clusters(
         curr_slice: &HeightSlice,
         maps: MapPair,
-        params: &FeatureParams,
+        params: FeatureParams,
         gabor: GaborBank,
     ) -> Self {
         Self {
             sensor_xy: curr_slice.sensor_xy,
-            points: points_in_window(curr_slice, params),
+            points: points_in_window(curr_slice, maps.reflection.window()),
             clusters: Clusters::default(),
             maps,
             gabor,
+            params,
             timing: FeatureTiming::default(),
         }
+    }
+
+    /// The feature parameters these features were computed with.
+    pub fn params(&self) -> &FeatureParams {
+        &self.params
     }
 
     /// The sliced end points inside the map window, in sweep order.
@@ -279,9 +279,8 @@ impl SweepFeatures {
     }
 }
 
-/// The sliced end points inside the map window centred on the current sensor.
-fn points_in_window(curr_slice: &HeightSlice, params: &FeatureParams) -> Vec<SlicedPoint> {
-    let window = GridWindow::centred(curr_slice.sensor_xy, params.half_extent_m, params.cell_m);
+/// The sliced end points inside the map window.
+fn points_in_window(curr_slice: &HeightSlice, window: &GridWindow) -> Vec<SlicedPoint> {
     curr_slice
         .points
         .iter()

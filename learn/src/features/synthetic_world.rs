@@ -5,9 +5,9 @@
 use nalgebra::{Translation3, UnitQuaternion, Vector3};
 use patchflow_dataset::{ObjectTruth, PointLabel, Pose, SemanticClass, Sweep};
 
-use super::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 use super::synthetic_canopy::SyntheticCanopy;
 use super::synthetic_ground::SyntheticGround;
+use super::synthetic_scene::{SceneBox, SyntheticLidar, SyntheticScene};
 
 /// SemanticKITTI's vegetation class (canopy returns).
 const VEGETATION: u16 = 70;
@@ -214,6 +214,25 @@ fn unit_hash(ray: u64, canopy: u64) -> f64 {
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^= z >> 31;
     (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+impl SyntheticScene {
+    /// Scans the scene on the flat ground z = 0 from a sensor at `sensor_xy` with yaw
+    /// `sensor_yaw_rad`; the sweep gets number `index` and time stamp `index / 10` s. See
+    /// [`SyntheticWorld`] for uneven ground and tree canopies.
+    pub fn scan(
+        &self,
+        lidar: &SyntheticLidar,
+        sensor_xy: [f64; 2],
+        sensor_yaw_rad: f64,
+        index: u32,
+    ) -> Sweep {
+        let world = SyntheticWorld {
+            scene: self.clone(),
+            ..SyntheticWorld::default()
+        };
+        world.scan(lidar, sensor_xy, sensor_yaw_rad, index)
+    }
 }
 
 #[cfg(test)]

@@ -11,6 +11,8 @@
 //! assert_eq!(label.instance(), 7);
 //! ```
 
+mod angle;
+mod atomic_file;
 mod error;
 mod folder_lock;
 mod limits;
@@ -27,6 +29,8 @@ mod sweep;
 mod sweep_checks;
 mod writer;
 
+pub use angle::{wrap_angle_rad, wrap_angle_upper_rad};
+pub use atomic_file::write_atomic;
 pub use error::{DatasetError, Result};
 pub use folder_lock::{FolderLock, LOCK_FILE};
 pub use limits::{MAX_POINTS_PER_SWEEP, MAX_SWEEPS, read_limited};
@@ -38,7 +42,7 @@ pub use semantic::{PointLabel, SemanticClass};
 pub use sensor_info::{SensorInfo, SensorKind};
 pub use static_obstacle::StaticObstacle;
 pub use sweep::Sweep;
-pub use writer::{SequenceWriter, sha256_hex, write_atomic};
+pub use writer::{SequenceWriter, sha256_hex};
 
 /// Rigid transform type used for every pose (`world_from_sensor` and friends), f64 in the world frame.
 pub type Pose = nalgebra::Isometry3<f64>;

@@ -8,8 +8,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::atomic_file::write_atomic;
 use crate::limits::{MAX_JSON_BYTES, read_limited};
-use crate::writer::write_atomic;
 use crate::{DatasetError, Result};
 
 /// Name written into every manifest and marker, so foreign JSON files are recognised as such.

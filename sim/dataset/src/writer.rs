@@ -3,10 +3,10 @@
 //! interrupted run leaves no half-written file and can be resumed sweep by sweep.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use sha2::{Digest, Sha256};
 
+use crate::atomic_file::write_atomic;
 use crate::limits::{MAX_TEXT_BYTES, read_limited};
 use crate::manifest::{read_marker, write_json};
 use crate::pose::format_kitti_pose;
@@ -35,28 +35,6 @@ P2: 7.188560e+02 0.000000e+00 6.071928e+02 4.538225e+01 0.000000e+00 7.188560e+0
 P3: 7.188560e+02 0.000000e+00 6.071928e+02 -3.372877e+02 0.000000e+00 7.188560e+02 1.852157e+02 2.369057e+00 0.000000e+00 0.000000e+00 1.000000e+00 4.915215e-03
 Tr: 1.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 1.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 0.000000e+00 1.000000e+00 0.000000e+00
 ";
-
-/// Writes `bytes` to `path` atomically: a temporary file beside it, then a rename.
-///
-/// A crash leaves either the old file, the new file, or a stray `*.tmp`; never a truncated file
-/// under the real name. The temporary name is unique to this process and call, so two writers
-/// never share one; on an error it is removed, and [`crate::FolderLock::acquire`] removes any a
-/// crashed run left behind.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let mut tmp = path.as_os_str().to_owned();
-    let unique = COUNTER.fetch_add(1, Ordering::Relaxed);
-    tmp.push(format!(".{}-{unique}.tmp", std::process::id()));
-    let tmp = PathBuf::from(tmp);
-    let written = std::fs::write(&tmp, bytes)
-        .map_err(|e| DatasetError::io(&tmp, e))
-        .and_then(|()| std::fs::rename(&tmp, path).map_err(|e| DatasetError::io(path, e)));
-    if written.is_err() {
-        // Best effort: the error being reported is the write's, not this clean-up's.
-        let _ = std::fs::remove_file(&tmp);
-    }
-    written
-}
 
 /// Writer for `DIR/sequences/<name>/`.
 #[derive(Debug)]
@@ -250,17 +228,6 @@ pub(crate) fn sweep_path(dir: &Path, folder: &str, index: u32, ext: &str) -> Pat
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_failed_atomic_write_leaves_no_temporary_file() {
-        let dir = tempfile::tempdir().unwrap();
-        // Renaming a file onto a folder fails after the temporary file was written.
-        let target = dir.path().join("000000.bin");
-        std::fs::create_dir(&target).unwrap();
-        assert!(write_atomic(&target, b"data").is_err());
-        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().collect();
-        assert_eq!(left.len(), 1, "{left:?}");
-    }
 
     #[test]
     fn the_scenario_hash_is_what_sha256sum_prints() {

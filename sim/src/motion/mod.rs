@@ -4,6 +4,6 @@ mod path;
 mod speed_profile;
 mod trajectory;
 
-pub use path::{Path, PathPoint, wrap_angle};
+pub use path::{Path, PathPoint};
 pub use speed_profile::{ProfileState, SpeedProfile};
 pub use trajectory::{MotionState, Trajectory};

@@ -1,6 +1,8 @@
 //! A smooth ground-plane path: straight segments between waypoints, corners rounded by circular
 //! arcs of one radius, so the heading is continuous and the curvature is 0 or ±1/r.
 
+use patchflow_dataset::wrap_angle_upper_rad;
+
 /// A point of the path: where, which way, how sharply it turns.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PathPoint {
@@ -55,22 +57,12 @@ impl Element {
                         centre[0] + radius * angle.cos(),
                         centre[1] + radius * angle.sin(),
                     ],
-                    heading_rad: wrap_angle(angle + sign * std::f64::consts::FRAC_PI_2),
+                    heading_rad: wrap_angle_upper_rad(angle + sign * std::f64::consts::FRAC_PI_2),
                     curvature_per_m: sign / radius,
                 }
             }
         }
     }
-}
-
-/// Wraps an angle into (−π, π].
-pub fn wrap_angle(angle: f64) -> f64 {
-    let two_pi = std::f64::consts::TAU;
-    let mut a = angle.rem_euclid(two_pi);
-    if a > std::f64::consts::PI {
-        a -= two_pi;
-    }
-    a
 }
 
 /// A path by arc length; beyond both ends it continues straight along the end tangents.
@@ -235,7 +227,7 @@ mod tests {
         while s < path.length_m() + 5.0 {
             let (a, b) = (path.at(s), path.at(s + ds));
             assert!(
-                wrap_angle(b.heading_rad - a.heading_rad).abs() < ds / 8.0 + 1e-9,
+                wrap_angle_upper_rad(b.heading_rad - a.heading_rad).abs() < ds / 8.0 + 1e-9,
                 "heading jumps at s = {s}"
             );
             let step = (b.position_m[0] - a.position_m[0]).hypot(b.position_m[1] - a.position_m[1]);

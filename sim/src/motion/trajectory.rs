@@ -2,8 +2,8 @@
 //! rate come in closed form at any time t (never by finite differences).
 
 use super::{Path, SpeedProfile};
-use crate::motion::path::wrap_angle;
 use crate::scenario::ActorConfig;
+use patchflow_dataset::wrap_angle_upper_rad;
 
 /// The exact motion state of a box following its path at one instant (ground plane, world frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,10 +67,10 @@ impl Trajectory {
         let (sin, cos) = point.heading_rad.sin_cos();
         MotionState {
             position_m: point.position_m,
-            yaw_rad: wrap_angle(point.heading_rad),
+            yaw_rad: wrap_angle_upper_rad(point.heading_rad),
             velocity_mps: [progress.speed_mps * cos, progress.speed_mps * sin],
             speed_mps: progress.speed_mps,
-            heading_rad: wrap_angle(point.heading_rad),
+            heading_rad: wrap_angle_upper_rad(point.heading_rad),
             yaw_rate_radps: point.curvature_per_m * progress.speed_mps,
         }
     }
@@ -98,7 +98,7 @@ mod tests {
                 (vx - now.velocity_mps[0]).abs() < 1e-4 && (vy - now.velocity_mps[1]).abs() < 1e-4,
                 "velocity at t = {t}"
             );
-            let yaw_rate = wrap_angle(b.yaw_rad - a.yaw_rad) / (2.0 * h);
+            let yaw_rate = wrap_angle_upper_rad(b.yaw_rad - a.yaw_rad) / (2.0 * h);
             // Skip the instants where an arc meets a straight (the curvature steps there).
             if (a.yaw_rate_radps - b.yaw_rate_radps).abs() < 1e-3 {
                 assert!(

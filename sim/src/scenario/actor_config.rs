@@ -5,8 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use super::bounds::{
     Bound, COORD_M, MAX_PATH_POINTS, SIZE_M, TIME_SECS, TURN_RADIUS_M, check_count,
+    reflectivity_problem,
 };
-use super::schema::reflectivity_problem;
 
 /// Acceleration and braking limit of any actor.
 const ACCEL_MPS2: Bound = Bound::new(0.01, 10.0, "m/s²", "from a crawl to a sports car's braking");

@@ -126,6 +126,11 @@ pub(crate) const YAW_DEG: Bound = Bound::new(-3600.0, 3600.0, "°", "at most ten
 /// Any reflectivity.
 pub(crate) const REFLECTIVITY: Bound = Bound::new(0.0, 1.0, "", "a share of the light");
 
+/// The problem with a surface's lidar reflectivity, if it lies outside [0, 1].
+pub(crate) fn reflectivity_problem(reflectivity: Option<f64>) -> Option<(&'static str, String)> {
+    REFLECTIVITY.check("reflectivity", reflectivity?)
+}
+
 /// Distance between the boxes of a row.
 pub(crate) const SPACING_M: Bound =
     Bound::new(0.1, 10_000.0, "m", "rows of boxes 10 cm to 10 km apart");

@@ -8,7 +8,7 @@ use super::bounds::{
     BYTES_PER_RAY, COORD_M, MAX_BOXES, MAX_RAYS_PER_SWEEP, MAX_ROW_BOXES, MAX_TRAFFIC_PATH_M,
     TIME_SECS, show,
 };
-use super::load::{Problem, Seg};
+use super::problem::{Problem, Seg};
 use super::world_limits::{WorldSize, world_problems};
 use super::{ActorConfig, Scenario};
 use crate::motion::Trajectory;

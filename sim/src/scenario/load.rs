@@ -10,18 +10,9 @@ use super::bounds::{
     MAX_ACTORS, MAX_SCENARIO_BYTES, MAX_SWEEPS, REFLECTIVITY, TIME_SECS, check_count,
 };
 use super::derived_limits::derived_problems;
+use super::problem::{Problem, Seg};
 use crate::error::{Result, SimError};
 use crate::motion::Trajectory;
-
-/// One step of the way from the document root to a value, to find the line a problem is on.
-#[derive(Debug, Clone, Copy)]
-pub(super) enum Seg<'a> {
-    Key(&'a str),
-    Index(usize),
-}
-
-/// A problem found after parsing: where it is (keys and array indices) and what it is.
-pub(super) type Problem = (Vec<Seg<'static>>, String);
 
 impl Scenario {
     /// Reads, validates and resolves a scenario file; errors name the file and the line.

@@ -9,6 +9,7 @@ mod lidar_config;
 mod load;
 mod planar_config;
 mod pose_error_config;
+mod problem;
 mod realism;
 mod road_config;
 mod schema;

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::bounds::{Bound, COORD_M, MAX_RANDOM_ACTORS, REFLECTIVITY, check_count};
+use super::bounds::{Bound, COORD_M, MAX_RANDOM_ACTORS, check_count};
 use super::{
     ActorConfig, LidarConfig, PoseErrorConfig, Realism, RoadConfig, SensorConfig, StructureConfig,
     WorldConfig,
@@ -38,11 +38,6 @@ impl Default for TrafficConfig {
             car_speed_mps: [2.0, 10.0],
         }
     }
-}
-
-/// The problem with a surface's lidar reflectivity, if it lies outside [0, 1].
-pub(crate) fn reflectivity_problem(reflectivity: Option<f64>) -> Option<(&'static str, String)> {
-    REFLECTIVITY.check("reflectivity", reflectivity?)
 }
 
 impl TrafficConfig {

@@ -3,8 +3,7 @@
 use patchflow_dataset::SemanticClass;
 use serde::{Deserialize, Serialize};
 
-use super::bounds::{COORD_M, MAX_ROW_BOXES, SIZE_M, SPACING_M, YAW_DEG};
-use super::schema::reflectivity_problem;
+use super::bounds::{COORD_M, MAX_ROW_BOXES, SIZE_M, SPACING_M, YAW_DEG, reflectivity_problem};
 
 /// What a static structure is; sets its label, default size and reflectivity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

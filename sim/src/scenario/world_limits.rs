@@ -9,7 +9,7 @@ use patchflow_dataset::ActorClass;
 
 use super::bounds::show;
 use super::derived_limits::gigabytes;
-use super::load::{Problem, Seg};
+use super::problem::{Problem, Seg};
 use super::{Realism, Scenario, StructureKind, WorldKnobs};
 use crate::motion::Trajectory;
 

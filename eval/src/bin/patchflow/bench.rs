@@ -1,9 +1,10 @@
 //! `patchflow bench`: the main job on embedded defaults, run by the library's benchmark driver
 //! ([`patchflow_eval::run_bench`]); this command only picks the plan and prints.
 
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use patchflow_eval::{BenchPlan, BenchmarkReport, Method, SeedSpread, run_bench};
+use patchflow_eval::{BenchPlan, Method, MethodMetrics, SeedSpread, run_bench};
 
 /// Arguments of `patchflow bench`.
 #[derive(Debug, clap::Args)]
@@ -37,7 +38,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     plan.keep_data = args.keep_data;
     // Every stage's start and end is printed to stderr by the driver.
     let outcome = run_bench(&plan, &args.out, &|_| {})?;
-    print_headline(&outcome.report, &outcome.spread)?;
+    print_headline(&outcome.situation_metrics, &outcome.spread);
     if let Some(occupancy) = &outcome.occupancy {
         crate::occupancy::print_table(occupancy);
     }
@@ -49,8 +50,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 }
 
 /// Prints one line per situation: heading and speed RMSE and coverage of the headline methods,
-/// the GPs' as mean ± std over the training seeds when there are several.
-fn print_headline(report: &BenchmarkReport, spread: &SeedSpread) -> anyhow::Result<()> {
+/// the GPs' as mean ± std over the training seeds when there are several, from the scores the
+/// report files were written with.
+fn print_headline(situations: &[(String, BTreeMap<Method, MethodMetrics>)], spread: &SeedSpread) {
     let methods = [Method::SpgpHetAll, Method::SpgpAll, Method::Kf, Method::Icp];
     println!(
         "\n{:<12} {}",
@@ -64,13 +66,9 @@ fn print_headline(report: &BenchmarkReport, spread: &SeedSpread) -> anyhow::Resu
             .map(|_| format!("{:>40}", "heading° / speed m/s / cov"))
             .join("")
     );
-    for situation in &report.situations {
-        let metrics = situation.metrics()?;
+    for (name, metrics) in situations {
         let spread_of = |m: &Method| {
-            let (_, methods) = spread
-                .situations
-                .iter()
-                .find(|(n, _)| *n == situation.name)?;
+            let (_, methods) = spread.situations.iter().find(|(n, _)| n == name)?;
             methods.get(m).filter(|s| s.heading_rmse_deg.std.is_some())
         };
         let cells = methods.map(|m| match (spread_of(&m), metrics.get(&m)) {
@@ -94,7 +92,6 @@ fn print_headline(report: &BenchmarkReport, spread: &SeedSpread) -> anyhow::Resu
             ),
             (None, None) => format!("{:>40}", "-"),
         });
-        println!("{:<12} {}", situation.name, cells.join(""));
+        println!("{:<12} {}", name, cells.join(""));
     }
-    Ok(())
 }

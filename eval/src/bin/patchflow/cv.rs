@@ -3,9 +3,8 @@
 use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
-use patchflow_eval::{
-    CvParams, collect_samples_with_bar, cross_validate_with_bar, write_cv_report,
-};
+use patchflow_eval::stages::{collect_samples_with_bar, cross_validate_with_bar};
+use patchflow_eval::{CvParams, write_cv_report};
 
 /// Arguments of `patchflow cv`.
 #[derive(Debug, clap::Args)]

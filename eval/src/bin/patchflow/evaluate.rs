@@ -4,8 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
+use patchflow_eval::stages::evaluate_with_bar;
 use patchflow_eval::{
-    PerceptionSummary, add_to_metrics, evaluate_with_bar, write_dataset_scene_figures, write_report,
+    PerceptionSummary, add_to_metrics, write_dataset_scene_figures, write_report,
 };
 use patchflow_learn::MotionEstimator;
 

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::{GpReadout, export_flow, progress_bar};
+use patchflow_eval::progress::progress_bar;
+use patchflow_eval::{GpReadout, export_flow};
 use patchflow_learn::{MergeRule, MotionEstimator};
 
 /// Arguments of `patchflow flow`.

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use patchflow_eval::generate_with_progress;
+use patchflow_eval::stages::generate_with_progress;
 use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard, write_kitti_names};
 
 /// Arguments of `patchflow generate`.

@@ -6,7 +6,8 @@
 use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
-use patchflow_eval::{OccupancyReport, occupancy_with_bar, write_occupancy_report};
+use patchflow_eval::stages::occupancy_with_bar;
+use patchflow_eval::{OccupancyReport, write_occupancy_report};
 
 /// Arguments of `patchflow occupancy`.
 #[derive(Debug, clap::Args)]

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_eval::progress_bar;
+use patchflow_eval::progress::progress_bar;
 use patchflow_learn::{EstimatorParams, FeatureParams, MotionEstimator};
 
 use crate::common::{parse_feature, parse_gp};

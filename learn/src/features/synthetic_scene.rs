@@ -1,13 +1,9 @@
 //! A world of boxes on flat ground scanned by an ideal spinning lidar: exact, hand-made sweeps for
 //! tests, benchmarks and demos while no simulator is at hand. No noise, no rolling shutter.
-//! [`SyntheticWorld`] puts the boxes on uneven ground ([`SyntheticGround`]) under tree canopies.
+//! `SyntheticWorld` puts the boxes on uneven ground (`SyntheticGround`) under tree canopies.
 
 use nalgebra::Vector3;
-use patchflow_dataset::{ActorClass, Sweep};
-
-pub use super::synthetic_canopy::SyntheticCanopy;
-pub use super::synthetic_ground::{SyntheticGround, SyntheticRoad};
-pub use super::synthetic_world::SyntheticWorld;
+use patchflow_dataset::ActorClass;
 
 /// A box standing on the ground: a static structure or an actor moving at constant velocity.
 #[derive(Debug, Clone, PartialEq)]
@@ -137,23 +133,6 @@ impl SyntheticScene {
             b.velocity_mps = rotate_about(b.velocity_mps, [0.0, 0.0], angle_rad);
         }
         next
-    }
-
-    /// Scans the scene on the flat ground z = 0 from a sensor at `sensor_xy` with yaw
-    /// `sensor_yaw_rad`; the sweep gets number `index` and time stamp `index / 10` s. See
-    /// [`SyntheticWorld`] for uneven ground and tree canopies.
-    pub fn scan(
-        &self,
-        lidar: &SyntheticLidar,
-        sensor_xy: [f64; 2],
-        sensor_yaw_rad: f64,
-        index: u32,
-    ) -> Sweep {
-        let world = SyntheticWorld {
-            scene: self.clone(),
-            ..SyntheticWorld::default()
-        };
-        world.scan(lidar, sensor_xy, sensor_yaw_rad, index)
     }
 }
 
