@@ -42,13 +42,16 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         stages.lock().unwrap().push(t.stage.clone())
     })
     .unwrap();
-    assert_eq!(stages.lock().unwrap().len(), 6);
+    // Six stages and the realism study (the situation at every rung, issue #10).
+    assert_eq!(stages.lock().unwrap().len(), 7);
     let files = &outcome.files;
     for file in [
         "cv.json",
         "cv.md",
         "models/spgp.json",
         "models/spgp-het.json",
+        "realism/study.json",
+        "realism/plots/study_realism_heading.png",
     ] {
         assert!(out.join(file).exists(), "{file} missing");
     }
@@ -114,6 +117,8 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         "## e2e (13 scans)",
         "### Scene flow",
         "## Perception per scan",
+        "## Realism study",
+        "## Synthetic to real",
     ] {
         assert!(md.contains(needle), "{needle}");
     }

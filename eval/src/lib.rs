@@ -31,6 +31,7 @@ mod scan_scoring;
 mod scene_evaluation;
 mod scene_flow;
 mod scene_point;
+mod study;
 mod thesis_tables;
 mod tracker;
 mod truth_at_scan;
@@ -83,6 +84,11 @@ pub use scene_flow::{
     DYNAMIC_SPEED_MPS, SPEED_BUCKETS, SceneFlowMetrics, SceneFlowTally, end_point_error,
 };
 pub use scene_point::{FlowClass, ScenePoints};
+pub use study::{
+    POINT_BINS as STUDY_POINT_BINS, PointResult, Scores, SensorSetting, StudyFactor, StudyFiles,
+    StudyPlan, StudyPoint, StudyReport, discussion_section, merge_study, point_file,
+    realism_in_bench, realism_sections, run_study, study_markdown, study_section, write_study,
+};
 pub use thesis_tables::{
     THESIS_CV_HEADING_LOW_VAR_RMSE_DEG, THESIS_CV_HEADING_RMSE_DEG,
     THESIS_CV_SPEED_LOW_VAR_RMSE_MPS, THESIS_CV_SPEED_RMSE_MPS, THESIS_SITUATIONS, ThesisRow,

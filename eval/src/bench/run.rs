@@ -19,6 +19,7 @@ use crate::perception_summary::PerceptionSummary;
 use crate::progress::{StageTimer, StageTiming, spinner};
 use crate::report::{CvReport, ReportFiles, write_cv_report, write_report};
 use crate::result::BenchmarkReport;
+use crate::study::{realism_in_bench, realism_sections};
 
 /// What a benchmark run produced.
 #[derive(Debug, Clone)]
@@ -109,6 +110,12 @@ pub fn run_bench(
     })?;
     let load = load_before.zip(load_average());
     let (cv, mut report) = cv.zip(report).ok_or_else(|| missing("results"))?;
+    // 5b. The realism study (issue #10): the situations at every rung, the same models.
+    let mut realism = None;
+    stage("realism study", &mut || {
+        realism = Some(realism_in_bench(plan, &report, &estimators, out)?);
+        Ok(())
+    })?;
     // 6. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
     //    training run is generated beside it for methods that learn beforehand.
     let mut occupancy = None;
@@ -138,6 +145,9 @@ pub fn run_bench(
     if let Some(occupancy) = &occupancy {
         write_occupancy_report(occupancy, out)?;
         append(&files.report_md, &occupancy_section(occupancy))?;
+    }
+    if let Some(realism) = &realism {
+        append(&files.report_md, &realism_sections(realism, &cv))?;
     }
     let perception = PerceptionSummary::of_scenes(&report.scenes);
     Ok(BenchOutcome {

@@ -17,8 +17,10 @@ mod synthetic;
 mod writer;
 
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
-pub(crate) use files::{create_dir, write_atomic};
+pub(crate) use files::{create_dir, fmt_opt, write_atomic};
 pub use json::{metrics_json, metrics_json_value};
 pub(crate) use plot::{FONT, ensure_font};
 pub use plot::{plot_heading, plot_speed};
+#[cfg(test)]
+pub(crate) use synthetic::synthetic_situation;
 pub use writer::{ReportFiles, write_report};
