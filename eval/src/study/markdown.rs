@@ -9,8 +9,16 @@ use crate::report::fmt_opt;
 use crate::study::merge::StudyReport;
 use crate::study::point_result::Scores;
 
-/// The measures of the tables and plots: title, file stem, decimals, value.
-pub(crate) const MEASURES: [(&str, &str, usize, fn(&Scores) -> Option<f64>); 3] = [
+/// A measure: title, file stem, decimals, and its value in a method's scores.
+pub(crate) type Measure = (
+    &'static str,
+    &'static str,
+    usize,
+    fn(&Scores) -> Option<f64>,
+);
+
+/// The measures of the tables and plots.
+pub(crate) const MEASURES: [Measure; 3] = [
     ("Heading RMSE (°)", "heading", 1, |s| s.heading_rmse_deg),
     ("Speed RMSE (m/s)", "speed", 2, |s| s.speed_rmse_mps),
     ("Coverage", "coverage", 2, |s| Some(s.coverage)),
