@@ -10,6 +10,9 @@
 
 mod error;
 mod generate;
+#[cfg(test)]
+mod ground_contact_tests;
+mod kitti_names;
 mod lidar;
 mod motion;
 mod pose_error;
@@ -24,6 +27,7 @@ pub use error::{Result, SimError};
 pub use generate::{
     GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset, generate_sequence,
 };
+pub use kitti_names::write_kitti_names;
 pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
 pub use motion::{
     MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory, wrap_angle,

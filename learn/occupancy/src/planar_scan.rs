@@ -74,7 +74,8 @@ impl PlanarScan {
                 *slot = Some(x.hypot(y));
             }
         }
-        let pose = &sweep.world_from_sensor;
+        // The scanner's own pose estimate, as a real system has (the truth where there is none).
+        let pose = &sweep.estimated_pose();
         let to_world = |r: f64, column: u32| -> [f64; 2] {
             let (s, c) = sensor.azimuth_rad(column).sin_cos();
             let p = pose * nalgebra::Point3::new(r * c, r * s, 0.0);

@@ -94,11 +94,11 @@ impl GroundGrid {
     pub const MARGIN_M: f64 = 4.0;
 
     /// Estimates the ground within `half_extent_m` (plus [`Self::MARGIN_M`]) of the sweep's
-    /// sensor from its points (sensor frame) and `world_from_sensor`. A non-finite point is an
-    /// error.
+    /// sensor from its points (sensor frame) and the ego's estimated pose. A non-finite point is
+    /// an error.
     pub fn estimate(sweep: &Sweep, half_extent_m: f64) -> Result<Self> {
         let points = points_in_world(sweep)?;
-        let sensor = sweep.world_from_sensor.translation.vector;
+        let sensor = sweep.estimated_pose().translation.vector;
         Ok(Self::from_points_in_world(
             &points,
             [sensor.x, sensor.y],
@@ -155,10 +155,13 @@ impl GroundGrid {
     }
 }
 
-/// Every point of the sweep in the world frame; a non-finite point is an error.
+/// Every point of the sweep in the world frame as the ego places it, with its estimated pose
+/// ([`Sweep::estimated_pose`], the truth where the dataset has no estimate); a non-finite point
+/// is an error.
 pub(crate) fn points_in_world(sweep: &Sweep) -> Result<Vec<[f64; 3]>> {
-    let origin = sweep.world_from_sensor.translation.vector;
-    let rotation = sweep.world_from_sensor.rotation.to_rotation_matrix();
+    let world_from_sensor = sweep.estimated_pose();
+    let origin = world_from_sensor.translation.vector;
+    let rotation = world_from_sensor.rotation.to_rotation_matrix();
     sweep
         .points_in_sensor
         .iter()

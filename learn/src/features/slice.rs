@@ -43,13 +43,16 @@ pub struct HeightSlice {
 }
 
 impl HeightSlice {
-    /// Cuts a sweep: beams run from the sensor origin to each end point, and heights are taken
+    /// Cuts a sweep: beams run from the sensor origin to each end point, placed in the world
+    /// with the ego's estimated pose ([`Sweep::estimated_pose`]), and heights are taken
     /// above the ground `params.ground` names (world z = 0, or the sweep's own estimated ground,
     /// [`GroundGrid`]). A non-finite point is an error.
     pub fn cut(sweep: &Sweep, params: &FeatureParams) -> Result<Self> {
         // The end points in the world frame.
+        // The end points in the world frame of the ego's own pose estimate (a real car has no
+        // other; the truth pose is for labels and metrics only).
         let points = points_in_world(sweep)?;
-        let o = sweep.world_from_sensor.translation.vector;
+        let o = sweep.estimated_pose().translation.vector;
         let origin = [o.x, o.y, o.z];
         match params.ground {
             GroundMode::Flat => Ok(Self::above_flat(&points, origin, params)),
@@ -67,7 +70,7 @@ impl HeightSlice {
     /// with the sweep's own estimate).
     pub fn cut_above(sweep: &Sweep, ground: &GroundGrid, params: &FeatureParams) -> Result<Self> {
         let points = points_in_world(sweep)?;
-        let o = sweep.world_from_sensor.translation.vector;
+        let o = sweep.estimated_pose().translation.vector;
         Ok(Self::above(&points, [o.x, o.y, o.z], ground, params))
     }
 

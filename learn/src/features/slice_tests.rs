@@ -225,3 +225,30 @@ fn on_flat_ground_the_estimated_ground_gives_the_clusters_of_the_flat_one() {
         }
     }
 }
+
+#[test]
+fn the_slice_places_points_with_the_estimated_pose_not_the_truth() {
+    // The ego believes it stands 1.5 m east and 0.8 m north of where it is: the slice (what the
+    // car's perception sees) must sit where the estimate puts it, 1.5 m / 0.8 m off the truth.
+    let mut sweep = sweep_with(vec![[10.0, 0.0, -1.0]]);
+    sweep.estimated_world_from_sensor = Some(Pose::from_parts(
+        Translation3::new(6.5, -1.2, 1.73),
+        UnitQuaternion::identity(),
+    ));
+    for params in [flat(), FeatureParams::default()] {
+        let slice = HeightSlice::cut(&sweep, &params).unwrap();
+        assert!(
+            (slice.sensor_xy[0] - 6.5).abs() < 1e-9 && (slice.sensor_xy[1] + 1.2).abs() < 1e-9,
+            "{:?}",
+            slice.sensor_xy
+        );
+        if params.ground == GroundMode::Estimated {
+            continue; // one point is no ground to slice above; its origin is checked
+        }
+        let point = slice.points[0];
+        assert!(
+            (point.x_m - 16.5).abs() < 1e-6 && (point.y_m + 1.2).abs() < 1e-6,
+            "{point:?}"
+        );
+    }
+}

@@ -53,10 +53,11 @@ mod tests {
     }
 
     /// A fixed planar scanner at the origin facing +x, a wall whose near face is the plane
-    /// x = 10 m, and (optionally) a car crossing between them.
+    /// x = 10 m, and (optionally) a car crossing between them, in the flat world of the
+    /// `ideal` rung (exact ranges).
     fn wall_scene(extra: &str) -> Simulation {
         let text = format!(
-            "sweeps = 6\n[lidar]\nkind = \"planar\"\nbeams = 181\nrate_hz = 1.0\nmax_range_m = 30.0\nrange_noise_std_m = 0.0\n[ego]\npath_m = [[0.0, 0.0], [1.0, 0.0]]\nspeed_mps = 0.0\n[[structures]]\nkind = \"wall\"\ncentre_m = [10.15, 0.0]\nsize_m = [40.0, 0.3, 3.0]\nyaw_deg = 90.0\n{extra}"
+            "sweeps = 6\nrealism = \"ideal\"\n[lidar]\nkind = \"planar\"\nbeams = 181\nrate_hz = 1.0\nmax_range_m = 30.0\nrange_noise_std_m = 0.0\n[ego]\npath_m = [[0.0, 0.0], [1.0, 0.0]]\nspeed_mps = 0.0\n[[structures]]\nkind = \"wall\"\ncentre_m = [10.15, 0.0]\nsize_m = [40.0, 0.3, 3.0]\nyaw_deg = 90.0\n{extra}"
         );
         let scenario = Scenario::from_toml(&text, "wall.toml", "wall").unwrap();
         Simulation::new(&scenario, 1).unwrap()

@@ -15,7 +15,7 @@ use super::intensity::intensity;
 use super::scan::Return;
 use rapier3d::parry::shape::FeatureId;
 
-use crate::scene::{Glass, SurfaceKind};
+use crate::scene::{Glass, HitPart, SurfaceKind};
 use crate::world::GLASS_FEATURE;
 
 /// Most surfaces a beam passes (foliage) before it is given up.
@@ -94,7 +94,7 @@ impl BlockCaster<'_> {
                     return None;
                 }
                 if u < GLASS_LOST + GLASS_PASSED {
-                    range += rng.random_range(1.0..5.0);
+                    range += self.behind_pane_m(part, hit, dir, rng.random_range(1.0..5.0));
                     reflectivity = 0.3;
                     cos = 0.7;
                 }
@@ -130,5 +130,24 @@ impl BlockCaster<'_> {
             });
         }
         None
+    }
+
+    /// How far behind a glass pane hit at `hit` a passing beam returns from the interior:
+    /// `depth_m`, but never past the far side of what it hit (a car's cabin) nor below the
+    /// ground (a descending beam through a low window would otherwise return from under the
+    /// road, as it once did: 0.5-1.3 m down).
+    fn behind_pane_m(&self, part: HitPart, hit: Vector, dir: Vector, depth_m: f32) -> f32 {
+        let inside = Ray::new(hit + dir * 1e-3, dir);
+        let mut depth = depth_m;
+        if let Some(exit) = self.query.exit_toi(part, &inside, depth) {
+            depth = depth.min(exit);
+        }
+        if let Some(ground) = self.query.scene().ground() {
+            let o = inside.origin;
+            if let Some((t, _)) = ground.cast([o.x, o.y, o.z], [dir.x, dir.y, dir.z], depth) {
+                depth = depth.min(t);
+            }
+        }
+        depth + 1e-3
     }
 }

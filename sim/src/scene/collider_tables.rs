@@ -46,6 +46,8 @@ pub(super) struct ColliderTables {
     pub(super) surface_of_collider: Vec<u32>,
     /// The moving colliders: the ego car's first, then each actor's parts in actor order.
     pub(super) movers: Vec<MoverPart>,
+    /// The street world's ground, once added: every actor added after it stands on it.
+    street_ground: Option<Arc<GroundField>>,
 }
 
 impl ColliderTables {
@@ -93,6 +95,7 @@ impl ColliderTables {
             .iter()
             .filter_map(|p| Some((GridPiece::new(p)?, Self::piece_surface(p))))
             .unzip();
+        self.street_ground = ground.clone();
         let shape = Arc::new(StreetShape::new(ground, PieceGrid::new(placed)));
         let collider = ColliderBuilder::new(SharedShape(shape.clone() as Arc<dyn Shape>))
             .user_data(self.surfaces.len() as u128)
@@ -181,6 +184,7 @@ impl ColliderTables {
             size_m: size,
             trajectory,
             body,
+            ground: self.street_ground.clone(),
         })
     }
 

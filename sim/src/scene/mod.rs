@@ -11,7 +11,7 @@ mod scene_queries;
 mod static_obstacles;
 mod surface;
 
-pub use instant_query::InstantQuery;
+pub use instant_query::{HitPart, InstantQuery};
 pub use rapier_scene::Scene;
 pub use ray_tree::QueryTree;
 pub use scene_actor::SceneActor;

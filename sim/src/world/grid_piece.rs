@@ -124,6 +124,28 @@ impl GridPiece {
         &self.aabb
     }
 
+    /// The piece as a world box for the static truth: a box piece exactly (centre, full size,
+    /// yaw, `true`), any other solid as its world AABB (yaw 0, `false`).
+    pub(crate) fn world_box(&self) -> ([f64; 3], [f64; 3], f64, bool) {
+        if let Solid::Cuboid(cuboid) = &self.solid {
+            let (c, s) = self.yaw_cos_sin;
+            let h = cuboid.half_extents;
+            return (
+                [self.centre.x, self.centre.y, self.centre.z].map(f64::from),
+                [h.x, h.y, h.z].map(|v| 2.0 * f64::from(v)),
+                f64::from(s).atan2(f64::from(c)),
+                true,
+            );
+        }
+        let (lo, hi) = (self.aabb.mins, self.aabb.maxs);
+        (
+            [lo.x + hi.x, lo.y + hi.y, lo.z + hi.z].map(|v| f64::from(v) / 2.0),
+            [hi.x - lo.x, hi.y - lo.y, hi.z - lo.z].map(f64::from),
+            0.0,
+            false,
+        )
+    }
+
     /// The world ray in the piece's frame.
     #[inline]
     fn to_local(&self, ray: &Ray) -> Ray {

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use patchflow_eval::generate_with_progress;
-use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard};
+use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard, write_kitti_names};
 
 /// Arguments of `patchflow generate`.
 #[derive(Debug, clap::Args)]
@@ -28,6 +28,11 @@ pub struct Args {
     /// another seed, scenario text or version is refused, never mixed in).
     #[arg(long)]
     pub overwrite: bool,
+    /// Also write `OUT/kitti/`: KITTI odometry's numeric sequence names (`sequences/NN` linked
+    /// to the sequence folders, `poses/NN.txt`, `names.txt`) for loaders that take a sequence
+    /// number, e.g. `kiss_icp_pipeline --dataloader kitti --sequence 3 OUT/kitti`.
+    #[arg(long)]
+    pub kitti_names: bool,
 }
 
 fn parse_realism(name: &str) -> Result<Realism, String> {
@@ -58,6 +63,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         overwrite: args.overwrite,
     };
     let manifest = generate_with_progress(&sources, &options)?;
+    if args.kitti_names {
+        let names = write_kitti_names(&args.out)?;
+        println!(
+            "{}: {} sequences numbered 00-{:02} for KITTI loaders (names.txt)",
+            args.out.join("kitti").display(),
+            names.len(),
+            names.len().saturating_sub(1)
+        );
+    }
     let points: u64 = manifest.sequences.iter().map(|s| s.points).sum();
     println!(
         "{}: {} sequences, {} points (manifest.json rewritten)",
