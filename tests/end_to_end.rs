@@ -45,8 +45,9 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         stages.lock().unwrap().push(t.stage.clone())
     })
     .unwrap();
-    // The six stages of one seed, the second seed's training and its targets, the figures.
-    assert_eq!(stages.lock().unwrap().len(), 9);
+    // The six stages of one seed, the second seed's training and its targets, the figures, and
+    // the realism study (the situations at every rung, issue #10).
+    assert_eq!(stages.lock().unwrap().len(), 10);
     assert!(
         !out.join("data").exists(),
         "the datasets are deleted once used without keep_data"
@@ -59,6 +60,8 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         "models/spgp-het.json",
         "models/spgp-seed4.json",
         "models/spgp-het-seed4.json",
+        "realism/study.json",
+        "realism/plots/study_realism_heading.png",
     ] {
         assert!(out.join(file).exists(), "{file} missing");
     }
@@ -141,6 +144,8 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         "### Scene flow",
         "## Perception per scan",
         "## Spread over training seeds",
+        "## Realism study",
+        "## Synthetic to real",
     ] {
         assert!(md.contains(needle), "{needle}");
     }

@@ -48,6 +48,7 @@ mod scan_scoring;
 mod scene_evaluation;
 mod scene_flow;
 mod scene_point;
+mod study;
 pub mod thesis_tables;
 mod tracker;
 mod truth_at_scan;
@@ -76,6 +77,11 @@ pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
 pub use perception_summary::PerceptionSummary;
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
+pub use study::{
+    POINT_BINS as STUDY_POINT_BINS, PointResult, Scores, SensorSetting, StudyFactor, StudyFiles,
+    StudyPlan, StudyPoint, StudyReport, discussion_section, merge_study, point_file,
+    realism_in_bench, realism_sections, run_study, study_markdown, study_section, write_study,
+};
 pub use truth_at_scan::TruthAtScan;
 
 // ── Baselines (thesis 3.2) ──────────────────────────────────────────────────────────────────

@@ -6,7 +6,7 @@
 mod notes;
 mod plan;
 mod run;
-mod run_files;
+pub(crate) mod run_files;
 mod seed_spread;
 mod short_tracks;
 mod stages;

@@ -32,6 +32,7 @@ use crate::report::{
     write_report_scored,
 };
 use crate::result::BenchmarkReport;
+use crate::study::{realism_in_bench, realism_sections};
 
 /// What a benchmark run produced.
 #[derive(Debug, Clone)]
@@ -171,7 +172,13 @@ pub fn run_bench(
     if !plan.keep_data {
         remove_data(&data.join("situations"))?;
     }
-    // 7. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
+    // 7. The realism study (issue #10): the situations at every rung, the same models.
+    let mut realism = None;
+    stage("realism study", &mut || {
+        realism = Some(realism_in_bench(plan, &report, &estimators, out)?);
+        Ok(())
+    })?;
+    // 8. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
     //    training run is generated beside it for methods that learn beforehand.
     let mut occupancy = None;
     if !plan.occupancy.is_empty() {
@@ -196,7 +203,7 @@ pub fn run_bench(
     if !plan.keep_data {
         remove_empty_dir(&data)?;
     }
-    // 8. The report, with the spread over the training seeds.
+    // 9. The report, with the spread over the training seeds.
     report.seed = Some(plan.seed);
     report.notes = notes(plan, &estimators, load);
     report.cv = Some(cv.clone());
@@ -213,6 +220,9 @@ pub fn run_bench(
     if let Some(occupancy) = &occupancy {
         write_occupancy_report(occupancy, out)?;
         append(&files.report_md, &occupancy_section(occupancy))?;
+    }
+    if let Some(realism) = &realism {
+        append(&files.report_md, &realism_sections(realism, &cv))?;
     }
     let perception = PerceptionSummary::of_scenes(&report.scenes);
     Ok(BenchOutcome {

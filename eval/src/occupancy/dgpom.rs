@@ -1,16 +1,14 @@
 //! DGPOM in the occupancy run (DGPOM paper, Sections 2.3 and 3): the motion map learned from a
-//! scenario's training run (`<name>_train`), the DGPOM method on it, and its predictions ahead of
-//! the last scan (Figure 10); with what the report says about them.
+//! scenario's training run (`<name>_train`) and the DGPOM method on it, with what the report says
+//! about them (the predictions ahead of the last scan are in `ahead.rs`).
 
 use std::sync::Arc;
 
-use patchflow_dataset::Dataset;
 use patchflow_occupancy::{
     AheadParams, DgpomMethod, DgpomParams, MotionMap, MotionMapParams, OccupancySequence,
-    SampleParams, evaluate_ahead,
+    SampleParams,
 };
 
-use super::OccupancyReport;
 use crate::error::EvalError;
 
 /// Learns DGPOM's motion map from a training run (Section 2.3: motion clusters of consecutive
@@ -32,58 +30,6 @@ pub fn dgpom_method(seed: u64, motion_map: Arc<MotionMap>) -> DgpomMethod {
         ..DgpomParams::default()
     };
     DgpomMethod::new(params, motion_map)
-}
-
-/// Scores DGPOM's predictions ahead (Figure 10) on every scenario of `report` with a motion map;
-/// `on_start` is called after each start time.
-pub fn predict_ahead(
-    dataset: &Dataset,
-    report: &mut OccupancyReport,
-    params: &AheadParams,
-    on_start: &dyn Fn(),
-) -> Result<(), EvalError> {
-    for (name, map) in &report.motion_maps {
-        let sequence = OccupancySequence::load(&dataset.sequence(name)?)?;
-        let method = dgpom_method(report.seed, Arc::clone(map));
-        let mut scores = None;
-        for &start in &params.start_scans {
-            let one = AheadParams {
-                start_scans: vec![start],
-                ..params.clone()
-            };
-            let part = evaluate_ahead(&sequence, &method, &one)?;
-            on_start();
-            scores = Some(match scores {
-                None => part,
-                Some(mut all) => {
-                    merge(&mut all, part);
-                    all
-                }
-            });
-        }
-        if let Some(scores) = scores {
-            report.ahead.insert(name.clone(), scores);
-        }
-    }
-    Ok(())
-}
-
-/// Adds the start time of `part` to `all` (the mean time ahead weighted by the start times).
-fn merge(all: &mut patchflow_occupancy::AheadScores, part: patchflow_occupancy::AheadScores) {
-    all.start_scans.extend(part.start_scans);
-    for (h, aucs) in part.auc.into_iter().enumerate() {
-        let secs = part.seconds_ahead[h];
-        if h >= all.auc.len() {
-            all.auc.push(Vec::new());
-            all.seconds_ahead.push(0.0);
-        }
-        let n = all.auc[h].len() as f64;
-        let m = aucs.len() as f64;
-        if n + m > 0.0 {
-            all.seconds_ahead[h] = (all.seconds_ahead[h] * n + secs * m) / (n + m);
-        }
-        all.auc[h].extend(aucs);
-    }
 }
 
 /// What the report says about DGPOM and where it differs from the paper.

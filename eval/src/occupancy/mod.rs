@@ -2,6 +2,7 @@
 //! the run over a dataset's planar sequences, the DGPOM paper's Table 1 for comparison, and the
 //! report files `occupancy.json`, `occupancy.md` and `plots/occupancy_*.png`.
 
+mod ahead;
 mod dgpom;
 mod json;
 mod markdown;
@@ -11,7 +12,8 @@ mod plot_dgpom;
 mod run;
 mod writer;
 
-pub use dgpom::{dgpom_method, dgpom_notes, learn_motion_map, predict_ahead};
+pub use ahead::predict_ahead;
+pub use dgpom::{dgpom_method, dgpom_notes, learn_motion_map};
 pub use markdown::occupancy_section;
 pub use run::{
     OccupancyReport, evaluate_occupancy, occupancy_methods, occupancy_notes, occupancy_sequences,

@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 use patchflow_dataset::{StaticObstacle, Sweep};
 use plotters::prelude::*;
 
-use crate::report::plot::FONT;
-use crate::report::scene_figure::{ActorPath, Area, DrawResult, RINGS_M, WorldChart, footprint};
+use crate::report::font::FONT;
+use crate::report::world_chart::{ActorPath, Area, DrawResult, RINGS_M, WorldChart, footprint};
 
 /// Colour of the target.
 pub(crate) const TARGET: RGBColor = RGBColor(214, 39, 40);

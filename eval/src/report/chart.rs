@@ -10,7 +10,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::error::EvalError;
-use crate::report::plot::{FONT, ensure_font};
+use crate::report::font::{FONT, ensure_font};
 
 /// Canvas size: chart and key panel.
 const SIZE_PX: (u32, u32) = (1200, 620);

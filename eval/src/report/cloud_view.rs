@@ -5,8 +5,8 @@
 use patchflow_dataset::{StaticObstacle, Sweep};
 use plotters::prelude::*;
 
-use crate::report::plot::FONT;
-use crate::report::scene_figure::{Area, DrawResult, WorldChart, footprint};
+use crate::report::font::FONT;
+use crate::report::world_chart::{Area, DrawResult, WorldChart, footprint};
 
 /// Class colours: (SemanticKITTI ids, colour, key label).
 const CLASSES: [(&[u16], RGBColor, &str); 8] = [

@@ -11,8 +11,8 @@ use plotters::coord::ReverseCoordTranslate;
 use plotters::prelude::*;
 
 use crate::error::EvalError;
-use crate::report::plot::{FONT, ensure_font};
-use crate::report::scene_figure::{Area, DrawResult, footprint};
+use crate::report::font::{FONT, ensure_font};
+use crate::report::world_chart::{Area, DrawResult, footprint};
 
 const SIZE_PX: (u32, u32) = (1500, 800);
 /// Height of the colour-key strip under the panels.

@@ -8,6 +8,7 @@ mod cloud_view;
 mod csv;
 mod cv;
 mod files;
+mod font;
 mod json;
 mod map_view;
 mod markdown;
@@ -21,16 +22,17 @@ mod scores;
 mod summary_plot;
 #[cfg(test)]
 mod synthetic;
+mod world_chart;
 mod writer;
 
 pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
 pub(crate) use files::{create_dir, fmt_opt, write_atomic};
+pub(crate) use font::{FONT, ensure_font};
 pub use json::metrics_json;
 pub use map_view::write_map_figure;
 pub use metrics_extras::add_to_metrics;
-pub(crate) use plot::{FONT, ensure_font};
 pub use scene_figure::{SceneFigures, write_dataset_scene_figures, write_scene_figures};
 #[cfg(test)]
-pub(crate) use synthetic::synthetic_report;
+pub(crate) use synthetic::{synthetic_report, synthetic_situation};
 pub(crate) use writer::write_report_scored;
 pub use writer::{ReportFiles, write_report};

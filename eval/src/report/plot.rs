@@ -8,20 +8,14 @@
 //! (3 × the largest true speed + 2 m/s) are clipped to it, so one wild outlier cannot flatten the plot.
 
 use std::path::Path;
-use std::sync::OnceLock;
 
 use plotters::prelude::*;
-use plotters::style::{FontStyle, register_font};
 
 use crate::error::EvalError;
 use crate::method::Method;
 use crate::report::chart::{Axes, Curve, Decor, draw};
 use crate::result::SituationResult;
 use patchflow_dataset::wrap_angle_rad;
-
-/// DejaVu Sans (Bitstream Vera licence, see `assets/DejaVu-LICENSE.txt`).
-const FONT_TTF: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-pub(crate) const FONT: &str = "sans-serif";
 
 /// Colour per canonical method slot (tab10), then a few spares.
 const PALETTE: [RGBColor; 12] = [
@@ -38,20 +32,6 @@ const PALETTE: [RGBColor; 12] = [
     RGBColor(100, 100, 160),
     RGBColor(160, 100, 100),
 ];
-
-/// Registers the bundled font once; an error names the PNG that needed it.
-pub(crate) fn ensure_font(path: &Path) -> Result<(), EvalError> {
-    static REGISTERED: OnceLock<bool> = OnceLock::new();
-    let ok = *REGISTERED.get_or_init(|| register_font(FONT, FontStyle::Normal, FONT_TTF).is_ok());
-    if ok {
-        Ok(())
-    } else {
-        Err(EvalError::Plot {
-            path: path.to_owned(),
-            message: "the bundled DejaVu Sans font could not be loaded".into(),
-        })
-    }
-}
 
 /// The colour of a method in every plot.
 pub(crate) fn colour_of(method: Method) -> RGBColor {

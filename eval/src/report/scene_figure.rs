@@ -8,25 +8,18 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use patchflow_dataset::{ObjectTruth, SequenceReader};
-use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::error::EvalError;
 use crate::report::birds_eye::draw_birds_eye;
 use crate::report::cloud_view::draw_cloud;
-use crate::report::plot::{FONT, ensure_font};
+use crate::report::font::{FONT, ensure_font};
+use crate::report::world_chart::{ActorPath, Area, DrawResult, RINGS_M, WorldChart};
 
 /// Canvas of a scene figure: the square picture and the key panel.
 pub(crate) const SCENE_PX: (u32, u32) = (1100, 860);
 /// Width of the key panel.
 pub(crate) const KEY_PX: u32 = 250;
-/// Range rings around the ego car, metres.
-pub(crate) const RINGS_M: [f64; 3] = [10.0, 20.0, 40.0];
-
-pub(crate) type Area<'a> = DrawingArea<BitMapBackend<'a>, Shift>;
-pub(crate) type DrawResult =
-    Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;
-
 /// The two figures of one sequence written by [`write_scene_figures`].
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SceneFigures {
@@ -154,14 +147,6 @@ fn busiest_sweep(objects: &[Vec<ObjectTruth>]) -> usize {
     best.map_or(0, |(i, _)| i)
 }
 
-/// One actor's path over the sequence.
-pub(crate) struct ActorPath {
-    /// Whether the actor is the target.
-    pub target: bool,
-    /// Its centre at every sweep it is in, world x, y.
-    pub points: Vec<(f64, f64)>,
-}
-
 fn actor_paths(objects: &[Vec<ObjectTruth>]) -> BTreeMap<u16, ActorPath> {
     let mut paths: BTreeMap<u16, ActorPath> = BTreeMap::new();
     for sweep in objects {
@@ -211,12 +196,6 @@ impl View {
     }
 }
 
-pub(crate) type WorldChart<'a> = ChartContext<
-    'a,
-    BitMapBackend<'a>,
-    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
->;
-
 /// A titled figure: a square chart in world metres and a key panel, filled by `fill`.
 pub(crate) fn draw_figure(
     path: &Path,
@@ -252,14 +231,4 @@ pub(crate) fn draw_figure(
         .map_err(|e| plot_err(&e))?;
     fill(&mut chart, &key).map_err(|e| plot_err(&e))?;
     root.present().map_err(|e| plot_err(&e))
-}
-
-/// Footprint corners of a box, world x, y.
-pub(crate) fn footprint(centre: [f64; 3], size: [f64; 3], yaw_rad: f64) -> Vec<(f64, f64)> {
-    let (s, c) = yaw_rad.sin_cos();
-    let (hl, hw) = (size[0] / 2.0, size[1] / 2.0);
-    [(hl, hw), (-hl, hw), (-hl, -hw), (hl, -hw)]
-        .iter()
-        .map(|(a, b)| (centre[0] + a * c - b * s, centre[1] + a * s + b * c))
-        .collect()
 }

@@ -9,7 +9,8 @@ use plotters::prelude::*;
 use crate::error::EvalError;
 use crate::method::Method;
 use crate::metrics::MethodMetrics;
-use crate::report::plot::{FONT, colour_of, ensure_font, is_variant};
+use crate::report::font::{FONT, ensure_font};
+use crate::report::plot::{colour_of, is_variant};
 use crate::report::scores::SituationMetrics;
 
 const SIZE_PX: (u32, u32) = (1200, 760);

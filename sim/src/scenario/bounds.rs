@@ -216,6 +216,16 @@ pub(crate) const BYTES_PER_RAY: u64 = 120;
 /// Largest scenario file read, bytes: far above any real scenario, small enough to parse at once.
 pub(crate) const MAX_SCENARIO_BYTES: u64 = 16 << 20;
 
+/// Bytes as a person reads them: `5.6 GB`, `480 MB`.
+pub(crate) fn gigabytes(bytes: u64) -> String {
+    let b = bytes as f64;
+    if b >= 1e9 {
+        format!("{:.1} GB", b / 1e9)
+    } else {
+        format!("{:.0} MB", (b / 1e6).max(1.0))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

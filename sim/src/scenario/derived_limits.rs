@@ -6,7 +6,7 @@
 
 use super::bounds::{
     BYTES_PER_RAY, COORD_M, MAX_BOXES, MAX_RAYS_PER_SWEEP, MAX_ROW_BOXES, MAX_TRAFFIC_PATH_M,
-    TIME_SECS, show,
+    TIME_SECS, gigabytes, show,
 };
 use super::problem::{Problem, Seg};
 use super::world_limits::{WorldSize, world_problems};
@@ -143,14 +143,4 @@ fn farthest_m(actor: &ActorConfig, trajectory: &Trajectory, t0: f64, t1: f64) ->
 pub(crate) fn sweep_memory_bytes(s: &Scenario) -> u64 {
     let world = WorldSize::of(s).map_or(0, |w| w.memory_bytes());
     u64::from(s.lidar.channels) * u64::from(s.lidar.azimuth_steps) * BYTES_PER_RAY + world
-}
-
-/// Bytes as a person reads them: `5.6 GB`, `480 MB`.
-pub(crate) fn gigabytes(bytes: u64) -> String {
-    let b = bytes as f64;
-    if b >= 1e9 {
-        format!("{:.1} GB", b / 1e9)
-    } else {
-        format!("{:.0} MB", (b / 1e6).max(1.0))
-    }
 }

@@ -20,7 +20,8 @@ mod world_config;
 mod world_limits;
 
 pub use actor_config::{ActorConfig, CarModel};
-pub(crate) use derived_limits::{GROUND_HALF_M, gigabytes, sweep_memory_bytes};
+pub(crate) use bounds::gigabytes;
+pub(crate) use derived_limits::{GROUND_HALF_M, sweep_memory_bytes};
 pub use embedded::{EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS};
 pub use lidar_config::{ElevationSpacing, LidarConfig, SensorKind};
 pub use planar_config::{PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M};

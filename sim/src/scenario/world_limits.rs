@@ -7,8 +7,8 @@
 
 use patchflow_dataset::ActorClass;
 
+use super::bounds::gigabytes;
 use super::bounds::show;
-use super::derived_limits::gigabytes;
 use super::problem::{Problem, Seg};
 use super::{Realism, Scenario, StructureKind, WorldKnobs};
 use crate::motion::Trajectory;

@@ -12,6 +12,7 @@ mod generate;
 mod gp;
 mod occupancy;
 mod show;
+mod study;
 mod train;
 
 use clap::{Parser, Subcommand};
@@ -42,6 +43,8 @@ enum Command {
     Flow(flow::Args),
     /// The main job: generate, train, cross-validate and evaluate on embedded defaults.
     Bench(bench::Args),
+    /// A study: one factor (realism rung, lidar rate, channels) varied, every method scored at each point.
+    Study(study::Args),
     /// Occupancy maps (grid, GPOM) of planar-scanner sequences, scored by ROC AUC against exact truth.
     Occupancy(occupancy::Args),
     /// Gaussian-process regression on any CSV.
@@ -59,6 +62,7 @@ fn main() -> std::process::ExitCode {
         Command::Cv(args) => cv::run(args),
         Command::Flow(args) => flow::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Study(args) => study::run(args),
         Command::Occupancy(args) => occupancy::run(args),
         Command::Gp(args) => gp::run(args),
     };

@@ -1,0 +1,63 @@
+//! DGPOM's predictions ahead of the last scan (DGPOM paper, Figure 10) on every scenario of an
+//! occupancy run that has a motion map: the AUC against the time since the last observation.
+
+use std::sync::Arc;
+
+use patchflow_dataset::Dataset;
+use patchflow_occupancy::{AheadParams, OccupancySequence, evaluate_ahead};
+
+use super::dgpom::dgpom_method;
+use super::run::OccupancyReport;
+use crate::error::EvalError;
+
+/// Scores DGPOM's predictions ahead (Figure 10) on every scenario of `report` with a motion map;
+/// `on_start` is called after each start time.
+pub fn predict_ahead(
+    dataset: &Dataset,
+    report: &mut OccupancyReport,
+    params: &AheadParams,
+    on_start: &dyn Fn(),
+) -> Result<(), EvalError> {
+    for (name, map) in &report.motion_maps {
+        let sequence = OccupancySequence::load(&dataset.sequence(name)?)?;
+        let method = dgpom_method(report.seed, Arc::clone(map));
+        let mut scores = None;
+        for &start in &params.start_scans {
+            let one = AheadParams {
+                start_scans: vec![start],
+                ..params.clone()
+            };
+            let part = evaluate_ahead(&sequence, &method, &one)?;
+            on_start();
+            scores = Some(match scores {
+                None => part,
+                Some(mut all) => {
+                    merge(&mut all, part);
+                    all
+                }
+            });
+        }
+        if let Some(scores) = scores {
+            report.ahead.insert(name.clone(), scores);
+        }
+    }
+    Ok(())
+}
+
+/// Adds the start time of `part` to `all` (the mean time ahead weighted by the start times).
+fn merge(all: &mut patchflow_occupancy::AheadScores, part: patchflow_occupancy::AheadScores) {
+    all.start_scans.extend(part.start_scans);
+    for (h, aucs) in part.auc.into_iter().enumerate() {
+        let secs = part.seconds_ahead[h];
+        if h >= all.auc.len() {
+            all.auc.push(Vec::new());
+            all.seconds_ahead.push(0.0);
+        }
+        let n = all.auc[h].len() as f64;
+        let m = aucs.len() as f64;
+        if n + m > 0.0 {
+            all.seconds_ahead[h] = (all.seconds_ahead[h] * n + secs * m) / (n + m);
+        }
+        all.auc[h].extend(aucs);
+    }
+}

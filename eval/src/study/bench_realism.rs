@@ -1,0 +1,59 @@
+//! The realism study inside `bench` (issue #10): the models `bench` trained on the default rung
+//! (`urban`) and its evaluation of the five situations there, plus the same situations generated
+//! at the other rungs and evaluated with the same models; written to `OUT/realism/` as a study.
+
+use std::path::Path;
+
+use patchflow_learn::MotionEstimator;
+use patchflow_sim::Realism;
+
+use crate::bench::BenchPlan;
+use crate::bench::run_files::remove_data;
+use crate::error::EvalError;
+use crate::report::CvReport;
+use crate::result::BenchmarkReport;
+use crate::study::discussion::discussion_section;
+use crate::study::markdown::study_section;
+use crate::study::merge::{StudyReport, merge_study};
+use crate::study::plan::{StudyFactor, StudyPlan};
+use crate::study::point_result::PointResult;
+use crate::study::run::{evaluate_point, write_point};
+
+/// Runs the realism study on `bench`'s models; `urban` is bench's own evaluation (the default
+/// rung), reused rather than repeated. Returns the study as merged into `out/realism/study.json`.
+pub fn realism_in_bench(
+    plan: &BenchPlan,
+    urban: &BenchmarkReport,
+    estimators: &[MotionEstimator],
+    out: &Path,
+) -> Result<StudyReport, EvalError> {
+    let study = StudyPlan::from_bench(StudyFactor::Realism, plan);
+    let dir = out.join("realism");
+    for point in &study.points {
+        let result = if point.evaluate.realism == Some(Realism::Urban) {
+            PointResult::from_report(point, urban)?
+        } else {
+            let result = evaluate_point(&study, point, estimators, out)?;
+            if !plan.keep_data {
+                remove_data(&out.join("data").join(point.evaluate.key()))?;
+            }
+            result
+        };
+        write_point(&dir, &result)?;
+    }
+    merge_study(&study, &dir)?;
+    let path = dir.join("study.json");
+    let bytes = std::fs::read(&path).map_err(|e| EvalError::io(&path, e))?;
+    serde_json::from_slice(&bytes).map_err(|source| EvalError::Json { path, source })
+}
+
+/// The bench report's sections of the realism study: its tables (plots in `realism/plots/`) and
+/// the synthetic-to-real discussion.
+pub fn realism_sections(study: &StudyReport, cv: &CvReport) -> String {
+    let mut md = String::from(
+        "## Realism study: the five situations at every rung, models trained on `urban`\n\nFiles: `realism/study.json`, `realism/study.md`, `realism/plots/`.\n\n",
+    );
+    md.push_str(&study_section(study, "###").replace("](plots/", "](realism/plots/"));
+    md.push_str(&discussion_section(study, Some(cv), "##"));
+    md
+}

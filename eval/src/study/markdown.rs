@@ -1,0 +1,163 @@
+//! `study.md`: what was varied and what was held fixed, then one table per measure (every method
+//! against the factor, the five situations pooled), the heading and speed errors by the target's
+//! points, and each point's per-situation table. Every number comes from `study.json`.
+
+use std::fmt::Write as _;
+
+use crate::method::CANONICAL_METHODS;
+use crate::report::fmt_opt;
+use crate::study::merge::StudyReport;
+use crate::study::point_result::Scores;
+
+/// A measure: title, file stem, decimals, and its value in a method's scores.
+pub(crate) type Measure = (
+    &'static str,
+    &'static str,
+    usize,
+    fn(&Scores) -> Option<f64>,
+);
+
+/// The measures of the tables and plots.
+pub(crate) const MEASURES: [Measure; 3] = [
+    ("Heading RMSE (°)", "heading", 1, |s| s.heading_rmse_deg),
+    ("Speed RMSE (m/s)", "speed", 2, |s| s.speed_rmse_mps),
+    ("Coverage", "coverage", 2, |s| Some(s.coverage)),
+];
+
+/// Methods of a study in report order: the canonical eight, then any other (e.g. `ZERO-FLOW`).
+pub(crate) fn study_methods(report: &StudyReport) -> Vec<String> {
+    let mut methods: Vec<String> = CANONICAL_METHODS
+        .iter()
+        .map(|m| m.name().to_owned())
+        .filter(|m| report.points.iter().any(|p| p.pooled.contains_key(m)))
+        .collect();
+    for point in &report.points {
+        for m in point.pooled.keys() {
+            if !methods.contains(m) {
+                methods.push(m.clone());
+            }
+        }
+    }
+    methods
+}
+
+/// The whole `study.md`.
+pub fn study_markdown(report: &StudyReport) -> String {
+    let mut md = format!("# Study: {}\n\n", report.study);
+    md.push_str(&study_section(report, "##"));
+    md
+}
+
+/// The study's tables under headings of level `level` (`##` in `study.md`, `###` in a bench report).
+pub fn study_section(report: &StudyReport, level: &str) -> String {
+    let mut md = String::new();
+    let labels: Vec<&str> = report.points.iter().map(|p| p.label.as_str()).collect();
+    let settings: Vec<String> = report
+        .points
+        .iter()
+        .map(|p| {
+            format!(
+                "{}: trained on `{}`, evaluated on `{}`",
+                p.label, p.train, p.evaluate
+            )
+        })
+        .collect();
+    // Writing to a String cannot fail.
+    let _ = writeln!(
+        md,
+        "Varied: {} ({}); everything else fixed: seed {}, {} samples, {} pseudo-inputs, at most {} iterations per GP. Points: {}.\n",
+        report.study,
+        report.unit,
+        report.seed,
+        report.samples,
+        report.pseudo_inputs,
+        report.max_iters,
+        settings.join("; ")
+    );
+    let methods = study_methods(report);
+    let header = |md: &mut String, first: &str| {
+        let _ = writeln!(
+            md,
+            "| {first} | {} |\n|---|{}",
+            labels.join(" | "),
+            "---|".repeat(labels.len())
+        );
+    };
+    for (title, stem, decimals, value) in MEASURES {
+        let _ = writeln!(md, "{level} {title}, the situations pooled\n");
+        header(&mut md, "Method");
+        for m in &methods {
+            let cells: Vec<String> = report
+                .points
+                .iter()
+                .map(|p| fmt_opt(p.pooled.get(m).and_then(value), decimals))
+                .collect();
+            let _ = writeln!(md, "| {m} | {} |", cells.join(" | "));
+        }
+        let _ = writeln!(
+            md,
+            "\n![{title}](plots/study_{}_{stem}.png)\n",
+            report.study
+        );
+    }
+    for (title, _, decimals, value) in &MEASURES[..2] {
+        let _ = writeln!(
+            md,
+            "{level} {title} by the target's points in the height slice ({})\n",
+            report.point_bins.join(" / ")
+        );
+        header(&mut md, "Method");
+        for m in &methods {
+            let cells: Vec<String> = report
+                .points
+                .iter()
+                .map(|p| match p.by_points.get(m) {
+                    Some(bins) => bins
+                        .iter()
+                        .map(|b| format!("{} ({})", fmt_opt(value(b), *decimals), b.scans))
+                        .collect::<Vec<_>>()
+                        .join(" / "),
+                    None => "–".into(),
+                })
+                .collect();
+            let _ = writeln!(md, "| {m} | {} |", cells.join(" | "));
+        }
+        let _ = writeln!(md, "\n*Scans of each bin in brackets.*\n");
+    }
+    for point in &report.points {
+        let names: Vec<&String> = point.situations.keys().collect();
+        let _ = writeln!(
+            md,
+            "{level} {}: heading RMSE (°) / speed RMSE (m/s) / coverage per situation\n",
+            point.label
+        );
+        let _ = writeln!(
+            md,
+            "| Method | {} |\n|---|{}",
+            names
+                .iter()
+                .map(|n| n.as_str())
+                .collect::<Vec<_>>()
+                .join(" | "),
+            "---|".repeat(names.len())
+        );
+        for m in &methods {
+            let cells: Vec<String> = point
+                .situations
+                .values()
+                .map(|s| match s.get(m) {
+                    Some(x) => format!(
+                        "{} / {} / {:.2}",
+                        fmt_opt(x.heading_rmse_deg, 1),
+                        fmt_opt(x.speed_rmse_mps, 2),
+                        x.coverage
+                    ),
+                    None => "–".into(),
+                })
+                .collect();
+            let _ = writeln!(md, "| {m} | {} |", cells.join(" | "));
+        }
+        md.push('\n');
+    }
+    md
+}

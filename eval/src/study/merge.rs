@@ -1,0 +1,104 @@
+//! The merge step of a study: every point's file (written by one run or by many shards) read
+//! back in sorted order into `study.json`, with `study.md` and one plot per measure beside it.
+//! `study.json` is built from the point files alone, so its bytes do not depend on the sharding.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::EvalError;
+use crate::report::{create_dir, write_atomic};
+use crate::study::markdown::study_markdown;
+use crate::study::plan::StudyPlan;
+use crate::study::plot::plot_study;
+use crate::study::point_result::{POINT_BINS, PointResult};
+use crate::study::run::point_file;
+
+/// A whole study: what was held fixed and every point's results, in sorted order.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudyReport {
+    /// The study's name (`realism`, `rate`, `channels`).
+    pub study: String,
+    /// Unit of the varied factor.
+    pub unit: String,
+    /// Seed of generation, sampling and training.
+    pub seed: u64,
+    /// Training samples, pseudo-inputs and optimiser iterations per GP.
+    pub samples: usize,
+    /// Pseudo-inputs per sparse GP.
+    pub pseudo_inputs: usize,
+    /// Optimiser iterations per GP.
+    pub max_iters: usize,
+    /// Labels of the target's point bins of `by_points`.
+    pub point_bins: Vec<String>,
+    /// The points.
+    pub points: Vec<PointResult>,
+}
+
+/// The files a merged study wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyFiles {
+    /// `OUT/study.json`.
+    pub study_json: PathBuf,
+    /// `OUT/study.md`.
+    pub study_md: PathBuf,
+    /// `OUT/plots/study_*.png`.
+    pub plots: Vec<PathBuf>,
+}
+
+/// Reads every point of `plan` from `out/points/` and writes the study's files into `out`; a
+/// missing point is an error naming its file (a shard not yet run).
+pub fn merge_study(plan: &StudyPlan, out: &Path) -> Result<StudyFiles, EvalError> {
+    let points = plan
+        .points
+        .iter()
+        .map(|p| read_point(&point_file(out, p.index), p.index))
+        .collect::<Result<Vec<_>, _>>()?;
+    let report = StudyReport {
+        study: plan.factor.name().to_owned(),
+        unit: plan.factor.unit().to_owned(),
+        seed: plan.seed,
+        samples: plan.samples,
+        pseudo_inputs: plan.pseudo_inputs,
+        max_iters: plan.max_iters,
+        point_bins: POINT_BINS.iter().map(|(l, _)| (*l).to_owned()).collect(),
+        points,
+    };
+    write_study(&report, out)
+}
+
+/// Writes `study.json`, `study.md` and the plots of a study into `out`.
+pub fn write_study(report: &StudyReport, out: &Path) -> Result<StudyFiles, EvalError> {
+    create_dir(out)?;
+    let study_json = out.join("study.json");
+    let mut bytes = serde_json::to_vec_pretty(report).map_err(|source| EvalError::Json {
+        path: study_json.clone(),
+        source,
+    })?;
+    bytes.push(b'\n');
+    write_atomic(&study_json, &bytes)?;
+    let plots = plot_study(report, &out.join("plots"))?;
+    let study_md = out.join("study.md");
+    write_atomic(&study_md, study_markdown(report).as_bytes())?;
+    Ok(StudyFiles {
+        study_json,
+        study_md,
+        plots,
+    })
+}
+
+fn read_point(path: &Path, index: usize) -> Result<PointResult, EvalError> {
+    let bytes = std::fs::read(path).map_err(|e| EvalError::io(path, e))?;
+    let point: PointResult = serde_json::from_slice(&bytes).map_err(|source| EvalError::Json {
+        path: path.to_owned(),
+        source,
+    })?;
+    if point.index != index {
+        return Err(EvalError::BadResult {
+            situation: path.display().to_string(),
+            reason: format!("holds point {} where point {index} belongs", point.index),
+        });
+    }
+    Ok(point)
+}

@@ -1,0 +1,21 @@
+//! Studies (issue #10): one factor of the world or the sensor varied, everything else fixed and
+//! seeded, every method scored at each point; sharded like `generate` and merged into
+//! `study.json`, `study.md` and plots. The realism study also runs inside `bench`.
+
+mod bench_realism;
+mod discussion;
+mod markdown;
+mod merge;
+mod plan;
+mod plot;
+mod point_result;
+mod run;
+mod scenario_setting;
+
+pub use bench_realism::{realism_in_bench, realism_sections};
+pub use discussion::discussion_section;
+pub use markdown::{study_markdown, study_section};
+pub use merge::{StudyFiles, StudyReport, merge_study, write_study};
+pub use plan::{SensorSetting, StudyFactor, StudyPlan, StudyPoint};
+pub use point_result::{POINT_BINS, PointResult, Scores};
+pub use run::{point_file, run_study};

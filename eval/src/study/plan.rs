@@ -1,0 +1,236 @@
+//! What a study runs (issue #10): one varied factor (the realism rung, the lidar rate, its
+//! channels), its points in sorted order, and everything else fixed and seeded: the training
+//! tracks, the situations, samples, pseudo-inputs, iterations and the seed of the benchmark.
+
+use patchflow_learn::GpKind;
+use patchflow_sim::{Realism, ScenarioSource};
+
+use crate::bench::BenchPlan;
+use crate::error::EvalError;
+
+/// The factor a study varies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StudyFactor {
+    /// The realism rung of the evaluated situations; models trained on the default rung (`urban`).
+    Realism,
+    /// The lidar's turn rate (Hz); each point trains and evaluates on its own data, of the same
+    /// duration (sweeps scale with the rate).
+    Rate,
+    /// The lidar's channel count; each point trains and evaluates on its own data.
+    Channels,
+}
+
+impl StudyFactor {
+    /// Every study `patchflow study NAME` knows.
+    pub const ALL: [StudyFactor; 3] = [Self::Realism, Self::Rate, Self::Channels];
+
+    /// The study's name on the command line and in `study.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Realism => "realism",
+            Self::Rate => "rate",
+            Self::Channels => "channels",
+        }
+    }
+
+    /// Parses a study name.
+    ///
+    /// ```
+    /// use patchflow_eval::StudyFactor;
+    /// assert_eq!(StudyFactor::parse("rate").unwrap(), StudyFactor::Rate);
+    /// assert!(StudyFactor::parse("colour").is_err());
+    /// ```
+    pub fn parse(name: &str) -> Result<Self, EvalError> {
+        Self::ALL
+            .into_iter()
+            .find(|f| f.name() == name)
+            .ok_or_else(|| EvalError::BadParameter {
+                name: "study",
+                reason: format!("unknown study {name:?}: expected one of realism, rate, channels"),
+            })
+    }
+
+    /// The unit of the factor's values.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Self::Realism => "rung",
+            Self::Rate => "Hz",
+            Self::Channels => "channels",
+        }
+    }
+
+    /// The study's points in sorted order (mildest rung, lowest rate, fewest channels first).
+    pub fn points(self) -> Vec<StudyPoint> {
+        match self {
+            Self::Realism => Realism::ALL
+                .into_iter()
+                .enumerate()
+                .map(|(k, rung)| StudyPoint {
+                    index: k,
+                    label: rung.name().to_owned(),
+                    value: k as f64,
+                    train: SensorSetting::default(),
+                    evaluate: SensorSetting {
+                        realism: Some(rung),
+                        ..SensorSetting::default()
+                    },
+                })
+                .collect(),
+            Self::Rate => [5.0, 10.0, 20.0]
+                .into_iter()
+                .enumerate()
+                .map(|(k, hz)| {
+                    let setting = SensorSetting {
+                        rate_hz: Some(hz),
+                        ..SensorSetting::default()
+                    };
+                    StudyPoint::own_data(k, format!("{hz:.0} Hz"), hz, setting)
+                })
+                .collect(),
+            Self::Channels => [16, 32, 64, 128]
+                .into_iter()
+                .enumerate()
+                .map(|(k, channels)| {
+                    let setting = SensorSetting {
+                        channels: Some(channels),
+                        ..SensorSetting::default()
+                    };
+                    StudyPoint::own_data(k, format!("{channels} ch"), f64::from(channels), setting)
+                })
+                .collect(),
+        }
+    }
+}
+
+/// How the world and the sensor of a dataset differ from the scenario files; `None` keeps theirs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SensorSetting {
+    /// Realism rung replacing every scenario's own.
+    pub realism: Option<Realism>,
+    /// Lidar turn rate, Hz (sweeps scaled so each scenario lasts as long as at its own rate).
+    pub rate_hz: Option<f64>,
+    /// Lidar channels.
+    pub channels: Option<u32>,
+}
+
+impl SensorSetting {
+    /// A folder name for datasets generated with this setting (`default` for none).
+    pub fn key(&self) -> String {
+        let mut parts = Vec::new();
+        if let Some(r) = self.realism {
+            parts.push(r.name().to_owned());
+        }
+        if let Some(hz) = self.rate_hz {
+            parts.push(format!("{hz}hz"));
+        }
+        if let Some(c) = self.channels {
+            parts.push(format!("{c}ch"));
+        }
+        if parts.is_empty() {
+            "default".to_owned()
+        } else {
+            parts.join("-")
+        }
+    }
+}
+
+/// One point of a study: the datasets it trains and evaluates on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyPoint {
+    /// Position in sorted order (the unit `--shard I/N` counts).
+    pub index: usize,
+    /// Label in tables and plots, e.g. `urban`, `20 Hz`.
+    pub label: String,
+    /// The factor's value (the rung's position for the realism study), for the plots' x axis.
+    pub value: f64,
+    /// Setting of the training tracks.
+    pub train: SensorSetting,
+    /// Setting of the evaluated situations.
+    pub evaluate: SensorSetting,
+}
+
+impl StudyPoint {
+    fn own_data(index: usize, label: String, value: f64, setting: SensorSetting) -> Self {
+        Self {
+            index,
+            label,
+            value,
+            train: setting,
+            evaluate: setting,
+        }
+    }
+}
+
+/// Everything a study runs; all but the factor's points come from a benchmark plan.
+#[derive(Debug, Clone)]
+pub struct StudyPlan {
+    /// The varied factor.
+    pub factor: StudyFactor,
+    /// Its points in sorted order.
+    pub points: Vec<StudyPoint>,
+    /// Training tracks.
+    pub training: Vec<ScenarioSource>,
+    /// Evaluated situations (those with a target).
+    pub situations: Vec<ScenarioSource>,
+    /// GP kinds trained, one estimator each.
+    pub gps: Vec<GpKind>,
+    /// Importance-sampled training samples per estimator.
+    pub samples: usize,
+    /// Pseudo-inputs per sparse GP.
+    pub pseudo_inputs: usize,
+    /// Optimiser iterations per GP.
+    pub max_iters: usize,
+    /// Seed of generation, sampling and training.
+    pub seed: u64,
+}
+
+impl StudyPlan {
+    /// A study over `factor` with the training and the five situations of `bench` (the dense
+    /// scene, which has no target, is left out).
+    pub fn from_bench(factor: StudyFactor, bench: &BenchPlan) -> Self {
+        Self {
+            factor,
+            points: factor.points(),
+            training: bench.training.clone(),
+            situations: bench
+                .situations
+                .iter()
+                .filter(|s| !matches!(s, ScenarioSource::Embedded("dense_traffic", _)))
+                .cloned()
+                .collect(),
+            gps: bench.gps.clone(),
+            samples: bench.samples,
+            pseudo_inputs: bench.pseudo_inputs,
+            max_iters: bench.max_iters,
+            seed: bench.seed,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_rate_study_has_three_rates_each_trained_on_its_own_data() {
+        let points = StudyFactor::Rate.points();
+        let rates: Vec<f64> = points.iter().map(|p| p.value).collect();
+        assert_eq!(rates, [5.0, 10.0, 20.0]);
+        assert!(points.iter().all(|p| p.train == p.evaluate));
+    }
+
+    #[test]
+    fn the_realism_study_trains_every_rung_on_the_default_world() {
+        let points = StudyFactor::Realism.points();
+        assert_eq!(points.len(), 3);
+        assert!(points.iter().all(|p| p.train == SensorSetting::default()));
+        assert_eq!(points[2].evaluate.key(), "harsh");
+    }
+
+    #[test]
+    fn the_study_of_the_bench_plan_leaves_out_the_dense_scene() {
+        let plan = StudyPlan::from_bench(StudyFactor::Channels, &BenchPlan::full());
+        assert_eq!(plan.situations.len(), 5);
+        assert_eq!(plan.points.len(), 4);
+    }
+}

@@ -1,0 +1,142 @@
+//! Running a study (issue #10): each point of this shard (every N-th in sorted order, like
+//! `generate --shard`) is generated, trained and evaluated on its own and written to
+//! `OUT/points/NNN.json`; the unsharded run then merges them into `study.json`, so a sharded run
+//! merged afterwards writes the same bytes.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use patchflow_dataset::Dataset;
+use patchflow_learn::{EstimatorParams, MotionEstimator};
+use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
+
+use crate::bench::{collect_samples_with_bar, evaluate_with_bar, generate_with_progress};
+use crate::error::EvalError;
+use crate::progress::spinner;
+use crate::report::{create_dir, write_atomic};
+use crate::study::merge::{StudyFiles, merge_study};
+use crate::study::plan::{SensorSetting, StudyPlan, StudyPoint};
+use crate::study::point_result::PointResult;
+use crate::study::scenario_setting::apply_setting;
+
+/// The file a point's result is written to.
+pub fn point_file(out: &Path, index: usize) -> PathBuf {
+    out.join("points").join(format!("{index:03}.json"))
+}
+
+/// Runs this shard's points of a study into `out` (datasets under `out/data`); with the whole
+/// study (`Shard::ALL`) also merges them into `study.json`, `study.md` and plots.
+/// `on_point` hears of every point as it finishes.
+///
+/// ```no_run
+/// use patchflow_eval::{BenchPlan, StudyFactor, StudyPlan, run_study};
+/// use patchflow_sim::Shard;
+/// let plan = StudyPlan::from_bench(StudyFactor::Rate, &BenchPlan::quick());
+/// let files = run_study(&plan, std::path::Path::new("results/study-rate"), Shard::ALL, &|p| {
+///     println!("{} done", p.label)
+/// })
+/// .unwrap();
+/// println!("{:?}", files.map(|f| f.study_md));
+/// ```
+pub fn run_study(
+    plan: &StudyPlan,
+    out: &Path,
+    shard: Shard,
+    on_point: &dyn Fn(&PointResult),
+) -> Result<Option<StudyFiles>, EvalError> {
+    let mut trained: BTreeMap<String, Vec<MotionEstimator>> = BTreeMap::new();
+    for point in plan.points.iter().filter(|p| shard.takes(p.index)) {
+        // Models of one training setting serve every point that shares it (the realism study).
+        let key = point.train.key();
+        if !trained.contains_key(&key) {
+            let estimators = train_for(plan, &point.train, out)?;
+            trained.insert(key.clone(), estimators);
+        }
+        let estimators = trained.get(&key).map_or(&[][..], Vec::as_slice);
+        let result = evaluate_point(plan, point, estimators, out)?;
+        write_point(out, &result)?;
+        on_point(&result);
+    }
+    if shard == Shard::ALL {
+        return merge_study(plan, out).map(Some);
+    }
+    Ok(None)
+}
+
+/// Writes a point's result to its file.
+pub(crate) fn write_point(out: &Path, result: &PointResult) -> Result<(), EvalError> {
+    let path = point_file(out, result.index);
+    create_dir(&out.join("points"))?;
+    let mut bytes = serde_json::to_vec_pretty(result).map_err(|source| EvalError::Json {
+        path: path.clone(),
+        source,
+    })?;
+    bytes.push(b'\n');
+    write_atomic(&path, &bytes)
+}
+
+/// Simulates the training tracks with a setting, samples patches (thesis 3.1.2, prior 0.5) and
+/// trains one estimator per GP kind on them (thesis 3.1.3).
+fn train_for(
+    plan: &StudyPlan,
+    setting: &SensorSetting,
+    out: &Path,
+) -> Result<Vec<MotionEstimator>, EvalError> {
+    let train = generate(plan, &plan.training, setting, out, "train")?;
+    let sets = collect_samples_with_bar(&train, &[0.5], plan.samples, plan.seed)?;
+    let set = sets.first().ok_or_else(|| EvalError::BadResult {
+        situation: "study".into(),
+        reason: "sampling gave no sample set".into(),
+    })?;
+    plan.gps
+        .iter()
+        .map(|&gp| {
+            let params = EstimatorParams {
+                gp,
+                samples: plan.samples,
+                pseudo_inputs: plan.pseudo_inputs,
+                max_iters: plan.max_iters,
+                seed: plan.seed,
+                ..EstimatorParams::default()
+            };
+            let bar = spinner(&format!("fitting 3 {gp} GPs ({})", setting.key()));
+            let estimator = MotionEstimator::fit_samples(set, &params);
+            bar.finish_and_clear();
+            Ok(estimator?.with_sequences(&train))
+        })
+        .collect()
+}
+
+/// Simulates the situations with the point's setting and runs every method on them (thesis 4.4).
+pub(crate) fn evaluate_point(
+    plan: &StudyPlan,
+    point: &StudyPoint,
+    estimators: &[MotionEstimator],
+    out: &Path,
+) -> Result<PointResult, EvalError> {
+    let situations = generate(plan, &plan.situations, &point.evaluate, out, "situations")?;
+    let report = evaluate_with_bar(&situations, estimators)?;
+    PointResult::from_report(point, &report)
+}
+
+/// Generates `sources` with a setting into `out/data/<setting>/<part>` (resumed if there).
+fn generate(
+    plan: &StudyPlan,
+    sources: &[ScenarioSource],
+    setting: &SensorSetting,
+    out: &Path,
+    part: &str,
+) -> Result<Dataset, EvalError> {
+    let folder = out.join("data").join(setting.key());
+    let sources = apply_setting(sources, setting, &folder.join(format!("{part}-scenarios")))?;
+    let data = folder.join(part);
+    let options = GenerateOptions {
+        out: data.clone(),
+        seed: plan.seed,
+        shard: Shard::ALL,
+        realism: setting.realism,
+        overwrite: false,
+    };
+    generate_with_progress(&sources, &options)?;
+    Ok(Dataset::open(&data)?)
+}
