@@ -14,10 +14,11 @@ use crate::report::CvReport;
 use crate::result::BenchmarkReport;
 use crate::study::discussion::discussion_section;
 use crate::study::markdown::study_section;
-use crate::study::merge::{StudyReport, merge_study};
+use crate::study::merge::merge_study;
 use crate::study::plan::{StudyFactor, StudyPlan};
 use crate::study::point_result::PointResult;
 use crate::study::run::{evaluate_point, write_point};
+use crate::study::study_report::StudyReport;
 
 /// Runs the realism study on `bench`'s models; `urban` is bench's own evaluation (the default
 /// rung), reused rather than repeated. Returns the study as merged into `out/realism/study.json`.

@@ -7,8 +7,8 @@ use std::fmt::Write as _;
 
 use crate::method::{CANONICAL_METHODS, Method};
 use crate::report::{CvFeature, CvGp, CvReport, fmt_opt};
-use crate::study::merge::StudyReport;
 use crate::study::point_result::PointResult;
+use crate::study::study_report::StudyReport;
 use crate::thesis_tables::{THESIS_CV_HEADING_RMSE_DEG, THESIS_SITUATIONS};
 
 /// The thesis' six methods (it has no `-AUTO` variants).

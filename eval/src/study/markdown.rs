@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 
 use crate::method::CANONICAL_METHODS;
 use crate::report::fmt_opt;
-use crate::study::merge::StudyReport;
 use crate::study::point_result::Scores;
+use crate::study::study_report::StudyReport;
 
 /// A measure: title, file stem, decimals, and its value in a method's scores.
 pub(crate) type Measure = (

@@ -4,37 +4,13 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::EvalError;
 use crate::report::{create_dir, write_atomic};
 use crate::study::markdown::study_markdown;
 use crate::study::plan::StudyPlan;
 use crate::study::plot::plot_study;
 use crate::study::point_result::{POINT_BINS, PointResult};
-use crate::study::run::point_file;
-
-/// A whole study: what was held fixed and every point's results, in sorted order.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StudyReport {
-    /// The study's name (`realism`, `rate`, `channels`).
-    pub study: String,
-    /// Unit of the varied factor.
-    pub unit: String,
-    /// Seed of generation, sampling and training.
-    pub seed: u64,
-    /// Training samples, pseudo-inputs and optimiser iterations per GP.
-    pub samples: usize,
-    /// Pseudo-inputs per sparse GP.
-    pub pseudo_inputs: usize,
-    /// Optimiser iterations per GP.
-    pub max_iters: usize,
-    /// Labels of the target's point bins of `by_points`.
-    pub point_bins: Vec<String>,
-    /// The points.
-    pub points: Vec<PointResult>,
-}
+use crate::study::study_report::{StudyReport, point_file};
 
 /// The files a merged study wrote.
 #[derive(Debug, Clone, PartialEq)]

@@ -11,11 +11,13 @@ mod plot;
 mod point_result;
 mod run;
 mod scenario_setting;
+mod study_report;
 
 pub use bench_realism::{realism_in_bench, realism_sections};
 pub use discussion::discussion_section;
 pub use markdown::{study_markdown, study_section};
-pub use merge::{StudyFiles, StudyReport, merge_study, write_study};
+pub use merge::{StudyFiles, merge_study, write_study};
 pub use plan::{SensorSetting, StudyFactor, StudyPlan, StudyPoint};
 pub use point_result::{POINT_BINS, PointResult, Scores};
-pub use run::{point_file, run_study};
+pub use run::run_study;
+pub use study_report::{StudyReport, point_file};

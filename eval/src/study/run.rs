@@ -4,7 +4,7 @@
 //! merged afterwards writes the same bytes.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use patchflow_dataset::Dataset;
 use patchflow_learn::{EstimatorParams, MotionEstimator};
@@ -18,11 +18,7 @@ use crate::study::merge::{StudyFiles, merge_study};
 use crate::study::plan::{SensorSetting, StudyPlan, StudyPoint};
 use crate::study::point_result::PointResult;
 use crate::study::scenario_setting::apply_setting;
-
-/// The file a point's result is written to.
-pub fn point_file(out: &Path, index: usize) -> PathBuf {
-    out.join("points").join(format!("{index:03}.json"))
-}
+use crate::study::study_report::point_file;
 
 /// Runs this shard's points of a study into `out` (datasets under `out/data`); with the whole
 /// study (`Shard::ALL`) also merges them into `study.json`, `study.md` and plots.
