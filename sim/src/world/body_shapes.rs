@@ -4,13 +4,40 @@
 //! torso, arms and head. Every part lies inside the actor's box (length × width × height,
 //! centred on the box centre), so the truth box stays exact.
 
-use patchflow_dataset::ActorClass;
+use patchflow_dataset::{ActorClass, SemanticClass};
 
 use super::piece::{Piece, PieceShape};
 use crate::scene::Material;
 
 /// Reflectivity of tyres.
 const RUBBER: f32 = 0.08;
+
+/// The parts of a parked car with box `size_m` and paint `reflectivity`, placed in the world: box
+/// centre at `centre_xy_m`, heading `yaw_rad`, box bottom at `ground_z_m`; labelled as a car.
+pub(crate) fn parked_car_parts(
+    size_m: [f64; 3],
+    reflectivity: f32,
+    centre_xy_m: [f64; 2],
+    yaw_rad: f64,
+    ground_z_m: f64,
+) -> Vec<Piece> {
+    let (sin, cos) = yaw_rad.sin_cos();
+    body_parts(ActorClass::Car, size_m, reflectivity)
+        .into_iter()
+        .map(|mut part| {
+            let [u, v, z] = part.centre_m;
+            let (u, v) = (f64::from(u), f64::from(v));
+            part.centre_m = [
+                (centre_xy_m[0] + cos * u - sin * v) as f32,
+                (centre_xy_m[1] + sin * u + cos * v) as f32,
+                (ground_z_m + size_m[2] / 2.0) as f32 + z,
+            ];
+            part.yaw_rad += yaw_rad as f32;
+            part.semantic = SemanticClass::Car;
+            part
+        })
+        .collect()
+}
 
 /// The parts of an actor of `class` with box `size_m` and paint `reflectivity`, in its box frame.
 pub(crate) fn body_parts(class: ActorClass, size_m: [f64; 3], reflectivity: f32) -> Vec<Piece> {

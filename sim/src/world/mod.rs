@@ -23,8 +23,6 @@ mod terrain_scatter;
 
 use std::sync::Arc;
 
-use patchflow_dataset::SemanticClass;
-
 pub(crate) use body_shapes::body_parts;
 pub use facade_shape::GLASS_FEATURE;
 pub(crate) use grid_piece::GridPiece;
@@ -128,27 +126,13 @@ fn structure_pieces(scenario: &Scenario, field: &GroundField, seed: u64) -> Vec<
                     ));
                 }
                 StructureKind::ParkedCar if knobs.shapes => {
-                    let (sin, cos) = yaw.sin_cos();
-                    out.extend(
-                        body_parts(
-                            patchflow_dataset::ActorClass::Car,
-                            size,
-                            reflectivity as f32,
-                        )
-                        .into_iter()
-                        .map(|mut part| {
-                            let [u, v, z] = part.centre_m;
-                            let (u, v) = (f64::from(u), f64::from(v));
-                            part.centre_m = [
-                                (c[0] + cos * u - sin * v) as f32,
-                                (c[1] + sin * u + cos * v) as f32,
-                                (ground + size[2] / 2.0) as f32 + z,
-                            ];
-                            part.yaw_rad += yaw as f32;
-                            part.semantic = SemanticClass::Car;
-                            part
-                        }),
-                    );
+                    out.extend(body_shapes::parked_car_parts(
+                        size,
+                        reflectivity as f32,
+                        [c[0], c[1]],
+                        yaw,
+                        ground,
+                    ));
                 }
                 kind => {
                     // Sunk 0.3 m into uneven ground, so no gap opens under it.

@@ -4,11 +4,11 @@
 //! Every item keeps clear of the actors' corridors, the scenario's own structures and the items
 //! placed before it.
 
-use patchflow_dataset::{ActorClass, SemanticClass};
+use patchflow_dataset::SemanticClass;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::body_shapes::body_parts;
+use super::body_shapes::parked_car_parts;
 use super::clearance::Clearance;
 use super::ground_field::{GroundField, GroundRecipe};
 use super::piece::{Piece, PieceShape};
@@ -271,23 +271,8 @@ impl SideBuilder<'_> {
                 } else {
                     yaw
                 };
-                let (sin, cos) = heading.sin_cos();
                 let reflectivity = rng.random_range(0.1f32..0.8);
-                body_parts(ActorClass::Car, size, reflectivity)
-                    .into_iter()
-                    .map(|mut part| {
-                        let [u, v, z] = part.centre_m;
-                        let (u, v) = (f64::from(u), f64::from(v));
-                        part.centre_m = [
-                            (p[0] + cos * u - sin * v) as f32,
-                            (p[1] + sin * u + cos * v) as f32,
-                            (base + size[2] / 2.0) as f32 + z,
-                        ];
-                        part.yaw_rad += heading as f32;
-                        part.semantic = SemanticClass::Car;
-                        part
-                    })
-                    .collect()
+                parked_car_parts(size, reflectivity, [p[0], p[1]], heading, base)
             }
         }
     }

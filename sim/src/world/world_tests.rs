@@ -1,6 +1,8 @@
 //! Tests of the street world as a whole: where the curbs and sidewalks go, and that clutter
 //! keeps off the drivers' corridors.
 
+use patchflow_dataset::SemanticClass;
+
 use super::*;
 use crate::scenario::{Realism, WorldKnobs};
 
