@@ -55,11 +55,11 @@ fn evaluate_on_an_own_scenario_writes_its_figures_and_no_thesis_placeholders() {
 }
 
 #[test]
-fn show_draws_the_maps_the_scene_and_the_point_cloud_of_a_sweep() {
+fn show_draws_the_maps_the_scene_and_the_point_cloud_of_a_sweep_into_a_new_folder() {
     let dir = tempfile::tempdir().unwrap();
     let data = dir.path().join("data");
     assert_success(&generate_tiny(&data, 2));
-    let out = dir.path().join("sweep.png");
+    let out = dir.path().join("figures").join("sweep.png");
     assert_success(&patchflow(&[
         "show",
         "--data",
@@ -70,7 +70,7 @@ fn show_draws_the_maps_the_scene_and_the_point_cloud_of_a_sweep() {
         out.to_str().unwrap(),
     ]));
     for name in ["sweep.png", "sweep_scene.png", "sweep_cloud.png"] {
-        let bytes = std::fs::read(dir.path().join(name)).unwrap();
+        let bytes = std::fs::read(dir.path().join("figures").join(name)).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{name}");
     }
 }

@@ -61,6 +61,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         features.len(),
         features.clusters().len()
     );
+    // The figure's folder is made as `bench` and `evaluate` make their output folders.
+    if let Some(folder) = args.out.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(folder)
+            .with_context(|| format!("{}: cannot create the folder", folder.display()))?;
+    }
     write_map_figure(&features, &curr, &title, &args.out)?;
     let beside = |suffix: &str| {
         let stem = args
