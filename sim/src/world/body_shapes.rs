@@ -322,7 +322,11 @@ mod tests {
                 let mut one = glass.clone();
                 one.centre_m[2] += size[2] as f32 / 2.0;
                 let (lo, _) = extent(&[one]);
-                assert!(lo[2] >= 1.0 - 1e-3, "{class:?} {size:?}: glass from {} m", lo[2]);
+                assert!(
+                    lo[2] >= 1.0 - 1e-3,
+                    "{class:?} {size:?}: glass from {} m",
+                    lo[2]
+                );
             }
         }
     }
