@@ -20,12 +20,31 @@ const SPEED_RMSE_BOUND_MPS: f64 = 1.20;
 
 #[test]
 fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
-    let dir = tempfile::tempdir().unwrap();
-    // The bounds were recorded on the world of the first release, kept as the ideal rung. On
-    // the default urban rung this scene measured 48.9° / 1.22 m/s before the ground estimate of
-    // the realism issue (item 5) lets the thesis' height slice follow uneven ground.
+    // The bounds were recorded on the world of the first release, kept as the ideal rung.
     let scene = format!("realism = \"ideal\"\n{}", patchflow_tests::TRAFFIC_SCENE);
-    let dataset = patchflow_tests::generate_scene(dir.path(), "regression", &scene, 11);
+    check_bounds(&scene, HEADING_RMSE_BOUND_DEG, SPEED_RMSE_BOUND_MPS);
+}
+
+/// On the default urban rung: measured 30.21° with seed 5 (2026-12-01); with the window sills of
+/// the first street world (side glass from 0.8 m, inside the thesis' 0.5-1.0 m slice, so
+/// vehicles looked hollow in the maps) 44.48°.
+const URBAN_HEADING_RMSE_BOUND_DEG: f64 = 34.0;
+/// Measured 0.993 m/s on urban with seed 5 (1.011 m/s with the old window sills).
+const URBAN_SPEED_RMSE_BOUND_MPS: f64 = 1.20;
+
+#[test]
+fn cross_validated_errors_on_the_urban_rung_stay_within_their_recorded_bounds() {
+    check_bounds(
+        patchflow_tests::TRAFFIC_SCENE,
+        URBAN_HEADING_RMSE_BOUND_DEG,
+        URBAN_SPEED_RMSE_BOUND_MPS,
+    );
+}
+
+/// Cross-validates SPGP-HET on `scene` (patch features, prior 0.5) and checks both bounds.
+fn check_bounds(scene: &str, heading_bound_deg: f64, speed_bound_mps: f64) {
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = patchflow_tests::generate_scene(dir.path(), "regression", scene, 11);
     let params = CvParams {
         folds: 3,
         samples: 600,
@@ -47,12 +66,12 @@ fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
         row.heading_rmse_deg, speed
     );
     assert!(
-        row.heading_rmse_deg <= HEADING_RMSE_BOUND_DEG,
-        "heading RMSE {:.3} deg > bound {HEADING_RMSE_BOUND_DEG}",
+        row.heading_rmse_deg <= heading_bound_deg,
+        "heading RMSE {:.3} deg > bound {heading_bound_deg}",
         row.heading_rmse_deg
     );
     assert!(
-        speed <= SPEED_RMSE_BOUND_MPS,
-        "speed RMSE {speed:.4} m/s > bound {SPEED_RMSE_BOUND_MPS}"
+        speed <= speed_bound_mps,
+        "speed RMSE {speed:.4} m/s > bound {speed_bound_mps}"
     );
 }
