@@ -21,12 +21,14 @@
 
 mod ard_distance;
 mod blocked;
+mod direct_gemm;
 mod error;
 mod exp;
 mod fit;
 mod fitc;
 mod full;
 mod gemm;
+mod heap_warmup;
 mod hyper;
 mod init;
 mod kernel;
