@@ -165,10 +165,11 @@ pub(crate) fn group_gradient(
     d_a: Option<&mut DMatrix<f64>>,
 ) {
     let d = a.dims();
-    // (E B)ᵀ = B_gᵀ Eᵀ (D_g×P), so that each point's row of E B is a contiguous column below.
+    // E B with B's rows read in place (B_g's points are contiguous rows of B), then transposed to
+    // D_g×P so that each point's row of it is a contiguous column below.
     let ex_t = if b.len() <= DIRECT_MAX_DEPTH {
-        let b_g = Lhs::new(columns_from(b, g), (g.len, b.len()), d);
-        product(b_g, Structure::General, Rhs::transpose_of(e))
+        let b_g = Rhs::new(columns_from(b, g), (b.len(), g.len), d, Layout::Rows);
+        product(Lhs::of(e), Structure::General, b_g).transpose()
     } else {
         // Deep products (a full GP's N×N adjoint) go through gemm's cache blocking.
         let b_rows = transposed(b.coord_slice(), d, b.len());
