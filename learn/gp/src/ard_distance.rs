@@ -7,7 +7,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::direct_gemm::{Layout, Lhs, Rhs, Structure, product};
 use super::kernel::Points;
-use super::linalg::{mul, sum, transposed};
+use super::linalg::{mul, sum, transpose, transposed};
 use super::shape::Group;
 use super::simd::vectorised;
 
@@ -169,7 +169,7 @@ pub(crate) fn group_gradient(
     // D_g×P so that each point's row of it is a contiguous column below.
     let ex_t = if b.len() <= DIRECT_MAX_DEPTH {
         let b_g = Rhs::new(columns_from(b, g), (b.len(), g.len), d, Layout::Rows);
-        product(Lhs::of(e), Structure::General, b_g).transpose()
+        transpose(&product(Lhs::of(e), Structure::General, b_g))
     } else {
         // Deep products (a full GP's N×N adjoint) go through gemm's cache blocking.
         let b_rows = transposed(b.coord_slice(), d, b.len());

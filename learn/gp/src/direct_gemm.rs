@@ -12,6 +12,8 @@
 use nalgebra::DMatrix;
 use pulp::{Simd, WithSimd};
 
+use super::tile_kernel::{RowSource, TileB, kernel_columns, kernel_rows};
+
 /// How the right operand B (k×n) lies in its slice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Layout {
@@ -65,13 +67,6 @@ impl<'a> Rhs<'a> {
     /// The column-major matrix `b` itself.
     pub fn of(b: &'a DMatrix<f64>) -> Self {
         Self::new(b.as_slice(), b.shape(), b.nrows(), Layout::Columns)
-    }
-
-    fn at(&self, p: usize, j: usize) -> f64 {
-        match self.layout {
-            Layout::Columns => self.data[p + j * self.ld],
-            Layout::Rows => self.data[j + p * self.ld],
-        }
     }
 }
 
@@ -169,16 +164,6 @@ impl WithSimd for Job<'_> {
     }
 }
 
-/// Rows of A read by one pass: `data` is column-major with leading dimension `ld`; its row 0 is
-/// row `first` of the full A.
-#[derive(Clone, Copy)]
-struct RowSource<'a> {
-    data: &'a [f64],
-    ld: usize,
-    rows: usize,
-    first: usize,
-}
-
 /// Columns per tile at the right edge, where fewer than NR are left.
 const NARROW: usize = 4;
 
@@ -250,14 +235,17 @@ fn tile_b<'a, const NR: usize>(
                 zeros
             }
         })),
-        Layout::Rows if width == NR => TileB::Rows(&b.data[j0..], b.ld),
+        // Rows NR wide already: read in place.
+        Layout::Rows if width == NR && b.ld == NR => TileB::Rows(&b.data[j0..], b.ld),
+        // Otherwise copy the tile's k short rows, each in its own cache lines, to one
+        // contiguous block (zero-padded past `width`): read by every row tile, it then streams
+        // from the first-level cache.
         Layout::Rows => {
             edge.clear();
-            edge.extend(
-                (0..b.k).flat_map(|p| {
-                    (0..NR).map(move |j| if j < width { b.at(p, j0 + j) } else { 0.0 })
-                }),
-            );
+            edge.resize(b.k * NR, 0.0);
+            for (dst, src) in edge.chunks_exact_mut(NR).zip(b.data[j0..].chunks(b.ld)) {
+                dst[..width].copy_from_slice(&src[..width]);
+            }
             TileB::Rows(&edge[..], NR)
         }
     }
@@ -301,69 +289,6 @@ fn panel_tiles<S: Simd, const MRV: usize, const NR: usize>(
             }
         }
     }
-}
-
-/// NR columns of B as seen by one tile.
-enum TileB<'a, const NR: usize> {
-    /// One contiguous slice of length k per column.
-    Columns([&'a [f64]; NR]),
-    /// Rows of NR contiguous values, `ld` apart.
-    Rows(&'a [f64], usize),
-}
-
-/// The MRV-vector column of A at depth p of rows `i0 ..` of `src`.
-#[inline(always)]
-fn a_column<S: Simd, const MRV: usize>(src: RowSource<'_>, i0: usize, p: usize) -> [S::f64s; MRV] {
-    let start = p * src.ld + i0;
-    let (v, _) = S::as_simd_f64s(&src.data[start..start + MRV * S::F64_LANES]);
-    std::array::from_fn(|r| v[r])
-}
-
-/// Σ_{p ∈ depth} A[i0.., p] B[p, ..] for B with contiguous columns.
-#[inline(always)]
-fn kernel_columns<S: Simd, const MRV: usize, const NR: usize>(
-    simd: S,
-    src: RowSource<'_>,
-    i0: usize,
-    depth: std::ops::Range<usize>,
-    b: &[&[f64]; NR],
-) -> [[S::f64s; MRV]; NR] {
-    let mut acc = [[simd.splat_f64s(0.0); MRV]; NR];
-    let b: [&[f64]; NR] = std::array::from_fn(|j| &b[j][depth.clone()]);
-    for (q, p) in depth.enumerate() {
-        let a = a_column::<S, MRV>(src, i0, p);
-        for (acc_col, b_col) in acc.iter_mut().zip(&b) {
-            let bv = simd.splat_f64s(b_col[q]);
-            for (c, av) in acc_col.iter_mut().zip(&a) {
-                *c = simd.mul_add_f64s(*av, bv, *c);
-            }
-        }
-    }
-    acc
-}
-
-/// Σ_{p ∈ depth} A[i0.., p] B[p, ..] for B with contiguous rows `ld` apart.
-#[inline(always)]
-fn kernel_rows<S: Simd, const MRV: usize, const NR: usize>(
-    simd: S,
-    src: RowSource<'_>,
-    i0: usize,
-    depth: std::ops::Range<usize>,
-    b: &[f64],
-    ld: usize,
-) -> [[S::f64s; MRV]; NR] {
-    let mut acc = [[simd.splat_f64s(0.0); MRV]; NR];
-    for p in depth {
-        let a = a_column::<S, MRV>(src, i0, p);
-        let b_row = &b[p * ld..][..NR];
-        for (acc_col, bv) in acc.iter_mut().zip(b_row) {
-            let bv = simd.splat_f64s(*bv);
-            for (c, av) in acc_col.iter_mut().zip(&a) {
-                *c = simd.mul_add_f64s(*av, bv, *c);
-            }
-        }
-    }
-    acc
 }
 
 #[cfg(test)]

@@ -12,7 +12,7 @@ use super::direct_gemm::{Lhs, Rhs, Structure, product, symmetric_product};
 use super::heap_warmup::keep_freed_memory_mapped;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
-use super::linalg::{cholesky_with_jitter, dot, log_diag_sum, lower_inverse};
+use super::linalg::{cholesky_with_jitter, dot, log_diag_sum, lower_inverse, transpose};
 use super::simd::vectorised;
 use super::train_data::TrainData;
 use crate::Result;
@@ -174,7 +174,7 @@ pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> 
         + 0.5 * (yy - c.dot(&c))
         + 0.5 * n * (2.0 * std::f64::consts::PI).ln(); // step 8
     let u = lb_inv.tr_mul(&c);
-    let lb_inv_t = lb_inv.transpose();
+    let lb_inv_t = transpose(&lb_inv);
     // B⁻¹ = L_B⁻ᵀL_B⁻¹
     let b_inv = symmetric_product(
         Lhs::of(&lb_inv_t),
@@ -184,7 +184,7 @@ pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> 
     Ok(Factors {
         z,
         k_m,
-        l_inv_t: l_inv.transpose(),
+        l_inv_t: transpose(&l_inv),
         l_inv,
         b_inv,
         u,

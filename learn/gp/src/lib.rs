@@ -50,6 +50,7 @@ mod simd;
 mod sparse_posterior;
 mod squashing;
 mod stationary;
+mod tile_kernel;
 mod train_data;
 mod transform;
 
