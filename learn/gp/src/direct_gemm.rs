@@ -141,6 +141,23 @@ fn run(a: Lhs<'_>, structure: Structure, b: Rhs<'_>, symmetric: bool) -> DMatrix
     DMatrix::from_vec(m, n, pulp::Arch::new().dispatch(job))
 }
 
+/// C = A·B computed with the instruction set `simd` (the tests check each one the dispatch may pick).
+#[cfg(test)]
+pub(crate) fn product_with<S: Simd>(
+    simd: S,
+    a: Lhs<'_>,
+    structure: Structure,
+    b: Rhs<'_>,
+) -> DMatrix<f64> {
+    let job = Job {
+        a,
+        structure,
+        b,
+        symmetric: false,
+    };
+    DMatrix::from_vec(a.m, b.n, simd.vectorize(job))
+}
+
 /// A product, as dispatched to the widest instruction set; it returns C's values column-major.
 struct Job<'a> {
     a: Lhs<'a>,

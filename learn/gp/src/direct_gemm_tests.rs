@@ -3,6 +3,7 @@
 //! symmetric results.
 
 use nalgebra::DMatrix;
+use pulp::Simd;
 
 use super::*;
 
@@ -103,4 +104,45 @@ fn empty_operands_give_zero_or_empty_results() {
         product(Lhs::of(&a), Structure::General, Rhs::of(&b)).shape(),
         (0, 2)
     );
+}
+
+/// Every tiling the run-time dispatch may choose (8, 4 or 1 lanes) against nalgebra.
+#[test]
+fn every_instruction_set_gives_the_same_products() {
+    fn check<S: Simd>(simd: S, name: &str) {
+        for (m, k, n) in SHAPES {
+            let a = matrix(m, k, 1);
+            let b = matrix(k, n, 2);
+            let want = &a * &b;
+            let got = product_with(simd, Lhs::of(&a), Structure::General, Rhs::of(&b));
+            assert!(close(&got, &want), "{name} columns {m}×{k}×{n}");
+            let bt = b.transpose();
+            let got = product_with(
+                simd,
+                Lhs::of(&a),
+                Structure::General,
+                Rhs::transpose_of(&bt),
+            );
+            assert!(close(&got, &want), "{name} rows {m}×{k}×{n}");
+        }
+        for m in [5, 23, 100] {
+            let lower = matrix(m, m, 5).lower_triangle();
+            let b = matrix(m, 17, 6);
+            let got = product_with(simd, Lhs::of(&lower), Structure::Lower, Rhs::of(&b));
+            assert!(close(&got, &(&lower * &b)), "{name} lower {m}");
+            let upper = lower.transpose();
+            let got = product_with(simd, Lhs::of(&upper), Structure::Upper, Rhs::of(&b));
+            assert!(close(&got, &(&upper * &b)), "{name} upper {m}");
+        }
+    }
+    check(pulp::Scalar::new(), "scalar");
+    #[cfg(target_arch = "x86_64")]
+    {
+        if let Some(simd) = pulp::x86::V3::try_new() {
+            check(simd, "AVX2");
+        }
+        if let Some(simd) = pulp::x86::V4::try_new() {
+            check(simd, "AVX-512");
+        }
+    }
 }
