@@ -5,10 +5,20 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::direct_gemm::{Layout, Lhs, Rhs, Structure, product};
 use super::kernel::Points;
-use super::linalg::{mul, sum, transposed};
+use super::linalg::{mul, sum, transpose, transposed};
 use super::shape::Group;
 use super::simd::vectorised;
+
+/// Largest inner dimension given to the packing-free products: beyond it the operands' tiles no
+/// longer fit the core's caches.
+const DIRECT_MAX_DEPTH: usize = 1024;
+
+/// The coordinates of `p` from column `g.start` of its first point on (empty for no points).
+fn columns_from(p: Points<'_>, g: Group) -> &[f64] {
+    p.coord_slice().get(g.start..).unwrap_or(&[])
+}
 
 /// Σ_j v_j² w_j with four partial sums, so the loop vectorises.
 #[inline(always)]
@@ -54,8 +64,8 @@ pub(crate) fn sq_distances(
     let ac = a.coord_slice();
     let scaled = DMatrix::from_fn(a.len(), g.len, |p, j| ac[p * d + g.start + j] * w[j]);
     let (a_norm, b_norm) = (scaled_norms(a, w, g), scaled_norms(b, w, g));
-    let b_all = b.coords();
-    let mut r2 = mul(&scaled, &b_all.rows(g.start, g.len));
+    let b_g = Rhs::new(columns_from(b, g), (g.len, b.len()), d, Layout::Columns);
+    let mut r2 = product(Lhs::of(&scaled), Structure::General, b_g);
     vectorised(
         #[inline(always)]
         || {
@@ -155,10 +165,16 @@ pub(crate) fn group_gradient(
     d_a: Option<&mut DMatrix<f64>>,
 ) {
     let d = a.dims();
-    // E B with B's rows read as a row-major view (the fast way round for gemm), then transposed
-    // to D_g×P so that each point's row of it is a contiguous column below.
-    let b_rows = transposed(b.coord_slice(), d, b.len());
-    let ex_t = mul(e, &b_rows.columns(g.start, g.len)).transpose();
+    // E B with B's rows read in place (B_g's points are contiguous rows of B), then transposed to
+    // D_g×P so that each point's row of it is a contiguous column below.
+    let ex_t = if b.len() <= DIRECT_MAX_DEPTH {
+        let b_g = Rhs::new(columns_from(b, g), (b.len(), g.len), d, Layout::Rows);
+        transpose(&product(Lhs::of(e), Structure::General, b_g))
+    } else {
+        // Deep products (a full GP's N×N adjoint) go through gemm's cache blocking.
+        let b_rows = transposed(b.coord_slice(), d, b.len());
+        mul(e, &b_rows.columns(g.start, g.len)).transpose()
+    };
     let mut acc = vec![0.0; g.len];
     let r = &sums.rows;
     let w = &inv_sq.as_slice()[g.start..g.start + g.len];

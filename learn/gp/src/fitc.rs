@@ -8,10 +8,11 @@
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
+use super::direct_gemm::{Lhs, Rhs, Structure, product, symmetric_product};
+use super::heap_warmup::keep_freed_memory_mapped;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
-use super::linalg::{cholesky_with_jitter, dot, log_diag_sum, lower_inverse};
-use super::linalg::{lower_mul, mul, symmetric_mul_t, upper_mul};
+use super::linalg::{cholesky_with_jitter, dot, log_diag_sum, lower_inverse, transpose};
 use super::simd::vectorised;
 use super::train_data::TrainData;
 use crate::Result;
@@ -82,7 +83,7 @@ fn pass1<K: Kernel>(
     (start, len): (usize, usize),
     (k, k_diag): (DMatrix<f64>, DVector<f64>),
 ) -> Pass1 {
-    let mut vt = lower_mul(l_inv, &k); // step 3: V = L⁻¹U
+    let mut vt = product(Lhs::of(l_inv), Structure::Lower, Rhs::of(&k)); // step 3: V = L⁻¹U
     let m = vt.nrows();
     let y = data.y.rows(start, len);
     let mut g = DVector::zeros(len);
@@ -107,7 +108,7 @@ fn pass1<K: Kernel>(
             }
         },
     );
-    let vvt = symmetric_mul_t(&vt, &vt);
+    let vvt = symmetric_product(Lhs::of(&vt), Structure::General, Rhs::transpose_of(&vt));
     Pass1 {
         yy,
         log_g,
@@ -173,12 +174,17 @@ pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> 
         + 0.5 * (yy - c.dot(&c))
         + 0.5 * n * (2.0 * std::f64::consts::PI).ln(); // step 8
     let u = lb_inv.tr_mul(&c);
-    let lb_inv_t = lb_inv.transpose();
-    let b_inv = symmetric_mul_t(&lb_inv_t, &lb_inv_t); // B⁻¹ = L_B⁻ᵀL_B⁻¹
+    let lb_inv_t = transpose(&lb_inv);
+    // B⁻¹ = L_B⁻ᵀL_B⁻¹
+    let b_inv = symmetric_product(
+        Lhs::of(&lb_inv_t),
+        Structure::Upper,
+        Rhs::transpose_of(&lb_inv_t),
+    );
     Ok(Factors {
         z,
         k_m,
-        l_inv_t: l_inv.transpose(),
+        l_inv_t: transpose(&l_inv),
         l_inv,
         b_inv,
         u,
@@ -207,7 +213,7 @@ fn pass2<K: Kernel>(
     let m = f.u.len();
     let u = f.u.as_slice();
     let y = data.y.rows(start, len);
-    let mut r_mat = mul(&f.b_inv, &p.vt); // B⁻¹Ṽ = L_B⁻ᵀW1
+    let mut r_mat = product(Lhs::of(&f.b_inv), Structure::General, Rhs::of(&p.vt)); // B⁻¹Ṽ
     let mut d = DVector::zeros(len);
     // One sweep over the columns: α = C⁻¹y, d = diag(G) and, in place of B⁻¹Ṽ,
     // R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d), with V = ṼΓ^{1/2}.
@@ -233,7 +239,7 @@ fn pass2<K: Kernel>(
             }
         },
     );
-    let d_u = upper_mul(&f.l_inv_t, &r_mat); // ∂𝓛/∂U = L⁻ᵀR
+    let d_u = product(Lhs::of(&f.l_inv_t), Structure::Upper, Rhs::of(&r_mat)); // ∂𝓛/∂U = L⁻ᵀR
     // V diag(d) Vᵀ = Ṽ diag(g∘d) Ṽᵀ, reusing R's storage for Ṽ diag(g∘d).
     vectorised(
         #[inline(always)]
@@ -253,7 +259,11 @@ fn pass2<K: Kernel>(
     );
     Pass2 {
         d_u,
-        vdvt: symmetric_mul_t(&r_mat, &p.vt),
+        vdvt: symmetric_product(
+            Lhs::of(&r_mat),
+            Structure::General,
+            Rhs::transpose_of(&p.vt),
+        ),
         diag_grad: h.kernel.diag_gradient(data.points().range(start, len), &d),
         sum_d: d.sum(),
     }
@@ -273,7 +283,9 @@ fn pseudo_gradient<K: Kernel>(
         s_mat += &p.vdvt;
     }
     // L⁻ᵀSL⁻¹ = L⁻ᵀ(L⁻ᵀS)ᵀ for symmetric S: two products with a triangular factor.
-    let d_bu = upper_mul(&f.l_inv_t, &upper_mul(&f.l_inv_t, &s_mat).transpose());
+    let l_inv_t = Lhs::of(&f.l_inv_t);
+    let half = product(l_inv_t, Structure::Upper, Rhs::of(&s_mat));
+    let d_bu = product(l_inv_t, Structure::Upper, Rhs::transpose_of(&half));
     let d_bu = (&d_bu + d_bu.transpose()) * 0.5;
     let mut d_z = DMatrix::zeros(z.dims(), m);
     let grad = h.kernel.cross_gradient(z, z, &f.k_m, &d_bu, Some(&mut d_z));
@@ -286,6 +298,7 @@ pub(crate) fn objective<K: Kernel>(
     h: &Hyper<K>,
     jitter: f64,
 ) -> Result<Evaluation> {
+    keep_freed_memory_mapped();
     let f = factor(data, h, jitter)?;
     let blocks = data.blocks();
     let parts: Vec<Pass2> = blocks

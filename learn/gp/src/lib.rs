@@ -21,12 +21,14 @@
 
 mod ard_distance;
 mod blocked;
+mod direct_gemm;
 mod error;
 mod exp;
 mod fit;
 mod fitc;
 mod full;
 mod gemm;
+mod heap_warmup;
 mod hyper;
 mod init;
 mod kernel;
@@ -48,6 +50,7 @@ mod simd;
 mod sparse_posterior;
 mod squashing;
 mod stationary;
+mod tile_kernel;
 mod train_data;
 mod transform;
 
