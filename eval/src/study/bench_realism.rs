@@ -1,14 +1,17 @@
 //! The realism study inside `bench` (issue #10): the models `bench` trained on the default rung
 //! (`urban`) and its evaluation of the five situations there, plus the same situations generated
 //! at the other rungs and evaluated with the same models; written to `OUT/realism/` as a study.
+//! The study scores the target only, so the other rungs get the per-target evaluation (every
+//! method on the target, the situations in parallel) and not the whole scene.
 
 use std::path::Path;
 
 use patchflow_learn::MotionEstimator;
 use patchflow_sim::Realism;
 
-use crate::bench::BenchPlan;
+use crate::baseline_params::BaselineParams;
 use crate::bench::run_files::remove_data;
+use crate::bench::{BenchPlan, evaluate_targets_with_baselines};
 use crate::error::EvalError;
 use crate::report::CvReport;
 use crate::result::BenchmarkReport;
@@ -17,7 +20,7 @@ use crate::study::markdown::study_section;
 use crate::study::merge::merge_study;
 use crate::study::plan::{StudyFactor, StudyPlan};
 use crate::study::point_result::PointResult;
-use crate::study::run::{evaluate_point, write_point};
+use crate::study::run::{generate, write_point};
 use crate::study::study_report::StudyReport;
 
 /// Runs the realism study on `bench`'s models; `urban` is bench's own evaluation (the default
@@ -34,11 +37,16 @@ pub fn realism_in_bench(
         let result = if point.evaluate.realism == Some(Realism::Urban) {
             PointResult::from_report(point, urban)?
         } else {
-            let result = evaluate_point(&study, point, estimators, out)?;
+            let situations = generate(&study, &study.situations, &point.evaluate, out, "situations")?;
+            let report = evaluate_targets_with_baselines(
+                &situations,
+                estimators,
+                &BaselineParams::default(),
+            )?;
             if !plan.keep_data {
                 remove_data(&out.join("data").join(point.evaluate.key()))?;
             }
-            result
+            PointResult::from_report(point, &report)?
         };
         write_point(&dir, &result)?;
     }
