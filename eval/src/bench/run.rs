@@ -6,8 +6,8 @@ use std::time::Instant;
 
 use patchflow_dataset::Dataset;
 use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
-use rayon::prelude::*;
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
+use rayon::prelude::*;
 
 use crate::bench::notes::notes;
 use crate::bench::plan::BenchPlan;
@@ -226,7 +226,7 @@ pub fn run_bench(
         append(&files.report_md, &occupancy_section(occupancy))?;
     }
     if let Some(realism) = &realism {
-        append(&files.report_md, &realism_sections(realism, &cv))?;
+        append(&files.report_md, &realism_sections(realism, &cv, plan))?;
     }
     let perception = PerceptionSummary::of_scenes(&report.scenes);
     Ok(BenchOutcome {

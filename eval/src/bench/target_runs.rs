@@ -208,9 +208,14 @@ mod tests {
         }
         assert!(alone.methods[&Method::SpgpAll].iter().any(Option::is_some));
         // With the baselines: every method of the whole evaluation's per-target table, equal.
-        let with = evaluate_targets_with_baselines(&dataset, &estimators, &BaselineParams::default())
-            .unwrap();
+        let with =
+            evaluate_targets_with_baselines(&dataset, &estimators, &BaselineParams::default())
+                .unwrap();
         assert_eq!(with.situations, whole.situations);
-        assert!(with.situations[0].methods[&Method::IcpAuto].iter().any(Option::is_some));
+        assert!(
+            with.situations[0].methods[&Method::IcpAuto]
+                .iter()
+                .any(Option::is_some)
+        );
     }
 }
