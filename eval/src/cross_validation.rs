@@ -11,9 +11,12 @@
 //! mirror images of their samples when the estimator trains with them (`mirror_images`); test
 //! folds hold drawn samples only, and a sample's mirror never serves to test it.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use nalgebra::DVector;
 use patchflow_dataset::Dataset;
 use patchflow_learn::{FeatureKind, FeatureParams, GaborBank, SampleSet};
+use rayon::prelude::*;
 
 use crate::cv_fold::{Fold, FoldAccumulator, FoldData, Split, features_of, fold_assignment};
 use crate::cv_params::CvParams;
@@ -58,7 +61,7 @@ pub fn cross_validate_samples(
         });
     }
     let total = sets.len() * 2 * 2 * params.folds;
-    let mut done = 0;
+    let done = AtomicUsize::new(0);
     let mut rows = Vec::new();
     for set in sets {
         let prior = set.prior();
@@ -99,9 +102,16 @@ pub fn cross_validate_samples(
             let mirror = mirrored.as_ref().map(fold_data).transpose()?;
             // The thesis judges speed on map patches only, with the prior that served heading best (0.5).
             let with_speed = feature == CvFeature::Patch && (prior - 0.5).abs() < 1e-12;
-            for gp in [CvGp::Spgp, CvGp::SpgpHet] {
-                let mut acc = FoldAccumulator::default();
-                for fold in 0..params.folds {
+            // Every (GP, fold) pair is an independent fit: they run in parallel, and their
+            // errors are accumulated in fold order, so the tables do not depend on the threads.
+            let gps = [CvGp::Spgp, CvGp::SpgpHet];
+            let pairs: Vec<(CvGp, usize)> = gps
+                .iter()
+                .flat_map(|&gp| (0..params.folds).map(move |fold| (gp, fold)))
+                .collect();
+            let errors = pairs
+                .par_iter()
+                .map(|&(gp, fold)| {
                     let split = Split::new(&folds, fold);
                     let fold = Fold {
                         data: &data,
@@ -110,13 +120,21 @@ pub fn cross_validate_samples(
                         gp,
                         params,
                     };
-                    acc.add_heading(fold.heading()?);
-                    if with_speed {
-                        acc.add_speed(fold.speed()?);
-                    }
-                    done += 1;
-                    progress(done, total);
+                    let heading = fold.heading()?;
+                    let speed = with_speed.then(|| fold.speed()).transpose()?;
+                    progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+                    Ok((gp, heading, speed))
+                })
+                .collect::<Result<Vec<_>, EvalError>>()?;
+            let mut accs = [FoldAccumulator::default(), FoldAccumulator::default()];
+            for (gp, heading, speed) in errors {
+                let acc = &mut accs[usize::from(gp == CvGp::SpgpHet)];
+                acc.add_heading(heading);
+                if let Some(speed) = speed {
+                    acc.add_speed(speed);
                 }
+            }
+            for (gp, acc) in gps.into_iter().zip(&accs) {
                 rows.push(acc.row(feature, prior, gp));
             }
         }

@@ -55,8 +55,8 @@ mod truth_at_scan;
 
 // ── The benchmark ──────────────────────────────────────────────────────────────────────────
 pub use bench::{
-    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, MethodSpread, QUICK_SWEEP_SHARE,
-    SeedFigure, SeedSpread, run_bench,
+    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, MethodSpread,
+    QUICK_REALISM_SITUATIONS, QUICK_SWEEP_SHARE, SeedFigure, SeedSpread, run_bench,
 };
 pub use error::EvalError;
 

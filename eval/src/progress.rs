@@ -8,6 +8,8 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::{Deserialize, Serialize};
 
+use crate::cpu_time::process_total_cpu_secs;
+
 /// Seconds spent in one named stage.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StageTiming {
@@ -15,9 +17,14 @@ pub struct StageTiming {
     pub stage: String,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// CPU seconds of the process over the stage, all threads together, where the system reports
+    /// them: on a shared machine the wall time grows with the load, the CPU time hardly, and CPU
+    /// over wall shows how many cores the stage kept busy.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_seconds: Option<f64>,
 }
 
-/// Records wall-clock seconds per stage, in the order the stages ran.
+/// Records wall-clock and CPU seconds per stage, in the order the stages ran.
 ///
 /// ```
 /// use patchflow_eval::progress::StageTimer;
@@ -37,21 +44,33 @@ impl StageTimer {
         Self::default()
     }
 
-    /// Runs `work`, records its seconds under `stage`, and returns its result.
+    /// Runs `work`, records its wall and CPU seconds under `stage`, and returns its result.
     pub fn time<T>(&mut self, stage: &str, work: impl FnOnce() -> T) -> T {
-        let start = Instant::now();
+        let (start, cpu_start) = (Instant::now(), process_total_cpu_secs());
         let out = work();
-        self.record(stage, start.elapsed().as_secs_f64());
+        let cpu = cpu_start
+            .zip(process_total_cpu_secs())
+            .map(|(start, end)| end - start);
+        self.record_with_cpu(stage, start.elapsed().as_secs_f64(), cpu);
         out
     }
 
     /// Records seconds measured elsewhere. A stage recorded twice accumulates.
     pub fn record(&mut self, stage: &str, seconds: f64) {
+        self.record_with_cpu(stage, seconds, None);
+    }
+
+    /// Records wall and CPU seconds measured elsewhere. A stage recorded twice accumulates.
+    pub fn record_with_cpu(&mut self, stage: &str, seconds: f64, cpu_seconds: Option<f64>) {
         match self.timings.iter_mut().find(|t| t.stage == stage) {
-            Some(timing) => timing.seconds += seconds,
+            Some(timing) => {
+                timing.seconds += seconds;
+                timing.cpu_seconds = timing.cpu_seconds.zip(cpu_seconds).map(|(a, b)| a + b);
+            }
             None => self.timings.push(StageTiming {
                 stage: stage.to_owned(),
                 seconds,
+                cpu_seconds,
             }),
         }
     }

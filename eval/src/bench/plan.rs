@@ -12,6 +12,10 @@ pub const BENCH_SEED: u64 = 7;
 /// Share of each training track's sweeps that `--quick` simulates.
 pub const QUICK_SWEEP_SHARE: f64 = 1.0 / 3.0;
 
+/// The situations `--quick`'s realism study evaluates at every rung: the two in which the thesis
+/// found ICP failing on real data (heading in situation 1, speed in situation 5; issue #10).
+pub const QUICK_REALISM_SITUATIONS: [&str; 2] = ["situation1", "situation5"];
+
 /// The dense random-traffic scene the whole-scan perception is also measured on
 /// (`scenarios/dense_traffic.toml`; not a thesis situation, so it has no target).
 pub const DENSE_TRAFFIC_TOML: &str = include_str!("../../../scenarios/dense_traffic.toml");
@@ -48,6 +52,9 @@ pub struct BenchPlan {
     pub keep_data: bool,
     /// Whether this is the smaller `--quick` plan (noted in the report).
     pub quick: bool,
+    /// The situations the realism study evaluates at every rung, by name; empty for all of them
+    /// (`--quick` keeps [`QUICK_REALISM_SITUATIONS`], and its report says so).
+    pub realism_situations: Vec<String>,
 }
 
 fn embedded(prefix: &str) -> Vec<ScenarioSource> {
@@ -89,11 +96,12 @@ impl BenchPlan {
             training_sweep_share: 1.0,
             keep_data: false,
             quick: false,
+            realism_situations: Vec::new(),
         }
     }
 
     /// `--quick`: every training track but a third of its sweeps, fewer samples, pseudo-inputs,
-    /// iterations and folds, one seed.
+    /// iterations and folds, one seed, and a realism study on two of the situations.
     pub fn quick() -> Self {
         let full = Self::full();
         Self {
@@ -111,6 +119,7 @@ impl BenchPlan {
                 ..CvParams::default()
             },
             quick: true,
+            realism_situations: QUICK_REALISM_SITUATIONS.map(str::to_owned).to_vec(),
             ..full
         }
     }
@@ -129,7 +138,7 @@ impl BenchPlan {
 }
 
 /// A scenario's name: the embedded name or the file stem.
-fn source_name(source: &ScenarioSource) -> String {
+pub(crate) fn source_name(source: &ScenarioSource) -> String {
     match source {
         ScenarioSource::Embedded(name, _) => (*name).to_owned(),
         ScenarioSource::File(path) => path.file_stem().map_or_else(
@@ -154,6 +163,16 @@ mod tests {
         assert_eq!(quick.training_names(), plan.training_names());
         assert!(quick.training_sweep_share < 1.0 && plan.training_sweep_share == 1.0);
         assert!(quick.quick && !plan.quick && !plan.keep_data);
+    }
+
+    #[test]
+    fn the_quick_realism_study_keeps_situations_the_full_plan_has_and_the_full_one_keeps_all() {
+        let full = BenchPlan::full();
+        let names: Vec<String> = full.situations.iter().map(source_name).collect();
+        let quick = BenchPlan::quick();
+        assert!(full.realism_situations.is_empty());
+        assert!(!quick.realism_situations.is_empty());
+        assert!(quick.realism_situations.iter().all(|n| names.contains(n)));
     }
 
     #[test]

@@ -5,8 +5,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{EstimatorParams, MotionEstimator, SampleSet};
+use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
+use rayon::prelude::*;
 
 use crate::bench::notes::notes;
 use crate::bench::plan::BenchPlan;
@@ -78,7 +79,13 @@ pub fn run_bench(
         progress_line(run_start, &format!("{name}: started"));
         timer.time(name, work)?;
         if let Some(t) = timer.timings().last() {
-            progress_line(run_start, &format!("{name}: done in {:.1} s", t.seconds));
+            let cpu = t
+                .cpu_seconds
+                .map_or_else(String::new, |c| format!(" ({c:.1} s CPU)"));
+            progress_line(
+                run_start,
+                &format!("{name}: done in {:.1} s{cpu}", t.seconds),
+            );
             on_stage(t);
         }
         Ok::<(), EvalError>(())
@@ -112,20 +119,17 @@ pub fn run_bench(
         .iter()
         .find(|s| (s.prior() - 0.5).abs() < 1e-12)
         .ok_or_else(|| missing("a sample set with prior 0.5 (CvParams::priors)"))?;
-    // 3. One estimator per GP kind on the same samples (thesis 3.1.3).
-    stage("train SPGP and SPGP-HET", &mut || {
-        estimators = train_estimators(&train, training_set, plan, plan.seed, out)?;
+    // 3. One estimator per GP kind and training seed, each on its seed's samples (thesis
+    //    3.1.3); the further seeds' GPs give the spread over seeds. The fits are independent and
+    //    run in parallel.
+    stage("train SPGP and SPGP-HET, every seed", &mut || {
+        let mut draws: Vec<(&SampleSet, u64)> = vec![(training_set, plan.seed)];
+        draws.extend(further_sets.iter().zip(further_seeds.iter().copied()));
+        let mut runs = train_seeds(&train, &draws, plan, out)?.into_iter();
+        estimators = runs.next().unwrap_or_default();
+        further = runs.collect();
         Ok(())
     })?;
-    // 3b. The further training seeds' GPs, for the spread over seeds.
-    if !further_seeds.is_empty() {
-        stage("train further seeds", &mut || {
-            for (set, &seed) in further_sets.iter().zip(further_seeds) {
-                further.push(train_estimators(&train, set, plan, seed, out)?);
-            }
-            Ok(())
-        })?;
-    }
     // 4. Simulate the evaluation sequences (SPEC §3). The training tracks are no longer needed:
     //    without `keep_data` they go first, so the two datasets are never on disk together.
     if !plan.keep_data {
@@ -222,7 +226,7 @@ pub fn run_bench(
         append(&files.report_md, &occupancy_section(occupancy))?;
     }
     if let Some(realism) = &realism {
-        append(&files.report_md, &realism_sections(realism, &cv))?;
+        append(&files.report_md, &realism_sections(realism, &cv, plan))?;
     }
     let perception = PerceptionSummary::of_scenes(&report.scenes);
     Ok(BenchOutcome {
@@ -260,36 +264,48 @@ fn generate(sources: &[ScenarioSource], out: &Path, seed: u64) -> Result<Dataset
     Ok(Dataset::open(out)?)
 }
 
-/// One estimator per GP kind of the plan on `set`, trained with `seed` and saved to
-/// `OUT/models/` (the first seed's as `<gp>.json`, further seeds' as `<gp>-seed<N>.json`).
-fn train_estimators(
+/// Trains one estimator per GP kind of the plan for each `(samples, seed)` draw, all fits in
+/// parallel (each is seeded on its own, so the models do not depend on the threads), and saves
+/// them to `out/models`; one vector per draw, GP kinds in plan order.
+fn train_seeds(
     dataset: &Dataset,
-    set: &SampleSet,
+    draws: &[(&SampleSet, u64)],
     plan: &BenchPlan,
-    seed: u64,
     out: &Path,
-) -> Result<Vec<MotionEstimator>, EvalError> {
+) -> Result<Vec<Vec<MotionEstimator>>, EvalError> {
     let models = out.join("models");
     std::fs::create_dir_all(&models).map_err(|e| EvalError::io(&models, e))?;
-    let mut estimators = Vec::with_capacity(plan.gps.len());
-    for &gp in &plan.gps {
-        let params = EstimatorParams {
-            gp,
-            samples: plan.samples,
-            pseudo_inputs: plan.pseudo_inputs,
-            max_iters: plan.max_iters,
-            seed,
-            ..EstimatorParams::default()
-        };
-        let spinner = spinner(&format!("fitting 3 {gp} GPs, seed {seed}"));
-        let estimator =
-            MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset));
-        spinner.finish_and_clear();
-        let estimator = estimator?;
-        estimator.save(&out.join(model_file(plan, gp, seed)))?;
-        estimators.push(estimator);
+    let fits: Vec<(usize, GpKind)> = (0..draws.len())
+        .flat_map(|d| plan.gps.iter().map(move |&gp| (d, gp)))
+        .collect();
+    let spinner = spinner(&format!(
+        "fitting {} GPs ({} kinds × {} seeds × 3)",
+        fits.len() * 3,
+        plan.gps.len(),
+        draws.len()
+    ));
+    let fitted = fits
+        .par_iter()
+        .map(|&(d, gp)| {
+            let (set, seed) = draws[d];
+            let params = EstimatorParams {
+                gp,
+                samples: plan.samples,
+                pseudo_inputs: plan.pseudo_inputs,
+                max_iters: plan.max_iters,
+                seed,
+                ..EstimatorParams::default()
+            };
+            MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset))
+        })
+        .collect::<Result<Vec<_>, _>>();
+    spinner.finish_and_clear();
+    let mut runs: Vec<Vec<MotionEstimator>> = vec![Vec::new(); draws.len()];
+    for ((d, gp), estimator) in fits.into_iter().zip(fitted?) {
+        estimator.save(&out.join(model_file(plan, gp, draws[d].1)))?;
+        runs[d].push(estimator);
     }
-    Ok(estimators)
+    Ok(runs)
 }
 
 /// The first `n` samples of a set (samples are in dataset order, so this is itself a sample).

@@ -1,6 +1,8 @@
 //! The per-target tables alone (thesis 4.4's protocol: the target's cluster, predicted at every
 //! one of its points, merged ALL and BEST) for the further training seeds of a benchmark: only
 //! the GP methods depend on training, so a seed needs neither the baselines nor the whole scene.
+//! With the baselines, the same serves the realism study, which scores the target only: no GP
+//! runs on the rest of the scene and ICP-AUTO aligns the target's cluster alone.
 
 use std::collections::BTreeMap;
 
@@ -10,12 +12,15 @@ use patchflow_learn::{
 };
 use rayon::prelude::*;
 
+use crate::baseline_params::BaselineParams;
+use crate::baselines::run_all_baselines;
 use crate::dataset_evaluation::sequences_to_evaluate;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::method::{GpReadout, Method};
-use crate::oracle::{target_at, target_cluster};
-use crate::result::SituationResult;
+use crate::observation::ScanObservation;
+use crate::oracle::{observe, target_at, target_cluster};
+use crate::result::{BenchmarkReport, SituationResult};
 use crate::scene_evaluation::to_estimate;
 
 /// Every GP read-out's estimate of the target at every scan of every situation (sequences with a
@@ -26,10 +31,39 @@ pub(crate) fn evaluate_targets(
     dataset: &Dataset,
     runs: &[Vec<MotionEstimator>],
 ) -> Result<Vec<Vec<SituationResult>>, EvalError> {
+    targets_of_runs(dataset, runs, None)
+}
+
+/// Every method's estimate of the target at every scan of every situation of `dataset` (the GP
+/// read-outs of `estimators` and the four baselines with `baselines`), the situations in
+/// parallel: the per-target tables of [`crate::evaluate_dataset`], equal to its, without the
+/// whole scene (whose scores and timings are not wanted here).
+pub(crate) fn evaluate_targets_with_baselines(
+    dataset: &Dataset,
+    estimators: &[MotionEstimator],
+    baselines: &BaselineParams,
+) -> Result<BenchmarkReport, EvalError> {
+    let runs = [estimators.to_vec()];
+    let situations = targets_of_runs(dataset, &runs, Some(baselines))?
+        .into_iter()
+        .next()
+        .unwrap_or_default();
+    Ok(BenchmarkReport {
+        situations,
+        ..BenchmarkReport::default()
+    })
+}
+
+/// The targets of `dataset` for each run, with the baselines' estimates in every run if asked.
+fn targets_of_runs(
+    dataset: &Dataset,
+    runs: &[Vec<MotionEstimator>],
+    baselines: Option<&BaselineParams>,
+) -> Result<Vec<Vec<SituationResult>>, EvalError> {
     let names = sequences_to_evaluate(dataset)?;
     let sequences = names
         .par_iter()
-        .map(|name| evaluate_target(&dataset.sequence(name)?, runs))
+        .map(|name| evaluate_target(&dataset.sequence(name)?, runs, baselines))
         .collect::<Result<Vec<_>, EvalError>>()?;
     let mut per_run = vec![Vec::new(); runs.len()];
     for results in sequences.into_iter().flatten() {
@@ -44,6 +78,7 @@ pub(crate) fn evaluate_targets(
 fn evaluate_target(
     sequence: &SequenceReader,
     runs: &[Vec<MotionEstimator>],
+    baselines: Option<&BaselineParams>,
 ) -> Result<Option<Vec<SituationResult>>, EvalError> {
     let name = sequence.info().name.clone();
     if sequence.len() < 2 || sequence.read_sweep(0)?.target().is_none() {
@@ -68,6 +103,7 @@ fn evaluate_target(
     let mut truth = Vec::new();
     let mut methods: Vec<BTreeMap<Method, Vec<Option<MotionEstimate>>>> =
         vec![BTreeMap::new(); runs.len()];
+    let mut observations: Vec<ScanObservation> = Vec::new();
     let mut stream = ScanStream::new(sequence, params)?;
     while let Some((index, sweep)) = stream.read_next()? {
         let features = stream.features_of(&sweep)?;
@@ -77,6 +113,14 @@ fn evaluate_target(
             features,
         };
         truth.push(target_at(&scan, &scan.features[0], &name)?);
+        if baselines.is_some() {
+            // What the baselines see (the first estimator's clusters, as the whole evaluation);
+            // the oracle association kept for the target alone, which only its estimates read.
+            let mut observation = observe(&scan, &scan.features[0]);
+            let target = observation.target_actor;
+            observation.actors.retain(|&actor, _| Some(actor) == target);
+            observations.push(observation);
+        }
         for ((run, groups), columns) in runs.iter().zip(&group_of).zip(&mut methods) {
             for (estimator, &group) in run.iter().zip(groups) {
                 let own = &scan.features[group];
@@ -93,6 +137,13 @@ fn evaluate_target(
                     column.push(motion.map(to_estimate));
                 }
             }
+        }
+    }
+    // Thesis 3.2: the baselines, run once; they do not learn, so every run gets the same.
+    if let Some(params) = baselines {
+        let estimates = run_all_baselines(&name, &observations, params)?;
+        for columns in &mut methods {
+            columns.extend(estimates.clone());
         }
     }
     let results = methods
@@ -156,5 +207,15 @@ mod tests {
             assert_eq!(Some(estimates), full.methods.get(method), "{method}");
         }
         assert!(alone.methods[&Method::SpgpAll].iter().any(Option::is_some));
+        // With the baselines: every method of the whole evaluation's per-target table, equal.
+        let with =
+            evaluate_targets_with_baselines(&dataset, &estimators, &BaselineParams::default())
+                .unwrap();
+        assert_eq!(with.situations, whole.situations);
+        assert!(
+            with.situations[0].methods[&Method::IcpAuto]
+                .iter()
+                .any(Option::is_some)
+        );
     }
 }

@@ -5,30 +5,39 @@ use std::sync::Arc;
 
 use patchflow_dataset::Dataset;
 use patchflow_occupancy::{AheadParams, OccupancySequence, evaluate_ahead};
+use rayon::prelude::*;
 
 use super::dgpom::dgpom_method;
 use super::run::OccupancyReport;
 use crate::error::EvalError;
 
 /// Scores DGPOM's predictions ahead (Figure 10) on every scenario of `report` with a motion map;
-/// `on_start` is called after each start time.
+/// `on_start` is called after each start time. The start times are independent fits (none is
+/// timed) and run in parallel; their scores are merged in start order.
 pub fn predict_ahead(
     dataset: &Dataset,
     report: &mut OccupancyReport,
     params: &AheadParams,
-    on_start: &dyn Fn(),
+    on_start: &(dyn Fn() + Sync),
 ) -> Result<(), EvalError> {
     for (name, map) in &report.motion_maps {
         let sequence = OccupancySequence::load(&dataset.sequence(name)?)?;
         let method = dgpom_method(report.seed, Arc::clone(map));
+        let parts = params
+            .start_scans
+            .par_iter()
+            .map(|&start| {
+                let one = AheadParams {
+                    start_scans: vec![start],
+                    ..params.clone()
+                };
+                let part = evaluate_ahead(&sequence, &method, &one);
+                on_start();
+                part
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let mut scores = None;
-        for &start in &params.start_scans {
-            let one = AheadParams {
-                start_scans: vec![start],
-                ..params.clone()
-            };
-            let part = evaluate_ahead(&sequence, &method, &one)?;
-            on_start();
+        for part in parts {
             scores = Some(match scores {
                 None => part,
                 Some(mut all) => {

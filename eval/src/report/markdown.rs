@@ -231,12 +231,35 @@ fn timing_section(md: &mut String, report: &BenchmarkReport) {
     if report.timings.is_empty() {
         return;
     }
-    let _ = writeln!(md, "## Timing\n\n| Stage | seconds |\n|---|---|");
+    let _ = writeln!(
+        md,
+        "## Timing\n\nWall-clock and CPU seconds (all threads) per stage; CPU over wall is the \
+         number of cores a stage kept busy, and on a machine shared with other work the CPU \
+         time is the steadier measure.\n\n| Stage | wall s | CPU s | cores busy |\n|---|---|---|---|"
+    );
+    let cpu = |t: Option<f64>| t.map_or_else(|| "–".to_owned(), |c| format!("{c:.1}"));
+    let busy = |cpu: Option<f64>, wall: f64| {
+        cpu.filter(|_| wall > 0.0)
+            .map_or_else(|| "–".to_owned(), |c| format!("{:.2}", c / wall))
+    };
     for t in &report.timings {
-        let _ = writeln!(md, "| {} | {:.2} |", t.stage, t.seconds);
+        let _ = writeln!(
+            md,
+            "| {} | {:.1} | {} | {} |",
+            t.stage,
+            t.seconds,
+            cpu(t.cpu_seconds),
+            busy(t.cpu_seconds, t.seconds)
+        );
     }
     let total: f64 = report.timings.iter().map(|t| t.seconds).sum();
-    let _ = writeln!(md, "| **total** | {total:.2} |\n");
+    let total_cpu: Option<f64> = report.timings.iter().map(|t| t.cpu_seconds).sum();
+    let _ = writeln!(
+        md,
+        "| **total** | {total:.1} | {} | {} |\n",
+        cpu(total_cpu),
+        busy(total_cpu, total)
+    );
 }
 
 fn notes_section(md: &mut String, report: &BenchmarkReport) {

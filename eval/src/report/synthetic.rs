@@ -64,10 +64,12 @@ pub(crate) fn synthetic_report() -> BenchmarkReport {
             StageTiming {
                 stage: "generate".into(),
                 seconds: 1.25,
+                cpu_seconds: Some(2.0),
             },
             StageTiming {
                 stage: "evaluate".into(),
                 seconds: 0.5,
+                cpu_seconds: Some(0.75),
             },
         ],
         seed: Some(7),

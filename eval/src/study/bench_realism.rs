@@ -1,14 +1,17 @@
 //! The realism study inside `bench` (issue #10): the models `bench` trained on the default rung
 //! (`urban`) and its evaluation of the five situations there, plus the same situations generated
 //! at the other rungs and evaluated with the same models; written to `OUT/realism/` as a study.
+//! The study scores the target only, so the other rungs get the per-target evaluation (every
+//! method on the target, the situations in parallel) and not the whole scene.
 
 use std::path::Path;
 
 use patchflow_learn::MotionEstimator;
 use patchflow_sim::Realism;
 
-use crate::bench::BenchPlan;
+use crate::baseline_params::BaselineParams;
 use crate::bench::run_files::remove_data;
+use crate::bench::{BenchPlan, evaluate_targets_with_baselines, source_name};
 use crate::error::EvalError;
 use crate::report::CvReport;
 use crate::result::BenchmarkReport;
@@ -17,7 +20,7 @@ use crate::study::markdown::study_section;
 use crate::study::merge::merge_study;
 use crate::study::plan::{StudyFactor, StudyPlan};
 use crate::study::point_result::PointResult;
-use crate::study::run::{evaluate_point, write_point};
+use crate::study::run::{generate, write_point};
 use crate::study::study_report::StudyReport;
 
 /// Runs the realism study on `bench`'s models; `urban` is bench's own evaluation (the default
@@ -28,17 +31,42 @@ pub fn realism_in_bench(
     estimators: &[MotionEstimator],
     out: &Path,
 ) -> Result<StudyReport, EvalError> {
-    let study = StudyPlan::from_bench(StudyFactor::Realism, plan);
+    let mut study = StudyPlan::from_bench(StudyFactor::Realism, plan);
+    // `--quick` evaluates fewer situations, the same ones at every rung.
+    let kept = |name: &str| {
+        plan.realism_situations.is_empty() || plan.realism_situations.iter().any(|n| n == name)
+    };
+    study.situations.retain(|s| kept(&source_name(s)));
+    let urban = BenchmarkReport {
+        situations: urban
+            .situations
+            .iter()
+            .filter(|s| kept(&s.name))
+            .cloned()
+            .collect(),
+        ..BenchmarkReport::default()
+    };
     let dir = out.join("realism");
     for point in &study.points {
         let result = if point.evaluate.realism == Some(Realism::Urban) {
-            PointResult::from_report(point, urban)?
+            PointResult::from_report(point, &urban)?
         } else {
-            let result = evaluate_point(&study, point, estimators, out)?;
+            let situations = generate(
+                &study,
+                &study.situations,
+                &point.evaluate,
+                out,
+                "situations",
+            )?;
+            let report = evaluate_targets_with_baselines(
+                &situations,
+                estimators,
+                &BaselineParams::default(),
+            )?;
             if !plan.keep_data {
                 remove_data(&out.join("data").join(point.evaluate.key()))?;
             }
-            result
+            PointResult::from_report(point, &report)?
         };
         write_point(&dir, &result)?;
     }
@@ -49,11 +77,20 @@ pub fn realism_in_bench(
 }
 
 /// The bench report's sections of the realism study: its tables (plots in `realism/plots/`) and
-/// the synthetic-to-real discussion.
-pub fn realism_sections(study: &StudyReport, cv: &CvReport) -> String {
-    let mut md = String::from(
-        "## Realism study: the five situations at every rung, models trained on `urban`\n\nFiles: `realism/study.json`, `realism/study.md`, `realism/plots/`.\n\n",
-    );
+/// the synthetic-to-real discussion; `plan` says whether it covered every situation.
+pub fn realism_sections(study: &StudyReport, cv: &CvReport, plan: &BenchPlan) -> String {
+    let mut md = if plan.realism_situations.is_empty() {
+        String::from(
+            "## Realism study: the five situations at every rung, models trained on `urban`\n\n",
+        )
+    } else {
+        format!(
+            "## Realism study: {} at every rung, models trained on `urban`\n\nA shorter study than the default `bench` runs (`--quick`): only {} are simulated and evaluated at every rung, and the pooled figures are over them alone.\n\n",
+            plan.realism_situations.join(" and "),
+            plan.realism_situations.join(", ")
+        )
+    };
+    md.push_str("Files: `realism/study.json`, `realism/study.md`, `realism/plots/`.\n\n");
     md.push_str(&study_section(study, "###").replace("](plots/", "](realism/plots/"));
     md.push_str(&discussion_section(study, Some(cv), "##"));
     md

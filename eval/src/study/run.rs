@@ -116,7 +116,7 @@ pub(crate) fn evaluate_point(
 }
 
 /// Generates `sources` with a setting into `out/data/<setting>/<part>` (resumed if there).
-fn generate(
+pub(crate) fn generate(
     plan: &StudyPlan,
     sources: &[ScenarioSource],
     setting: &SensorSetting,
