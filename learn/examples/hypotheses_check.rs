@@ -151,9 +151,9 @@ fn report(rows: &[Row], scans: usize) {
     for r in rows {
         groups.entry(&r.group).or_default().push(r);
     }
-    println!("{scans} scans; evidence quantiles q05 / q25 / q50 / q75");
+    println!("{scans} scans; width and evidence quantiles q05 / q25 / q50 / q75");
     println!(
-        "| group | clusters/scan | points/scan | cells/scan | width q50 (m) | |difference| | observed change |"
+        "| group | clusters/scan | points/scan | cells/scan | width (m) | |difference| | observed change |"
     );
     println!("|---|---|---|---|---|---|---|");
     for (group, g) in &groups {
