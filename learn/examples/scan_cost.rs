@@ -1,7 +1,9 @@
-//! What a whole scan costs per stage on a generated dataset, in CPU time: the features (slice,
-//! maps, clusters) and each model's whole-scan step (hypotheses, patches, GP prediction, merging),
-//! with the hypotheses' points and map cells. Runs on one thread (a one-thread rayon pool), so every stage's wall time is its CPU time even on a loaded machine; a scan's latency
-//! on two idle cores is at least half the total.
+//! What a whole scan costs per stage on a generated dataset, in CPU time: the features (the new
+//! sweep's slice, maps, clusters; sweeps streamed in order as `evaluate` does) and each model's
+//! whole-scan step (hypotheses, patches, GP prediction, merging), with the hypotheses' points
+//! and map cells, every STEP-th scan. Runs on one thread (a one-thread rayon pool), so a loaded
+//! machine hardly changes the figures; a scan's latency on two idle cores is at least half the
+//! total.
 //!
 //! `cargo run --release -p patchflow-learn --example scan_cost -- DATASET STEP MODEL...`
 
@@ -9,7 +11,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{MotionEstimator, SweepFeatures};
+use patchflow_learn::{MotionEstimator, ScanStream};
 
 type Failure = Box<dyn std::error::Error + Send + Sync>;
 
@@ -56,7 +58,6 @@ fn main() -> Result<(), Failure> {
         .map(|m| MotionEstimator::load(&PathBuf::from(m)))
         .collect::<Result<_, _>>()?;
     let first = models.first().ok_or("give at least one model")?;
-    let params = first.feature_params().check()?;
     let dataset = Dataset::open(&root)?;
     let (mut features_s, mut whole_s, mut cells, mut points) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
@@ -65,12 +66,16 @@ fn main() -> Result<(), Failure> {
     pool.install(|| -> Result<(), Failure> {
         for info in dataset.sequences() {
             let reader = dataset.sequence(&info.name)?;
-            let mut t = 1;
-            while t < reader.len() {
-                let (prev, curr) = (reader.read_sweep(t - 1)?, reader.read_sweep(t)?);
+            // As `evaluate` runs: each sweep read and cut once, its slice kept for the next scan.
+            let mut stream = ScanStream::new(&reader, vec![first.feature_params().clone()])?;
+            while let Some((index, sweep)) = stream.read_next()? {
                 let start = cpu_secs();
-                let features = SweepFeatures::compute_checked(&prev, &curr, &params)?;
+                let mut scans = stream.features_of(&sweep)?;
                 let f = cpu_secs() - start;
+                if index % step != 0 {
+                    continue;
+                }
+                let features = scans.remove(0);
                 let mut whole = f;
                 for (k, model) in models.iter().enumerate() {
                     let (cpu, wall) = (cpu_secs(), Instant::now());
@@ -95,7 +100,6 @@ fn main() -> Result<(), Failure> {
                 }
                 features_s.push(f);
                 whole_s.push(whole);
-                t += step;
             }
         }
         Ok(())
@@ -106,7 +110,7 @@ fn main() -> Result<(), Failure> {
         models.len()
     );
     println!(
-        "features (slice, maps, clusters)  {}",
+        "features (new slice, maps, clusters) {}",
         spread(&mut features_s)
     );
     for (name, v) in ["hypotheses", "patches", "GP", "merge"]
