@@ -222,12 +222,19 @@ impl MotionEstimator {
         [&self.heading_sin, &self.heading_cos, &self.speed]
     }
 
-    /// The GP inputs of patches: one row of patch values or Gabor responses per patch.
+    /// The GP inputs of patches: one row of patch values or Gabor responses per patch. Patch
+    /// values go straight into the matrix (no row vectors in between: the whole-scan step builds
+    /// thousands of rows per scan).
     pub(super) fn feature_matrix(
         &self,
         features: &SweepFeatures,
         patches: &[crate::Patch],
     ) -> Result<DMatrix<f64>> {
+        if self.feature == FeatureKind::Patch {
+            return Ok(DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| {
+                patches[r].values[c]
+            }));
+        }
         let rows: Vec<Vec<f64>> = patches
             .iter()
             .map(|p| features.feature_of(p, self.feature))

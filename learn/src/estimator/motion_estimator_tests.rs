@@ -99,6 +99,23 @@ fn quick_estimator(dir: &std::path::Path) -> MotionEstimator {
     MotionEstimator::train(&dataset, &params).unwrap()
 }
 
+#[test]
+fn patch_rows_go_into_the_gp_input_matrix_unchanged_and_in_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let estimator = quick_estimator(dir.path());
+    let sweeps = car_sweeps(0.5, 5.0, 2);
+    let features =
+        SweepFeatures::compute(&sweeps[0], &sweeps[1], estimator.feature_params()).unwrap();
+    let patches: Vec<_> = (0..features.len().min(40))
+        .map(|i| features.heading_patch(i))
+        .collect();
+    assert!(patches.len() > 5);
+    let x = estimator.feature_matrix(&features, &patches).unwrap();
+    let rows: Vec<&[f64]> = patches.iter().map(|p| &p.values[..]).collect();
+    let expected = rows_to_matrix(rows.into_iter(), crate::PATCH_LEN).unwrap();
+    assert_eq!(x, expected);
+}
+
 /// Thesis 3.1 steps 3-4 on one cluster with one GP call per step, predicted at `positions`: the
 /// reference the batched, chunked predictions must reproduce exactly.
 fn reference_estimate(
