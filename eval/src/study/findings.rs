@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use crate::report::fmt_opt;
-use crate::study::markdown::{MEASURES, study_methods};
+use crate::study::measures::{MEASURES, study_methods};
 use crate::study::plan::StudyFactor;
 use crate::study::study_report::StudyReport;
 

@@ -7,6 +7,7 @@ mod discussion;
 mod findings;
 mod flow_scores;
 mod markdown;
+mod measures;
 mod merge;
 mod plan;
 mod plot;
