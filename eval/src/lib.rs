@@ -78,6 +78,7 @@ pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
 pub use perception_summary::PerceptionSummary;
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
 pub use study::{
+    CELL_SIZES_M as STUDY_CELL_SIZES_M, FlowScores as StudyFlowScores,
     POINT_BINS as STUDY_POINT_BINS, PointResult, Scores, SensorSetting, StudyFactor, StudyFiles,
     StudyPlan, StudyPoint, StudyReport, discussion_section, merge_study, point_file,
     realism_in_bench, realism_sections, run_study, study_markdown, study_section, write_study,

@@ -64,7 +64,7 @@ pub fn realism_in_bench(
                 &BaselineParams::default(),
             )?;
             if !plan.keep_data {
-                remove_data(&out.join("data").join(point.evaluate.key()))?;
+                remove_data(&out.join("data").join(point.evaluate.data_key()))?;
             }
             PointResult::from_report(point, &report)?
         };

@@ -1,45 +1,16 @@
-//! `study.md`: what was varied and what was held fixed, then one table per measure (every method
-//! against the factor, the five situations pooled), the heading and speed errors by the target's
-//! points, and each point's per-situation table. Every number comes from `study.json`.
+//! `study.md`: what was varied and what was held fixed, what the thesis predicts, then one table
+//! per measure (every method against the factor, the five situations pooled), the scene-flow
+//! EPE of every method with `ZERO-FLOW`, what we find, the heading and speed errors by the
+//! target's points, and each point's per-situation table. Every number comes from `study.json`.
 
 use std::fmt::Write as _;
 
 use crate::method::CANONICAL_METHODS;
 use crate::report::fmt_opt;
-use crate::study::point_result::Scores;
+use crate::study::findings::{findings_section, thesis_prediction};
+use crate::study::measures::{MEASURES, study_methods};
+use crate::study::plan::StudyFactor;
 use crate::study::study_report::StudyReport;
-
-/// A measure: title, file stem, decimals, and its value in a method's scores.
-pub(crate) type Measure = (
-    &'static str,
-    &'static str,
-    usize,
-    fn(&Scores) -> Option<f64>,
-);
-
-/// The measures of the tables and plots.
-pub(crate) const MEASURES: [Measure; 3] = [
-    ("Heading RMSE (°)", "heading", 1, |s| s.heading_rmse_deg),
-    ("Speed RMSE (m/s)", "speed", 2, |s| s.speed_rmse_mps),
-    ("Coverage", "coverage", 2, |s| Some(s.coverage)),
-];
-
-/// Methods of a study in report order: the canonical eight, then any other (e.g. `ZERO-FLOW`).
-pub(crate) fn study_methods(report: &StudyReport) -> Vec<String> {
-    let mut methods: Vec<String> = CANONICAL_METHODS
-        .iter()
-        .map(|m| m.name().to_owned())
-        .filter(|m| report.points.iter().any(|p| p.pooled.contains_key(m)))
-        .collect();
-    for point in &report.points {
-        for m in point.pooled.keys() {
-            if !methods.contains(m) {
-                methods.push(m.clone());
-            }
-        }
-    }
-    methods
-}
 
 /// The whole `study.md`.
 pub fn study_markdown(report: &StudyReport) -> String {
@@ -74,6 +45,13 @@ pub fn study_section(report: &StudyReport, level: &str) -> String {
         report.max_iters,
         settings.join("; ")
     );
+    if let Ok(factor) = StudyFactor::parse(&report.study) {
+        let _ = writeln!(
+            md,
+            "What the thesis predicts: {}\n",
+            thesis_prediction(factor)
+        );
+    }
     let methods = study_methods(report);
     let header = |md: &mut String, first: &str| {
         let _ = writeln!(
@@ -100,6 +78,8 @@ pub fn study_section(report: &StudyReport, level: &str) -> String {
             report.study
         );
     }
+    md.push_str(&scene_flow_table(report, level));
+    md.push_str(&findings_section(report, level));
     for (title, _, decimals, value) in &MEASURES[..2] {
         let _ = writeln!(
             md,
@@ -159,5 +139,52 @@ pub fn study_section(report: &StudyReport, level: &str) -> String {
         }
         md.push('\n');
     }
+    md
+}
+
+/// Every method's scene flow against the factor, `ZERO-FLOW` included (it has no target
+/// estimate, so it is only here): mean EPE over every scored point / over moving foreground.
+fn scene_flow_table(report: &StudyReport, level: &str) -> String {
+    let mut methods: Vec<String> = CANONICAL_METHODS
+        .iter()
+        .map(|m| m.name().to_owned())
+        .collect();
+    for point in &report.points {
+        for m in point.scene_flow.keys() {
+            if !methods.contains(m) {
+                methods.push(m.clone());
+            }
+        }
+    }
+    methods.retain(|m| report.points.iter().any(|p| p.scene_flow.contains_key(m)));
+    if methods.is_empty() {
+        return String::new();
+    }
+    let labels: Vec<&str> = report.points.iter().map(|p| p.label.as_str()).collect();
+    let mut md = format!(
+        "{level} Scene-flow EPE (m per sweep), every scored point / moving foreground, the situations pooled\n\n\
+         | Method | {} |\n|---|{}\n",
+        labels.join(" | "),
+        "---|".repeat(labels.len())
+    );
+    for m in &methods {
+        let cells: Vec<String> = report
+            .points
+            .iter()
+            .map(|p| match p.scene_flow.get(m) {
+                Some(f) => format!(
+                    "{} / {}",
+                    fmt_opt(f.epe3d_m, 3),
+                    fmt_opt(f.epe_fg_dynamic_m, 3)
+                ),
+                None => "–".into(),
+            })
+            .collect();
+        let _ = writeln!(md, "| {m} | {} |", cells.join(" | "));
+    }
+    md.push_str(
+        "\n*`ZERO-FLOW` predicts no motion: its EPE is the true displacement, the floor every \
+         method must beat.*\n\n",
+    );
     md
 }

@@ -1,12 +1,14 @@
 //! What a study runs (issue #10): one varied factor (the realism rung, the lidar rate, its
-//! channels), its points in sorted order, and everything else fixed and seeded: the training
-//! tracks, the situations, samples, pseudo-inputs, iterations and the seed of the benchmark.
+//! channels, the map cell size), its points in sorted order, and everything else fixed and
+//! seeded: the training tracks, the situations, samples, pseudo-inputs, iterations and the seed
+//! of the benchmark.
 
 use patchflow_learn::GpKind;
 use patchflow_sim::{Realism, ScenarioSource};
 
 use crate::bench::BenchPlan;
 use crate::error::EvalError;
+use crate::study::sensor_setting::SensorSetting;
 
 /// The factor a study varies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,11 +20,15 @@ pub enum StudyFactor {
     Rate,
     /// The lidar's channel count; each point trains and evaluates on its own data.
     Channels,
+    /// The map cell size (thesis 4.3: 0.10 m) with the patch kept at 11 × 11 cells, so the patch
+    /// side follows the cell (0.55, 1.1, 2.2 m): finer maps and smaller patches (thesis Ch. 6).
+    /// Each point samples, trains and evaluates on its own features of the same sweeps.
+    Cell,
 }
 
 impl StudyFactor {
     /// Every study `patchflow study NAME` knows.
-    pub const ALL: [StudyFactor; 3] = [Self::Realism, Self::Rate, Self::Channels];
+    pub const ALL: [StudyFactor; 4] = [Self::Realism, Self::Rate, Self::Channels, Self::Cell];
 
     /// The study's name on the command line and in `study.json`.
     pub fn name(self) -> &'static str {
@@ -30,6 +36,7 @@ impl StudyFactor {
             Self::Realism => "realism",
             Self::Rate => "rate",
             Self::Channels => "channels",
+            Self::Cell => "cell",
         }
     }
 
@@ -46,7 +53,9 @@ impl StudyFactor {
             .find(|f| f.name() == name)
             .ok_or_else(|| EvalError::BadParameter {
                 name: "study",
-                reason: format!("unknown study {name:?}: expected one of realism, rate, channels"),
+                reason: format!(
+                    "unknown study {name:?}: expected one of realism, rate, channels, cell"
+                ),
             })
     }
 
@@ -56,10 +65,12 @@ impl StudyFactor {
             Self::Realism => "rung",
             Self::Rate => "Hz",
             Self::Channels => "channels",
+            Self::Cell => "m",
         }
     }
 
-    /// The study's points in sorted order (mildest rung, lowest rate, fewest channels first).
+    /// The study's points in sorted order (mildest rung, lowest rate, fewest channels, finest
+    /// cells first).
     pub fn points(self) -> Vec<StudyPoint> {
         match self {
             Self::Realism => Realism::ALL
@@ -98,41 +109,25 @@ impl StudyFactor {
                     StudyPoint::own_data(k, format!("{channels} ch"), f64::from(channels), setting)
                 })
                 .collect(),
+            Self::Cell => CELL_SIZES_M
+                .into_iter()
+                .enumerate()
+                .map(|(k, cell_m)| {
+                    let setting = SensorSetting {
+                        cell_m: Some(cell_m),
+                        ..SensorSetting::default()
+                    };
+                    StudyPoint::own_data(k, format!("{cell_m:.2} m"), cell_m, setting)
+                })
+                .collect(),
         }
     }
 }
 
-/// How the world and the sensor of a dataset differ from the scenario files; `None` keeps theirs.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SensorSetting {
-    /// Realism rung replacing every scenario's own.
-    pub realism: Option<Realism>,
-    /// Lidar turn rate, Hz (sweeps scaled so each scenario lasts as long as at its own rate).
-    pub rate_hz: Option<f64>,
-    /// Lidar channels.
-    pub channels: Option<u32>,
-}
-
-impl SensorSetting {
-    /// A folder name for datasets generated with this setting (`default` for none).
-    pub fn key(&self) -> String {
-        let mut parts = Vec::new();
-        if let Some(r) = self.realism {
-            parts.push(r.name().to_owned());
-        }
-        if let Some(hz) = self.rate_hz {
-            parts.push(format!("{hz}hz"));
-        }
-        if let Some(c) = self.channels {
-            parts.push(format!("{c}ch"));
-        }
-        if parts.is_empty() {
-            "default".to_owned()
-        } else {
-            parts.join("-")
-        }
-    }
-}
+/// Map cell sizes of the cell study, metres: half, once and twice the thesis' 0.10 m (4.3). With
+/// 11 × 11 cells the patch sides are 0.55, 1.1 and 2.2 m, and the thesis' range of detectable
+/// speeds at 10 Hz (2-10 m/s for 0.10 m cells, 4.3) scales with the cell: 1-5 and 4-20 m/s.
+pub const CELL_SIZES_M: [f64; 3] = [0.05, 0.10, 0.20];
 
 /// One point of a study: the datasets it trains and evaluates on.
 #[derive(Debug, Clone, PartialEq)]
@@ -170,6 +165,9 @@ pub struct StudyPlan {
     pub points: Vec<StudyPoint>,
     /// Training tracks.
     pub training: Vec<ScenarioSource>,
+    /// Share of each training track's sweeps simulated (1 = all; `--quick`: a third, as in
+    /// `bench --quick`).
+    pub training_sweep_share: f64,
     /// Evaluated situations (those with a target).
     pub situations: Vec<ScenarioSource>,
     /// GP kinds trained, one estimator each.
@@ -192,6 +190,7 @@ impl StudyPlan {
             factor,
             points: factor.points(),
             training: bench.training.clone(),
+            training_sweep_share: bench.training_sweep_share,
             situations: bench
                 .situations
                 .iter()
@@ -225,6 +224,24 @@ mod tests {
         assert_eq!(points.len(), 3);
         assert!(points.iter().all(|p| p.train == SensorSetting::default()));
         assert_eq!(points[2].evaluate.key(), "harsh");
+    }
+
+    #[test]
+    fn the_cell_study_varies_only_the_features_so_its_points_share_their_sweeps() {
+        let points = StudyFactor::Cell.points();
+        let cells: Vec<f64> = points.iter().map(|p| p.value).collect();
+        assert_eq!(cells, CELL_SIZES_M);
+        assert!(points.iter().all(|p| p.train.data_key() == "default"));
+        assert_eq!(points[0].train.key(), "0.05m");
+        assert_eq!(points[2].evaluate.features().cell_m, 0.2);
+        assert_eq!(points[1].label, "0.10 m");
+    }
+
+    #[test]
+    fn every_cell_of_the_cell_study_passes_the_feature_checks() {
+        for point in StudyFactor::Cell.points() {
+            point.train.features().check().unwrap();
+        }
     }
 
     #[test]

@@ -7,7 +7,7 @@ use plotters::prelude::*;
 
 use crate::error::EvalError;
 use crate::report::{FONT, create_dir, ensure_font};
-use crate::study::markdown::{MEASURES, study_methods};
+use crate::study::measures::{MEASURES, study_methods};
 use crate::study::study_report::StudyReport;
 
 const SIZE_PX: (u32, u32) = (900, 520);

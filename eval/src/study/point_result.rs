@@ -1,7 +1,8 @@
 //! What one point of a study found: per situation and method the thesis' measures (heading and
 //! speed RMSE, coverage, thesis 4.4) against the point's own truth, the same pooled over the five
 //! situations, and pooled by the target's number of points in the height slice (where the thesis
-//! says ICP fails). It is the unit a sharded study writes and the merge reads.
+//! says ICP fails); beside them every method's scene flow pooled over the situations (with
+//! `ZERO-FLOW`). It is the unit a sharded study writes and the merge reads.
 
 use std::collections::BTreeMap;
 
@@ -11,6 +12,7 @@ use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::metrics::{MethodMetrics, score_method};
 use crate::result::BenchmarkReport;
+use crate::study::flow_scores::{FlowScores, pooled_scene_flow};
 use crate::study::plan::StudyPoint;
 use crate::truth_at_scan::TruthAtScan;
 
@@ -66,6 +68,10 @@ pub struct PointResult {
     pub pooled: BTreeMap<String, Scores>,
     /// Method → scores pooled over the situations, one per [`POINT_BINS`] bin.
     pub by_points: BTreeMap<String, Vec<Scores>>,
+    /// Method → scene flow (every scored point of every scan) pooled over the situations,
+    /// `ZERO-FLOW` included.
+    #[serde(default)]
+    pub scene_flow: BTreeMap<String, FlowScores>,
 }
 
 impl PointResult {
@@ -90,6 +96,8 @@ impl PointResult {
                 );
             }
         }
+        let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
+        let scene_flow = pooled_scene_flow(report, &names);
         let mut pooled = BTreeMap::new();
         let mut by_points = BTreeMap::new();
         for (method, scans) in &all {
@@ -110,6 +118,7 @@ impl PointResult {
             situations,
             pooled,
             by_points,
+            scene_flow,
         })
     }
 }

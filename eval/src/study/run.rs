@@ -7,17 +7,18 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{EstimatorParams, MotionEstimator};
+use patchflow_learn::{EstimatorParams, FeatureKind, FeatureParams, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
-use crate::bench::{collect_samples_with_bar, evaluate_with_bar, generate_with_progress};
+use crate::bench::{evaluate_with_bar, generate_with_progress, shortened_tracks};
 use crate::error::EvalError;
-use crate::progress::spinner;
+use crate::progress::{ProgressLines, progress_bar, spinner};
 use crate::report::{create_dir, write_atomic};
 use crate::study::merge::{StudyFiles, merge_study};
-use crate::study::plan::{SensorSetting, StudyPlan, StudyPoint};
+use crate::study::plan::{StudyPlan, StudyPoint};
 use crate::study::point_result::PointResult;
 use crate::study::scenario_setting::apply_setting;
+use crate::study::sensor_setting::SensorSetting;
 use crate::study::study_report::point_file;
 
 /// Runs this shard's points of a study into `out` (datasets under `out/data`); with the whole
@@ -71,24 +72,29 @@ pub(crate) fn write_point(out: &Path, result: &PointResult) -> Result<(), EvalEr
     write_atomic(&path, &bytes)
 }
 
-/// Simulates the training tracks with a setting, samples patches (thesis 3.1.2, prior 0.5) and
-/// trains one estimator per GP kind on them (thesis 3.1.3).
+/// Simulates the training tracks with a setting (`plan.training_sweep_share` of their sweeps),
+/// samples patches with the setting's features (thesis 3.1.2, prior 0.5) and trains one
+/// estimator per GP kind on them (thesis 3.1.3).
 fn train_for(
     plan: &StudyPlan,
     setting: &SensorSetting,
     out: &Path,
 ) -> Result<Vec<MotionEstimator>, EvalError> {
-    let train = generate(plan, &plan.training, setting, out, "train")?;
-    let sets = collect_samples_with_bar(&train, &[0.5], plan.samples, plan.seed)?;
-    let set = sets.first().ok_or_else(|| EvalError::BadResult {
-        situation: "study".into(),
-        reason: "sampling gave no sample set".into(),
-    })?;
+    let folder = out.join("data").join(setting.data_key());
+    let tracks = shortened_tracks(
+        &plan.training,
+        plan.training_sweep_share,
+        &folder.join("train-short-scenarios"),
+    )?;
+    let train = generate(plan, &tracks, setting, out, "train")?;
+    let features = setting.features();
+    let set = sample_patches(&train, &features, plan.samples, plan.seed)?;
     plan.gps
         .iter()
         .map(|&gp| {
             let params = EstimatorParams {
                 gp,
+                features: features.clone(),
                 samples: plan.samples,
                 pseudo_inputs: plan.pseudo_inputs,
                 max_iters: plan.max_iters,
@@ -96,11 +102,43 @@ fn train_for(
                 ..EstimatorParams::default()
             };
             let bar = spinner(&format!("fitting 3 {gp} GPs ({})", setting.key()));
-            let estimator = MotionEstimator::fit_samples(set, &params);
+            let estimator = MotionEstimator::fit_samples(&set, &params);
             bar.finish_and_clear();
             Ok(estimator?.with_sequences(&train))
         })
         .collect()
+}
+
+/// Importance-samples `n` map patches of `features` (prior 0.5) from a dataset (thesis 3.1.2),
+/// with a progress bar.
+fn sample_patches(
+    dataset: &Dataset,
+    features: &FeatureParams,
+    n: usize,
+    seed: u64,
+) -> Result<SampleSet, EvalError> {
+    let bar = progress_bar(0, "sampling patches");
+    let lines = ProgressLines::new("sweeps sampled");
+    let sets = SampleSet::collect_draws(
+        dataset,
+        features,
+        &[(0.5, seed)],
+        FeatureKind::Patch,
+        n,
+        &|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            lines.update(done, total);
+        },
+    );
+    bar.finish_and_clear();
+    sets?
+        .into_iter()
+        .next()
+        .ok_or_else(|| EvalError::BadResult {
+            situation: "study".into(),
+            reason: "sampling gave no sample set".into(),
+        })
 }
 
 /// Simulates the situations with the point's setting and runs every method on them (thesis 4.4).
@@ -115,7 +153,8 @@ pub(crate) fn evaluate_point(
     PointResult::from_report(point, &report)
 }
 
-/// Generates `sources` with a setting into `out/data/<setting>/<part>` (resumed if there).
+/// Generates `sources` with a setting into `out/data/<data key>/<part>` (resumed if there; the
+/// points of the cell study share one).
 pub(crate) fn generate(
     plan: &StudyPlan,
     sources: &[ScenarioSource],
@@ -123,7 +162,7 @@ pub(crate) fn generate(
     out: &Path,
     part: &str,
 ) -> Result<Dataset, EvalError> {
-    let folder = out.join("data").join(setting.key());
+    let folder = out.join("data").join(setting.data_key());
     let sources = apply_setting(sources, setting, &folder.join(format!("{part}-scenarios")))?;
     let data = folder.join(part);
     let options = GenerateOptions {

@@ -9,7 +9,7 @@ use patchflow_sim::ScenarioSource;
 
 use crate::error::EvalError;
 use crate::report::{create_dir, write_atomic};
-use crate::study::plan::SensorSetting;
+use crate::study::sensor_setting::SensorSetting;
 
 /// The lidar rate of a scenario that names none (`LidarConfig::default`).
 const DEFAULT_RATE_HZ: f64 = 10.0;

@@ -1,6 +1,7 @@
-//! `patchflow study NAME`: one factor varied (realism rung, lidar rate, channels), everything else
-//! fixed and seeded, by the library's study driver ([`patchflow_eval::run_study`]); `--shard I/N`
-//! runs every N-th point, `--merge` joins the shards' points into `study.json`.
+//! `patchflow study NAME`: one factor varied (realism rung, lidar rate, channels, map cell size),
+//! everything else fixed and seeded, by the library's study driver
+//! ([`patchflow_eval::run_study`]); `--shard I/N` runs every N-th point, `--merge` joins the
+//! shards' points into `study.json`.
 
 use std::path::PathBuf;
 
@@ -11,7 +12,8 @@ use patchflow_sim::Shard;
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The study: `realism` (the five situations at each rung, trained on `urban`), `rate`
-    /// (5, 10, 20 Hz) or `channels` (16, 32, 64, 128).
+    /// (5, 10, 20 Hz), `channels` (16, 32, 64, 128) or `cell` (map cells of 0.05, 0.10, 0.20 m;
+    /// patches of 11 × 11 cells).
     pub name: String,
     /// Output folder (default `results/study-NAME`).
     #[arg(long)]
@@ -25,7 +27,8 @@ pub struct Args {
     /// Join the points the shards wrote into `study.json`, `study.md` and plots (runs nothing).
     #[arg(long)]
     pub merge: bool,
-    /// The smaller plan of `bench --quick` (three training tracks, fewer samples) at every point.
+    /// The smaller plan of `bench --quick` (a third of each training track's sweeps, fewer
+    /// samples, pseudo-inputs and iterations) at every point.
     #[arg(long)]
     pub quick: bool,
 }
