@@ -51,7 +51,7 @@ impl BlockCaster<'_> {
         let mut segment = *ray;
         let mut travelled = 0.0f32;
         for _ in 0..MAX_PASSES {
-            let (surface, toi, part) = self
+            let (surface, toi, part, normal) = self
                 .query
                 .cast_ray_to_hit(&segment, self.max_range_m - travelled)?;
             let mut range = travelled + toi;
@@ -78,9 +78,8 @@ impl BlockCaster<'_> {
                     }
                 }
                 SurfaceKind::Shape => {
-                    let (n, feature) = self
-                        .query
-                        .normal(part, &segment, toi)
+                    let (n, feature) = normal
+                        .or_else(|| self.query.normal(part, &segment, toi))
                         .unwrap_or((-dir, FeatureId::Unknown));
                     cos = n.dot(dir).abs();
                     glass |= match surface.material.glass {

@@ -5,12 +5,12 @@ use std::path::Path;
 
 use toml::de::{DeTable, DeValue};
 
-use super::Scenario;
 use super::bounds::{
     MAX_ACTORS, MAX_SCENARIO_BYTES, MAX_SWEEPS, REFLECTIVITY, TIME_SECS, check_count,
 };
 use super::derived_limits::derived_problems;
 use super::problem::{Problem, Seg};
+use super::{Scenario, VehicleMesh};
 use crate::error::{Result, SimError};
 use crate::motion::Trajectory;
 
@@ -32,7 +32,8 @@ impl Scenario {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        Self::from_toml_at_rung(&text, &path.display().to_string(), &stem, rung)
+        let base = path.parent().unwrap_or(Path::new(""));
+        Self::parse(&text, &path.display().to_string(), &stem, rung, base)
     }
 
     /// Parses and validates scenario text. `file` names it in errors; `default_name` is used when
@@ -49,12 +50,24 @@ impl Scenario {
     }
 
     /// Like [`Scenario::from_toml`], with the realism rung replaced by `rung` if given (as
-    /// `generate --realism NAME` does); knobs the file sets on their own still apply.
+    /// `generate --realism NAME` does); knobs the file sets on their own still apply. Mesh files
+    /// named by actors are read relative to the current directory.
     pub fn from_toml_at_rung(
         text: &str,
         file: &str,
         default_name: &str,
         rung: Option<super::Realism>,
+    ) -> Result<Self> {
+        Self::parse(text, file, default_name, rung, Path::new(""))
+    }
+
+    /// Parses, resolves and validates scenario text, reading mesh files relative to `base`.
+    fn parse(
+        text: &str,
+        file: &str,
+        default_name: &str,
+        rung: Option<super::Realism>,
+        base: &Path,
     ) -> Result<Self> {
         let mut scenario: Scenario = toml::from_str(text).map_err(|e| {
             let offset = e.span().map(|s| s.start).unwrap_or(0);
@@ -80,7 +93,33 @@ impl Scenario {
         if let Some((at, reason)) = problems.into_iter().next() {
             return Err(SimError::at_offset(file, text, locate(text, &at), reason));
         }
+        scenario
+            .load_meshes(base)
+            .map_err(|(at, reason)| SimError::at_offset(file, text, locate(text, &at), reason))?;
         Ok(scenario)
+    }
+
+    /// Reads every actor's `mesh` file (relative to `base`); a problem names the mesh file.
+    fn load_meshes(&mut self, base: &Path) -> std::result::Result<(), Problem> {
+        if self.ego.mesh.is_some() {
+            let reason = "the ego car cannot have a mesh (its own lidar never sees its body)";
+            return Err((vec![Seg::Key("ego"), Seg::Key("mesh")], reason.to_owned()));
+        }
+        for (i, actor) in self.actors.iter_mut().enumerate() {
+            let Some(mesh) = &actor.mesh else {
+                continue;
+            };
+            let path = base.join(mesh);
+            let loaded = VehicleMesh::load(&path).map_err(|reason| {
+                let at = vec![Seg::Key("actors"), Seg::Index(i), Seg::Key("mesh")];
+                (
+                    at,
+                    format!("{}: mesh {}: {reason}", actor.name, path.display()),
+                )
+            })?;
+            actor.mesh_data = Some(std::sync::Arc::new(loaded));
+        }
+        Ok(())
     }
 
     /// Fills every optional field with its default.

@@ -30,6 +30,9 @@ pub enum HitPart {
     Street(StreetPart),
 }
 
+/// A unit normal (world frame) and the feature hit, where the cast that found the hit had them.
+pub type Normal = Option<(Vector, FeatureId)>;
+
 /// Ray queries against a scene at one instant.
 pub struct InstantQuery<'a> {
     /// The scene (surfaces and the mover table).
@@ -57,6 +60,41 @@ impl InstantQuery<'_> {
             .shape
             .cast(ray, max_toi)
             .map(|(t, part)| (HitPart::Street(part), t));
+        self.first_actor_hit_before(ray, hit, max_toi, solid)
+    }
+
+    /// [`InstantQuery::first_hit`] (solid) with the normal and feature of a street piece hit,
+    /// from the same shape tests (`None` for the ground and the actors).
+    #[inline]
+    fn first_hit_with_normal(&self, ray: &Ray, max_toi: f32) -> Option<(HitPart, f32, Normal)> {
+        let Some(street) = &self.scene.street else {
+            let (part, toi) = self.first_hit(ray, max_toi, true)?;
+            return Some((part, toi, None));
+        };
+        let hit = street.shape.cast_with_normal(ray, max_toi);
+        let (part, toi) = self.first_actor_hit_before(
+            ray,
+            hit.map(|(t, p, _)| (HitPart::Street(p), t)),
+            max_toi,
+            true,
+        )?;
+        let normal = match (part, hit) {
+            (HitPart::Street(_), Some((_, _, normal))) => normal,
+            _ => None,
+        };
+        Some((part, toi, normal))
+    }
+
+    /// The first actor hit before the street's hit `hit` (if any, else within `max_toi`), or
+    /// that street hit.
+    #[inline]
+    fn first_actor_hit_before(
+        &self,
+        ray: &Ray,
+        hit: Option<(HitPart, f32)>,
+        max_toi: f32,
+        solid: bool,
+    ) -> Option<(HitPart, f32)> {
         let limit = hit.map_or(max_toi, |(_, t)| t);
         let actor = self.actor_tree.cast(ray, limit, |k, max| {
             let part = self.scene.movers.get(k as usize)?;
@@ -132,12 +170,17 @@ impl InstantQuery<'_> {
         }
     }
 
-    /// The surface first hit by `ray` within `max_toi`, the hit's time of impact and the part
-    /// hit (for [`InstantQuery::normal`]).
+    /// The surface first hit by `ray` within `max_toi`, the hit's time of impact, the part hit
+    /// and, for a street piece, its normal and feature there (else [`InstantQuery::normal`]
+    /// gives them).
     #[inline]
-    pub fn cast_ray_to_hit(&self, ray: &Ray, max_toi: f32) -> Option<(&Surface, f32, HitPart)> {
-        let (part, toi) = self.first_hit(ray, max_toi, true)?;
-        Some((self.surface_of(part)?, toi, part))
+    pub fn cast_ray_to_hit(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+    ) -> Option<(&Surface, f32, HitPart, Normal)> {
+        let (part, toi, normal) = self.first_hit_with_normal(ray, max_toi)?;
+        Some((self.surface_of(part)?, toi, part, normal))
     }
 
     /// Unit normal, world frame, of the hit `part` (at the instant) where `ray` meets it near

@@ -6,6 +6,7 @@
 //! tree over thousands of colliders, where every long, low ray overlaps many boxes.
 
 use rapier3d::parry::query::Ray;
+use rapier3d::parry::shape::FeatureId;
 use rapier3d::prelude::Vector;
 
 use super::grid_piece::GridPiece;
@@ -158,7 +159,38 @@ impl PieceGrid {
     }
 
     /// The first piece the ray `origin + t·dir` hits with `t ≤ max_toi`: its `t` and index.
+    #[inline]
     pub(crate) fn cast(&self, ray: &Ray, max_toi: f32) -> Option<(f32, u32)> {
+        self.walk(ray, max_toi, |piece, best_t| {
+            Some((piece.cast_solid(ray, best_t)?, ()))
+        })
+        .map(|(t, k, ())| (t, k))
+    }
+
+    /// [`PieceGrid::cast`] with the world normal and feature of the hit, from the same shape
+    /// tests (the labelled sweep needs the incidence; a second cast of the piece hit would cost
+    /// as much again).
+    #[inline]
+    pub(crate) fn cast_with_normal(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+    ) -> Option<(f32, u32, (Vector, FeatureId))> {
+        self.walk(ray, max_toi, |piece, best_t| {
+            let hit = piece.cast_with_normal(ray, best_t, true)?;
+            Some((hit.time_of_impact, (hit.normal, hit.feature)))
+        })
+    }
+
+    /// The cell walk shared by both casts: `test(piece, best_t)` casts the ray on one piece and
+    /// gives its `t` (at most `best_t`) and whatever else the caller keeps of the hit.
+    #[inline]
+    fn walk<T: Copy>(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+        mut test: impl FnMut(&GridPiece, f32) -> Option<(f32, T)>,
+    ) -> Option<(f32, u32, T)> {
         if self.pieces.is_empty() {
             return None;
         }
@@ -181,7 +213,7 @@ impl PieceGrid {
         }
         let inverse_dir = Vector::ONE / d;
         let o = ray.origin;
-        let mut best: Option<(f32, u32)> = None;
+        let mut best: Option<(f32, u32, T)> = None;
         let mut best_t = max_toi;
         let mut mailbox = [u32::MAX; MAILBOX];
         let mut next_slot = 0;
@@ -210,10 +242,10 @@ impl PieceGrid {
                     }
                     mailbox[next_slot] = k;
                     next_slot = (next_slot + 1) % MAILBOX;
-                    if let Some(t) = self.pieces[k as usize].cast_solid(ray, best_t)
+                    if let Some((t, extra)) = test(&self.pieces[k as usize], best_t)
                         && (t < best_t || best.is_none())
                     {
-                        best = Some((t, k));
+                        best = Some((t, k, extra));
                         best_t = t;
                     }
                 }

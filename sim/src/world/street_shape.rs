@@ -104,6 +104,45 @@ impl StreetShape {
         }
     }
 
+    /// [`StreetShape::cast`] with the world normal and feature where a piece is hit (`None` on
+    /// the ground, whose normal [`GroundField::normal_at`] gives at the hit point), from the same
+    /// shape tests as the hit itself.
+    #[inline]
+    pub fn cast_with_normal(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+    ) -> Option<(f32, StreetPart, Option<(Vector, FeatureId)>)> {
+        let (o, d) = (ray.origin, ray.dir);
+        let ground = |max: f32| {
+            self.ground
+                .as_ref()
+                .and_then(|g| g.cast([o.x, o.y, o.z], [d.x, d.y, d.z], max))
+        };
+        let piece_hit = |(t, k, n)| Some((t, StreetPart::Piece(k), Some(n)));
+        if d.z < -STEEP_SIN {
+            let ground = ground(max_toi);
+            let limit = ground.map_or(max_toi, |(t, _)| t);
+            match (self.pieces.cast_with_normal(ray, limit), ground) {
+                (Some(hit), Some((g, _))) if hit.0 <= g => piece_hit(hit),
+                (Some(hit), None) => piece_hit(hit),
+                (_, Some((g, cell))) => Some((g, StreetPart::Ground(cell), None)),
+                (None, None) => None,
+            }
+        } else {
+            let piece = self.pieces.cast_with_normal(ray, max_toi);
+            let limit = piece.map_or(max_toi, |(t, _, _)| t);
+            match (ground(limit), piece) {
+                (Some((g, cell)), Some((t, _, _))) if g < t => {
+                    Some((g, StreetPart::Ground(cell), None))
+                }
+                (Some((g, cell)), None) => Some((g, StreetPart::Ground(cell), None)),
+                (_, Some(hit)) => piece_hit(hit),
+                (None, None) => None,
+            }
+        }
+    }
+
     /// The world normal and feature where `ray` meets `part` near `toi`.
     pub fn normal(&self, part: StreetPart, ray: &Ray, toi: f32) -> Option<(Vector, FeatureId)> {
         match part {
