@@ -5,12 +5,12 @@ use std::path::Path;
 
 use toml::de::{DeTable, DeValue};
 
+use super::Scenario;
 use super::bounds::{
     MAX_ACTORS, MAX_SCENARIO_BYTES, MAX_SWEEPS, REFLECTIVITY, TIME_SECS, check_count,
 };
 use super::derived_limits::derived_problems;
 use super::problem::{Problem, Seg};
-use super::{Scenario, VehicleMesh};
 use crate::error::{Result, SimError};
 use crate::motion::Trajectory;
 
@@ -97,29 +97,6 @@ impl Scenario {
             .load_meshes(base)
             .map_err(|(at, reason)| SimError::at_offset(file, text, locate(text, &at), reason))?;
         Ok(scenario)
-    }
-
-    /// Reads every actor's `mesh` file (relative to `base`); a problem names the mesh file.
-    fn load_meshes(&mut self, base: &Path) -> std::result::Result<(), Problem> {
-        if self.ego.mesh.is_some() {
-            let reason = "the ego car cannot have a mesh (its own lidar never sees its body)";
-            return Err((vec![Seg::Key("ego"), Seg::Key("mesh")], reason.to_owned()));
-        }
-        for (i, actor) in self.actors.iter_mut().enumerate() {
-            let Some(mesh) = &actor.mesh else {
-                continue;
-            };
-            let path = base.join(mesh);
-            let loaded = VehicleMesh::load(&path).map_err(|reason| {
-                let at = vec![Seg::Key("actors"), Seg::Index(i), Seg::Key("mesh")];
-                (
-                    at,
-                    format!("{}: mesh {}: {reason}", actor.name, path.display()),
-                )
-            })?;
-            actor.mesh_data = Some(std::sync::Arc::new(loaded));
-        }
-        Ok(())
     }
 
     /// Fills every optional field with its default.

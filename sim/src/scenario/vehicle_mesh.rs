@@ -6,6 +6,9 @@
 
 use std::path::{Path, PathBuf};
 
+use super::Scenario;
+use super::problem::{Problem, Seg};
+
 /// Most triangles one vehicle mesh may have: a detailed car model has a few thousand; far more
 /// only slows the ray casts down without changing what a 0.1° beam sees.
 pub const MAX_MESH_TRIANGLES: usize = 20_000;
@@ -145,6 +148,31 @@ impl VehicleMesh {
             .iter()
             .map(|v| std::array::from_fn(|a| (v[a] - (lo[a] + hi[a]) / 2.0) * scale[a]))
             .collect()
+    }
+}
+
+impl Scenario {
+    /// Reads every actor's `mesh` file (relative to `base`); a problem names the mesh file.
+    pub(super) fn load_meshes(&mut self, base: &Path) -> std::result::Result<(), Problem> {
+        if self.ego.mesh.is_some() {
+            let reason = "the ego car cannot have a mesh (its own lidar never sees its body)";
+            return Err((vec![Seg::Key("ego"), Seg::Key("mesh")], reason.to_owned()));
+        }
+        for (i, actor) in self.actors.iter_mut().enumerate() {
+            let Some(mesh) = &actor.mesh else {
+                continue;
+            };
+            let path = base.join(mesh);
+            let loaded = VehicleMesh::load(&path).map_err(|reason| {
+                let at = vec![Seg::Key("actors"), Seg::Index(i), Seg::Key("mesh")];
+                (
+                    at,
+                    format!("{}: mesh {}: {reason}", actor.name, path.display()),
+                )
+            })?;
+            actor.mesh_data = Some(std::sync::Arc::new(loaded));
+        }
+        Ok(())
     }
 }
 
