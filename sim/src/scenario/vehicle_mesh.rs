@@ -51,7 +51,6 @@ impl VehicleMesh {
             single_index: false,
             ignore_points: true,
             ignore_lines: true,
-            ..tobj::LoadOptions::default()
         };
         let (models, _) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |_| {
             Err(tobj::LoadError::OpenFileFailed)

@@ -31,7 +31,7 @@ pub enum HitPart {
 }
 
 /// A unit normal (world frame) and the feature hit, where the cast that found the hit had them.
-pub type Normal = Option<(Vector, FeatureId)>;
+pub type Normal = Option<crate::world::HitNormal>;
 
 /// Ray queries against a scene at one instant.
 pub struct InstantQuery<'a> {

@@ -6,7 +6,6 @@
 //! tree over thousands of colliders, where every long, low ray overlaps many boxes.
 
 use rapier3d::parry::query::Ray;
-use rapier3d::parry::shape::FeatureId;
 use rapier3d::prelude::Vector;
 
 use super::grid_piece::GridPiece;
@@ -175,7 +174,7 @@ impl PieceGrid {
         &self,
         ray: &Ray,
         max_toi: f32,
-    ) -> Option<(f32, u32, (Vector, FeatureId))> {
+    ) -> Option<(f32, u32, super::street_shape::HitNormal)> {
         self.walk(ray, max_toi, |piece, best_t| {
             let hit = piece.cast_with_normal(ray, best_t, true)?;
             Some((hit.time_of_impact, (hit.normal, hit.feature)))

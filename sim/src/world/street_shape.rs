@@ -29,6 +29,9 @@ pub enum StreetPart {
     Piece(u32),
 }
 
+/// A unit normal (world frame) and the feature where a ray hit.
+pub type HitNormal = (Vector, FeatureId);
+
 /// The static street world (its local frame is the world frame).
 #[derive(Debug, Clone)]
 pub struct StreetShape {
@@ -112,7 +115,7 @@ impl StreetShape {
         &self,
         ray: &Ray,
         max_toi: f32,
-    ) -> Option<(f32, StreetPart, Option<(Vector, FeatureId)>)> {
+    ) -> Option<(f32, StreetPart, Option<HitNormal>)> {
         let (o, d) = (ray.origin, ray.dir);
         let ground = |max: f32| {
             self.ground
