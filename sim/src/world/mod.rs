@@ -30,8 +30,8 @@ pub use facade_shape::GLASS_FEATURE;
 pub(crate) use grid_piece::GridPiece;
 pub use ground_field::GroundField;
 pub(crate) use piece::{Piece, PieceShape};
-pub use piece_grid::PieceGrid;
-pub use street_shape::{HitNormal, StreetPart, StreetShape};
+pub use piece_grid::{HitNormal, PieceGrid};
+pub use street_shape::{StreetPart, StreetShape};
 
 // Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
 // heights and materials); a larger reach gets larger cells.

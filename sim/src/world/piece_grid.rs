@@ -11,6 +11,9 @@ use rapier3d::prelude::Vector;
 use super::grid_piece::GridPiece;
 use super::grid_walk::walk_cells;
 
+/// A unit normal (world frame) and the feature where a ray hit.
+pub type HitNormal = (Vector, rapier3d::parry::shape::FeatureId);
+
 /// Side of a grid cell, metres.
 const CELL_M: f32 = 4.0;
 /// Most cells a side (the grid coarsens beyond, so its tables stay small).
@@ -174,7 +177,7 @@ impl PieceGrid {
         &self,
         ray: &Ray,
         max_toi: f32,
-    ) -> Option<(f32, u32, super::street_shape::HitNormal)> {
+    ) -> Option<(f32, u32, HitNormal)> {
         self.walk(ray, max_toi, |piece, best_t| {
             let hit = piece.cast_with_normal(ray, best_t, true)?;
             Some((hit.time_of_impact, (hit.normal, hit.feature)))

@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use super::clearance::Clearance;
 use super::ground_field::{GroundField, GroundRecipe};
 use super::piece::Piece;
-use super::street_item::Item;
+use super::street_item::{Item, item_pieces};
 use super::street_map::Street;
 use crate::seed::sub_seed;
 
@@ -177,7 +177,8 @@ impl SideBuilder<'_> {
                     continue;
                 }
                 let base = f64::from(self.field.height_at(p[0] as f32, p[1] as f32));
-                let pieces = self.item_pieces(item, p, base, &mut rng);
+                let side = (self.street.yaw_rad(), self.side);
+                let pieces = item_pieces(item, p, base, side, &mut rng);
                 if pieces.is_empty() {
                     continue;
                 }

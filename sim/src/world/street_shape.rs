@@ -14,6 +14,7 @@ use rapier3d::parry::query::{PointProjection, PointQuery, Ray, RayCast, RayInter
 use rapier3d::parry::shape::{FeatureId, Shape, ShapeType, TypedShape};
 use rapier3d::prelude::{Real, Vector};
 
+use super::piece_grid::HitNormal;
 use super::{GroundField, PieceGrid};
 
 /// Sine of the depression below which a beam is cast on the ground first (8°: it meets a flat
@@ -28,9 +29,6 @@ pub enum StreetPart {
     /// Piece `k` of the piece grid.
     Piece(u32),
 }
-
-/// A unit normal (world frame) and the feature where a ray hit.
-pub type HitNormal = (Vector, FeatureId);
 
 /// The static street world (its local frame is the world frame).
 #[derive(Debug, Clone)]
