@@ -96,9 +96,13 @@ fn training_tracks_have_100_to_200_sweeps_clutter_and_speeds_of_2_to_10() {
 
 #[test]
 fn sampled_sweeps_of_every_scenario_have_plausible_point_counts_and_hit_the_target() {
-    // The shipped spinning-lidar scenarios; the planar occupancy scenes are checked below.
+    // The shipped spinning-lidar scenarios; the planar occupancy scenes are checked below. A
+    // situation's target is hit in some of the sampled sweeps; on the `urban` rung it may be
+    // hidden in others behind the street's parked cars and garden walls (situation3 and
+    // situation5 at their start, situation4 at its end), as in a real street.
     for scenario in shipped() {
         let mut sim = Simulation::new(&scenario, 0).unwrap();
+        let mut target_points = Vec::new();
         for index in [0, scenario.sweeps / 2, scenario.sweeps - 1] {
             let sweep = sim.sweep(index);
             assert!(
@@ -107,14 +111,13 @@ fn sampled_sweeps_of_every_scenario_have_plausible_point_counts_and_hit_the_targ
                 scenario.name,
                 sweep.len()
             );
-            if let Some(target) = sweep.target() {
-                assert!(
-                    target.point_count > 0,
-                    "{} sweep {index}: target not hit",
-                    scenario.name
-                );
-            }
+            target_points.extend(sweep.target().map(|t| t.point_count));
         }
+        assert!(
+            target_points.is_empty() || target_points.iter().any(|&n| n > 0),
+            "{}: target hit in no sampled sweep ({target_points:?})",
+            scenario.name
+        );
     }
 }
 

@@ -33,9 +33,10 @@ pub use motion::{MotionState, Path, PathPoint, ProfileState, SpeedProfile, Traje
 pub use patchflow_dataset as dataset;
 pub use scenario::{
     ActorConfig, CarModel, EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, ElevationSpacing,
-    LidarConfig, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M, PLANAR_MOUNT_HEIGHT_M,
-    PoseErrorConfig, PoseErrorKnobs, Realism, RoadConfig, Scenario, SensorConfig, SensorKind,
-    SensorKnobs, StructureConfig, StructureKind, TrafficConfig, WorldConfig, WorldKnobs,
+    LidarConfig, MAX_MESH_TRIANGLES, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M,
+    PLANAR_MOUNT_HEIGHT_M, PoseErrorConfig, PoseErrorKnobs, Realism, RoadConfig, Scenario,
+    SensorConfig, SensorKind, SensorKnobs, StructureConfig, StructureKind, TrafficConfig,
+    VehicleMesh, WorldConfig, WorldKnobs,
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;

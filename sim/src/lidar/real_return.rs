@@ -25,6 +25,17 @@ const GLASS_LOST: f32 = 0.45;
 /// Share of glass hits that return from behind the pane (the interior).
 const GLASS_PASSED: f32 = 0.25;
 
+/// The share of a ground footprint hit at `cos_incidence` that its grit, aggregate and tufts do
+/// not shadow from the sensor. Rough ground is not Lambertian at grazing incidence: beyond about
+/// 70° from the normal the backscatter of asphalt, gravel and grass falls faster than the cosine
+/// (the grains hide each other's lit faces), which is why real HDL-64E sweeps lose the road's far
+/// rings first. Modelled as one more cosine factor (Smith-like masking at small grazing angles),
+/// saturating at 1 above 45°; the intensity keeps the plain Lambertian cosine.
+#[inline]
+fn ground_visible_share(cos_incidence: f32) -> f32 {
+    (cos_incidence.abs() * std::f32::consts::SQRT_2).min(1.0)
+}
+
 impl BlockCaster<'_> {
     /// The labelled return of the beam of channel `channel` (ring `ring`), cast along `ray`
     /// (its true direction) and written along `in_sensor` (its nominal direction).
@@ -40,7 +51,7 @@ impl BlockCaster<'_> {
         let mut segment = *ray;
         let mut travelled = 0.0f32;
         for _ in 0..MAX_PASSES {
-            let (surface, toi, part) = self
+            let (surface, toi, part, normal) = self
                 .query
                 .cast_ray_to_hit(&segment, self.max_range_m - travelled)?;
             let mut range = travelled + toi;
@@ -51,6 +62,9 @@ impl BlockCaster<'_> {
             let mut semantic = surface.semantic;
             let (mut reflectivity, mut cos) = (surface.reflectivity, 1.0f32);
             let mut glass = surface.material.glass == Glass::All;
+            // Share of the lit footprint that the surface's own relief leaves visible to the
+            // sensor (1 for smooth faces); see GROUND_SHADOWING below.
+            let mut visible = 1.0f32;
             match surface.kind {
                 SurfaceKind::Box => cos = surface.cos_incidence(hit, dir),
                 SurfaceKind::Ground => {
@@ -60,12 +74,12 @@ impl BlockCaster<'_> {
                         let (material, r) = ground.material_at(hit.x, hit.y);
                         semantic = material.semantic();
                         reflectivity = r;
+                        visible = ground_visible_share(cos);
                     }
                 }
                 SurfaceKind::Shape => {
-                    let (n, feature) = self
-                        .query
-                        .normal(part, &segment, toi)
+                    let (n, feature) = normal
+                        .or_else(|| self.query.normal(part, &segment, toi))
                         .unwrap_or((-dir, FeatureId::Unknown));
                     cos = n.dot(dir).abs();
                     glass |= match surface.material.glass {
@@ -99,7 +113,10 @@ impl BlockCaster<'_> {
                     cos = 0.7;
                 }
             }
-            if rng.random::<f32>() >= self.sensor.detection_probability(reflectivity, cos, range) {
+            let detected = self
+                .sensor
+                .detection_probability(reflectivity * visible, cos, range);
+            if rng.random::<f32>() >= detected {
                 return None;
             }
             let std = self.noise_std_m + self.sensor.extra_noise_std_m(range);

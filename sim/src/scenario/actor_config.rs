@@ -1,4 +1,5 @@
-//! One `[[actors]]` entry (or the `[ego]` table): a box that follows a smooth path with a speed profile.
+//! One `[[actors]]` entry (or the `[ego]` table): a box (or a mesh fitted to it) that follows a
+//! smooth path with a speed profile.
 
 use patchflow_dataset::ActorClass;
 use serde::{Deserialize, Serialize};
@@ -65,6 +66,13 @@ pub struct ActorConfig {
     /// Lidar reflectivity of the surface in [0, 1] (class default).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reflectivity: Option<f64>,
+    /// The actor's own shape: a Wavefront OBJ file, its path relative to the scenario file,
+    /// scaled to `size_m` (its truth stays that box). Used where the world has vehicle shapes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<String>,
+    /// The mesh read from `mesh` when the scenario was loaded.
+    #[serde(skip)]
+    pub mesh_data: Option<std::sync::Arc<super::VehicleMesh>>,
 }
 
 fn default_class() -> ActorClass {

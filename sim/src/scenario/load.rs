@@ -32,7 +32,8 @@ impl Scenario {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        Self::from_toml_at_rung(&text, &path.display().to_string(), &stem, rung)
+        let base = path.parent().unwrap_or(Path::new(""));
+        Self::parse(&text, &path.display().to_string(), &stem, rung, base)
     }
 
     /// Parses and validates scenario text. `file` names it in errors; `default_name` is used when
@@ -49,12 +50,24 @@ impl Scenario {
     }
 
     /// Like [`Scenario::from_toml`], with the realism rung replaced by `rung` if given (as
-    /// `generate --realism NAME` does); knobs the file sets on their own still apply.
+    /// `generate --realism NAME` does); knobs the file sets on their own still apply. Mesh files
+    /// named by actors are read relative to the current directory.
     pub fn from_toml_at_rung(
         text: &str,
         file: &str,
         default_name: &str,
         rung: Option<super::Realism>,
+    ) -> Result<Self> {
+        Self::parse(text, file, default_name, rung, Path::new(""))
+    }
+
+    /// Parses, resolves and validates scenario text, reading mesh files relative to `base`.
+    fn parse(
+        text: &str,
+        file: &str,
+        default_name: &str,
+        rung: Option<super::Realism>,
+        base: &Path,
     ) -> Result<Self> {
         let mut scenario: Scenario = toml::from_str(text).map_err(|e| {
             let offset = e.span().map(|s| s.start).unwrap_or(0);
@@ -80,6 +93,9 @@ impl Scenario {
         if let Some((at, reason)) = problems.into_iter().next() {
             return Err(SimError::at_offset(file, text, locate(text, &at), reason));
         }
+        scenario
+            .load_meshes(base)
+            .map_err(|(at, reason)| SimError::at_offset(file, text, locate(text, &at), reason))?;
         Ok(scenario)
     }
 

@@ -16,6 +16,7 @@ mod schema;
 mod sensor_config;
 mod structure_config;
 mod traffic;
+mod vehicle_mesh;
 mod world_config;
 mod world_limits;
 
@@ -32,5 +33,6 @@ pub use schema::{Scenario, TrafficConfig};
 pub use sensor_config::{SensorConfig, SensorKnobs};
 pub use structure_config::{StructureConfig, StructureKind};
 pub use traffic::random_traffic;
+pub use vehicle_mesh::{MAX_MESH_TRIANGLES, VehicleMesh};
 pub use world_config::{WorldConfig, WorldKnobs};
 pub(crate) use world_limits::{GROUND_CELL_M, MAX_GROUND_CELLS, lidar_reach};

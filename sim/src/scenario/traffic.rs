@@ -128,6 +128,8 @@ fn random_car(
         start_secs: 0.0,
         speed_changes: Vec::new(),
         reflectivity: Some(rng.random_range(0.2..0.8)),
+        mesh: None,
+        mesh_data: None,
     }
     .resolved()
 }
@@ -155,6 +157,8 @@ fn random_pedestrian(
         start_secs: 0.0,
         speed_changes: Vec::new(),
         reflectivity: None,
+        mesh: None,
+        mesh_data: None,
     }
     .resolved()
 }

@@ -100,7 +100,7 @@ impl WorldKnobs {
                 terrain_relief_m: 0.4,
                 roughness_m: 0.02,
                 clutter: 1.0,
-                parked_cars_per_100m: 12.0,
+                parked_cars_per_100m: 15.0,
                 facade_detail: true,
                 shapes: true,
             },

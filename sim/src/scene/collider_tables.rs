@@ -129,6 +129,33 @@ impl ColliderTables {
             .bodies
             .insert(RigidBodyBuilder::kinematic_position_based().build());
         let reflectivity = config.reflectivity.unwrap_or(0.5) as f32;
+        if shapes
+            && index.is_some()
+            && let Some(mesh) = &config.mesh_data
+        {
+            // The user's own model: one triangle-mesh collider filling the actor's box.
+            let vertices = mesh.fitted_to(size).into_iter().map(Vector::from).collect();
+            let shape = SharedShape::trimesh(vertices, mesh.triangles.clone())
+                .map_err(|e| format!("{}.mesh: {}: {e}", config.name, mesh.source.display()))?;
+            let mut surface =
+                Surface::new(config.class.semantic(false), index, [0.0; 3], reflectivity)
+                    .with(SurfaceKind::Shape, super::Material::SOLID);
+            surface.mover = Some(self.movers.len() as u32);
+            let collider = ColliderBuilder::new(shape)
+                .user_data(self.surfaces.len() as u128)
+                .build();
+            let handle = self
+                .colliders
+                .insert_with_parent(collider, body, &mut self.bodies);
+            let surface_index = self.register(handle, surface);
+            self.movers.push(MoverPart {
+                handle,
+                actor: index,
+                surface: surface_index,
+                relative: Pose::IDENTITY,
+            });
+            return Ok(self.scene_actor(config, id, size, trajectory, body));
+        }
         let parts = if shapes && index.is_some() {
             body_parts(config.class, size, reflectivity)
         } else {
@@ -176,7 +203,19 @@ impl ColliderTables {
                 relative,
             });
         }
-        Ok(SceneActor {
+        Ok(self.scene_actor(config, id, size, trajectory, body))
+    }
+
+    /// The scene's record of an actor whose colliders are in place: its truth is its box.
+    fn scene_actor(
+        &self,
+        config: &ActorConfig,
+        id: u16,
+        size: [f64; 3],
+        trajectory: Trajectory,
+        body: RigidBodyHandle,
+    ) -> SceneActor {
+        SceneActor {
             id,
             name: config.name.clone(),
             class: config.class,
@@ -185,7 +224,7 @@ impl ColliderTables {
             trajectory,
             body,
             ground: self.street_ground.clone(),
-        })
+        }
     }
 
     /// The ground slab's surface: a road box whose top face is z = 0.

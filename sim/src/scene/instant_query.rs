@@ -30,6 +30,9 @@ pub enum HitPart {
     Street(StreetPart),
 }
 
+/// A unit normal (world frame) and the feature hit, where the cast that found the hit had them.
+pub type Normal = Option<crate::world::HitNormal>;
+
 /// Ray queries against a scene at one instant.
 pub struct InstantQuery<'a> {
     /// The scene (surfaces and the mover table).
@@ -57,6 +60,41 @@ impl InstantQuery<'_> {
             .shape
             .cast(ray, max_toi)
             .map(|(t, part)| (HitPart::Street(part), t));
+        self.first_actor_hit_before(ray, hit, max_toi, solid)
+    }
+
+    /// [`InstantQuery::first_hit`] (solid) with the normal and feature of a street piece hit,
+    /// from the same shape tests (`None` for the ground and the actors).
+    #[inline]
+    fn first_hit_with_normal(&self, ray: &Ray, max_toi: f32) -> Option<(HitPart, f32, Normal)> {
+        let Some(street) = &self.scene.street else {
+            let (part, toi) = self.first_hit(ray, max_toi, true)?;
+            return Some((part, toi, None));
+        };
+        let hit = street.shape.cast_with_normal(ray, max_toi);
+        let (part, toi) = self.first_actor_hit_before(
+            ray,
+            hit.map(|(t, p, _)| (HitPart::Street(p), t)),
+            max_toi,
+            true,
+        )?;
+        let normal = match (part, hit) {
+            (HitPart::Street(_), Some((_, _, normal))) => normal,
+            _ => None,
+        };
+        Some((part, toi, normal))
+    }
+
+    /// The first actor hit before the street's hit `hit` (if any, else within `max_toi`), or
+    /// that street hit.
+    #[inline]
+    fn first_actor_hit_before(
+        &self,
+        ray: &Ray,
+        hit: Option<(HitPart, f32)>,
+        max_toi: f32,
+        solid: bool,
+    ) -> Option<(HitPart, f32)> {
         let limit = hit.map_or(max_toi, |(_, t)| t);
         let actor = self.actor_tree.cast(ray, limit, |k, max| {
             let part = self.scene.movers.get(k as usize)?;
@@ -132,12 +170,17 @@ impl InstantQuery<'_> {
         }
     }
 
-    /// The surface first hit by `ray` within `max_toi`, the hit's time of impact and the part
-    /// hit (for [`InstantQuery::normal`]).
+    /// The surface first hit by `ray` within `max_toi`, the hit's time of impact, the part hit
+    /// and, for a street piece, its normal and feature there (else [`InstantQuery::normal`]
+    /// gives them).
     #[inline]
-    pub fn cast_ray_to_hit(&self, ray: &Ray, max_toi: f32) -> Option<(&Surface, f32, HitPart)> {
-        let (part, toi) = self.first_hit(ray, max_toi, true)?;
-        Some((self.surface_of(part)?, toi, part))
+    pub fn cast_ray_to_hit(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+    ) -> Option<(&Surface, f32, HitPart, Normal)> {
+        let (part, toi, normal) = self.first_hit_with_normal(ray, max_toi)?;
+        Some((self.surface_of(part)?, toi, part, normal))
     }
 
     /// Unit normal, world frame, of the hit `part` (at the instant) where `ray` meets it near
@@ -242,51 +285,5 @@ impl TypedCompositeShape for InstantQuery<'_> {
 }
 
 #[cfg(test)]
-mod tests {
-    use rapier3d::prelude::{Ray, Vector};
-
-    use crate::Scenario;
-    use crate::scene::Scene;
-
-    const TINY: &str = include_str!("../../../scenarios/tiny.toml");
-
-    #[test]
-    fn a_cast_at_an_instant_hits_what_a_cast_into_the_scene_moved_there_hits() {
-        let scenario = Scenario::from_toml(TINY, "tiny.toml", "tiny").unwrap();
-        let mut swept = Scene::build(&scenario, &scenario.actors).unwrap();
-        let mut moved = Scene::build(&scenario, &scenario.actors).unwrap();
-        // Four block instants 25 ms apart: the crossing car moves 20 cm between them.
-        let start = scenario.start_secs + 1.0;
-        let times: Vec<f64> = (0..4).map(|b| start + 0.025 * f64::from(b)).collect();
-        swept.move_to(start);
-        let instants: Vec<_> = times.iter().map(|&t| swept.instant(t)).collect();
-        swept.rebuild_ray_tree_spanning(&instants);
-        let mut actor_hits = 0;
-        for (&t, instant) in times.iter().zip(&instants) {
-            moved.move_to(t);
-            moved.rebuild_ray_tree();
-            let ego = moved.ego().trajectory.state_at(t);
-            let origin = Vector::new(ego.position_m[0] as f32, ego.position_m[1] as f32, 1.73);
-            for k in 0..2880 {
-                let azimuth = std::f32::consts::TAU * (k / 4) as f32 / 720.0;
-                let elevation = -0.02 - 0.06 * (k % 4) as f32;
-                let dir = Vector::new(
-                    elevation.cos() * azimuth.cos(),
-                    elevation.cos() * azimuth.sin(),
-                    elevation.sin(),
-                );
-                let ray = Ray::new(origin, dir);
-                let expected = moved.query_pipeline().cast_ray(&ray, 120.0, true);
-                let query = swept.query_at(instant);
-                assert_eq!(query.cast_ray(&ray, 120.0, true), expected, "t {t} ray {k}");
-                let surface = expected.and_then(|(handle, _)| query.surface(handle));
-                if let Some(surface) = surface.filter(|s| s.actor.is_some()) {
-                    actor_hits += 1;
-                    // The instant's surface is placed where the moved scene's surface is.
-                    assert_eq!(Some(surface), expected.and_then(|(h, _)| moved.surface(h)));
-                }
-            }
-        }
-        assert!(actor_hits > 40, "{actor_hits} hits on the moving car");
-    }
-}
+#[path = "instant_query_tests.rs"]
+mod tests;

@@ -8,6 +8,7 @@ mod body_shapes;
 mod clearance;
 mod facade;
 mod facade_shape;
+mod frontage;
 mod grid_piece;
 mod grid_walk;
 mod ground_field;
@@ -17,6 +18,7 @@ mod piece;
 mod piece_grid;
 mod plane_hull;
 mod street_furniture;
+mod street_item;
 mod street_map;
 mod street_shape;
 mod terrain_scatter;
@@ -28,7 +30,7 @@ pub use facade_shape::GLASS_FEATURE;
 pub(crate) use grid_piece::GridPiece;
 pub use ground_field::GroundField;
 pub(crate) use piece::{Piece, PieceShape};
-pub use piece_grid::PieceGrid;
+pub use piece_grid::{HitNormal, PieceGrid};
 pub use street_shape::{StreetPart, StreetShape};
 
 // Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
@@ -40,7 +42,7 @@ use crate::seed::{hash_name, mix, sub_seed};
 use clearance::Clearance;
 use ground_field::GroundRecipe;
 use street_furniture::SideBuilder;
-use street_map::StreetMap;
+use street_map::{Street, StreetMap};
 
 /// The static part of a street world.
 pub(crate) struct StreetWorld {
@@ -71,6 +73,36 @@ impl StreetWorld {
         let movers: Vec<&ActorConfig> = std::iter::once(&scenario.ego).chain(actors).collect();
         let mut clearance = Clearance::new(&movers, &scenario.structures, t0, t1);
         let mut pieces = structure_pieces(scenario, &field, world_seed);
+        let (lo, hi) = field.bounds();
+        let off_streets = |p: [f64; 2]| {
+            let on_field =
+                (0..2).all(|i| p[i] > f64::from(lo[i]) + 1.0 && p[i] < f64::from(hi[i]) - 1.0);
+            on_field
+                && streets
+                    .nearest(p)
+                    .is_none_or(|(d, w)| d > w + knobs.sidewalk_width_m + 0.2)
+        };
+        for (index, street) in streets.streets.iter().enumerate() {
+            for (end_index, end) in street_ends(street, knobs.sidewalk_width_m)
+                .iter()
+                .enumerate()
+            {
+                let builder = SideBuilder {
+                    recipe: &recipe,
+                    field: &field,
+                    street: end,
+                    side: 1.0,
+                    seed: sub_seed(world_seed, 0xE4D0 + 2 * index as u64 + end_index as u64),
+                };
+                let across = (0.0, end.length_m());
+                pieces.extend(builder.frontage(
+                    across,
+                    knobs.clutter,
+                    &off_streets,
+                    &mut clearance,
+                ));
+            }
+        }
         for (index, street) in streets.streets.iter().enumerate() {
             for (side_index, side) in [1.0, -1.0].into_iter().enumerate() {
                 let builder = SideBuilder {
@@ -84,6 +116,12 @@ impl StreetWorld {
                     if knobs.curb_height_m > 0.0 && knobs.sidewalk_width_m > 0.0 {
                         pieces.extend(builder.slabs(interval));
                     }
+                    pieces.extend(builder.frontage(
+                        interval,
+                        knobs.clutter,
+                        &off_streets,
+                        &mut clearance,
+                    ));
                     pieces.extend(builder.clutter(interval, &mut clearance));
                 }
             }
@@ -100,6 +138,22 @@ impl StreetWorld {
         let ground = (!knobs.flat_ground()).then(|| Arc::new(field));
         Self { ground, pieces }
     }
+}
+
+/// The two ends of `street` as short streets across it, each running so that its left side
+/// faces out of the street's end: the frontage of the houses that face a dead end or close the
+/// top of a T-junction stands on that side.
+fn street_ends(street: &Street, sidewalk_width_m: f64) -> [Street; 2] {
+    let reach = street.half_width_m + sidewalk_width_m;
+    let d = street.direction();
+    [(street.b, d), (street.a, [-d[0], -d[1]])].map(|(end, out)| {
+        let v = [out[1], -out[0]];
+        Street {
+            a: [end[0] - v[0] * reach, end[1] - v[1] * reach],
+            b: [end[0] + v[0] * reach, end[1] + v[1] * reach],
+            half_width_m: street.half_width_m,
+        }
+    })
 }
 
 /// The scenario's own structures as pieces standing on the ground: buildings with façades

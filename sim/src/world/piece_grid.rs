@@ -11,6 +11,9 @@ use rapier3d::prelude::Vector;
 use super::grid_piece::GridPiece;
 use super::grid_walk::walk_cells;
 
+/// A unit normal (world frame) and the feature where a ray hit.
+pub type HitNormal = (Vector, rapier3d::parry::shape::FeatureId);
+
 /// Side of a grid cell, metres.
 const CELL_M: f32 = 4.0;
 /// Most cells a side (the grid coarsens beyond, so its tables stay small).
@@ -158,7 +161,38 @@ impl PieceGrid {
     }
 
     /// The first piece the ray `origin + t·dir` hits with `t ≤ max_toi`: its `t` and index.
+    #[inline]
     pub(crate) fn cast(&self, ray: &Ray, max_toi: f32) -> Option<(f32, u32)> {
+        self.walk(ray, max_toi, |piece, best_t| {
+            Some((piece.cast_solid(ray, best_t)?, ()))
+        })
+        .map(|(t, k, ())| (t, k))
+    }
+
+    /// [`PieceGrid::cast`] with the world normal and feature of the hit, from the same shape
+    /// tests (the labelled sweep needs the incidence; a second cast of the piece hit would cost
+    /// as much again).
+    #[inline]
+    pub(crate) fn cast_with_normal(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+    ) -> Option<(f32, u32, HitNormal)> {
+        self.walk(ray, max_toi, |piece, best_t| {
+            let hit = piece.cast_with_normal(ray, best_t, true)?;
+            Some((hit.time_of_impact, (hit.normal, hit.feature)))
+        })
+    }
+
+    /// The cell walk shared by both casts: `test(piece, best_t)` casts the ray on one piece and
+    /// gives its `t` (at most `best_t`) and whatever else the caller keeps of the hit.
+    #[inline]
+    fn walk<T: Copy>(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+        mut test: impl FnMut(&GridPiece, f32) -> Option<(f32, T)>,
+    ) -> Option<(f32, u32, T)> {
         if self.pieces.is_empty() {
             return None;
         }
@@ -181,7 +215,7 @@ impl PieceGrid {
         }
         let inverse_dir = Vector::ONE / d;
         let o = ray.origin;
-        let mut best: Option<(f32, u32)> = None;
+        let mut best: Option<(f32, u32, T)> = None;
         let mut best_t = max_toi;
         let mut mailbox = [u32::MAX; MAILBOX];
         let mut next_slot = 0;
@@ -210,10 +244,10 @@ impl PieceGrid {
                     }
                     mailbox[next_slot] = k;
                     next_slot = (next_slot + 1) % MAILBOX;
-                    if let Some(t) = self.pieces[k as usize].cast_solid(ray, best_t)
+                    if let Some((t, extra)) = test(&self.pieces[k as usize], best_t)
                         && (t < best_t || best.is_none())
                     {
-                        best = Some((t, k));
+                        best = Some((t, k, extra));
                         best_t = t;
                     }
                 }
@@ -227,72 +261,5 @@ impl PieceGrid {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::Material;
-    use crate::world::{Piece, PieceShape};
-    use patchflow_dataset::SemanticClass;
-
-    fn pieces() -> Vec<Piece> {
-        let mut out = Vec::new();
-        for k in 0..60 {
-            let a = k as f32 * 0.37;
-            let r = 5.0 + (k % 7) as f32 * 6.0;
-            out.push(Piece {
-                shape: match k % 3 {
-                    0 => PieceShape::Cuboid([1.0 + 0.1 * (k % 5) as f32, 0.4, 1.2]),
-                    1 => PieceShape::Ball(0.8),
-                    _ => PieceShape::Column(1.5, 0.2),
-                },
-                centre_m: [r * a.cos(), r * a.sin(), 0.5 + (k % 4) as f32 * 0.3],
-                yaw_rad: a,
-                semantic: SemanticClass::Pole,
-                reflectivity: 0.5,
-                material: Material::SOLID,
-            });
-        }
-        // A long wall across many cells.
-        out.push(Piece::block(
-            [0.0, -30.0],
-            0.0,
-            [80.0, 0.5, 3.0],
-            0.1,
-            SemanticClass::Building,
-            0.5,
-        ));
-        out
-    }
-
-    #[test]
-    fn the_walk_finds_the_nearest_piece_a_test_of_every_piece_finds() {
-        let placed: Vec<GridPiece> = pieces().iter().filter_map(GridPiece::new).collect();
-        let grid = PieceGrid::new(placed.clone());
-        let mut hits = 0;
-        for k in 0..3000 {
-            let a = k as f32 * 0.0021;
-            let e = -0.3 + 0.35 * ((k * 7) % 100) as f32 / 100.0;
-            let dir = Vector::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin());
-            let ray = Ray::new(Vector::new(1.0, -2.0, 1.7), dir);
-            let inverse = Vector::ONE / dir;
-            let expected = placed
-                .iter()
-                .enumerate()
-                .filter(|(_, p)| {
-                    let (t1, t2) = (
-                        (p.aabb().mins - ray.origin) * inverse,
-                        (p.aabb().maxs - ray.origin) * inverse,
-                    );
-                    t1.min(t2).max_element().max(0.0) <= t1.max(t2).min_element().min(100.0)
-                })
-                .filter_map(|(i, p)| Some((p.cast_solid(&ray, 100.0)?, i as u32)))
-                .min_by(|x, y| x.0.total_cmp(&y.0));
-            let got = grid.cast(&ray, 100.0);
-            assert_eq!(got.map(|g| g.1), expected.map(|e| e.1), "ray {k}");
-            if let (Some(g), Some(e)) = (got, expected) {
-                assert_eq!(g.0, e.0, "ray {k}");
-                hits += 1;
-            }
-        }
-        assert!(hits > 500, "{hits} hits");
-    }
-}
+#[path = "piece_grid_tests.rs"]
+mod tests;

@@ -1,6 +1,6 @@
 //! What stands along the streets: raised sidewalk slabs whose road-facing faces are the curbs,
-//! and seeded clutter at a density per 100 m of street side: trees (a trunk and a porous canopy),
-//! bushes, signs, bollards, street lights, bins, traffic lights at the corners and parked cars.
+//! and seeded clutter at a density per 100 m of street side ([`Item`]): trees, bushes in the
+//! gardens, street furniture, traffic lights at the corners, and parked cars slot by slot.
 //! Every item keeps clear of the actors' corridors, the scenario's own structures and the items
 //! placed before it.
 
@@ -8,16 +8,17 @@ use patchflow_dataset::SemanticClass;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::body_shapes::parked_car_parts;
 use super::clearance::Clearance;
 use super::ground_field::{GroundField, GroundRecipe};
-use super::piece::{Piece, PieceShape};
+use super::piece::Piece;
+use super::street_item::{Item, item_pieces};
 use super::street_map::Street;
-use crate::scene::Material;
 use crate::seed::sub_seed;
 
 /// Longest sidewalk slab, metres.
 const SLAB_M: f64 = 8.0;
+/// Length of a parking slot along the curb, metres (a full curb: 100 / 6 ≈ 17 cars per 100 m).
+const PARKING_SLOT_M: f64 = 6.0;
 /// Depth of a sidewalk slab below its top, metres.
 const SLAB_DEPTH_M: f64 = 0.6;
 
@@ -113,8 +114,10 @@ impl SideBuilder<'_> {
         let (w, band) = (self.street.half_width_m, k.sidewalk_width_m.max(1.0));
         let per_100m = (to - from) / 100.0;
         let mut out = Vec::new();
-        let kinds: [(Item, f64); 9] = [
-            (Item::Hedge, 6.0 * k.clutter),
+        // Parked cars fill the curb slot by slot (as real parking does), the rest is scattered.
+        let slots = ((to - from - 6.0) / PARKING_SLOT_M).floor().max(0.0) as usize;
+        let occupancy = k.parked_cars_per_100m * PARKING_SLOT_M / 100.0;
+        let kinds: [(Item, f64); 10] = [
             (Item::ParkedCar, k.parked_cars_per_100m),
             (Item::Tree, 4.0 * k.clutter),
             (Item::Bush, 4.0 * k.clutter),
@@ -122,14 +125,27 @@ impl SideBuilder<'_> {
             (Item::Sign, 1.5 * k.clutter),
             (Item::Bollard, 3.0 * k.clutter),
             (Item::Bin, 1.5 * k.clutter),
+            (Item::Bench, 2.0 * k.clutter),
+            (Item::Cabinet, 2.0 * k.clutter),
             (Item::TrafficLight, if k.clutter > 0.0 { 2.0 } else { 0.0 }),
         ];
         for (item, density) in kinds {
             let expected = density * per_100m;
-            let count =
-                expected.floor() as usize + usize::from(rng.random::<f64>() < expected.fract());
-            for _ in 0..count {
+            let count = if item == Item::ParkedCar {
+                slots
+            } else {
+                expected.floor() as usize + usize::from(rng.random::<f64>() < expected.fract())
+            };
+            for slot in 0..count {
                 let s = match item {
+                    Item::ParkedCar => {
+                        if rng.random::<f64>() >= occupancy {
+                            continue;
+                        }
+                        from + 3.0
+                            + (slot as f64 + 0.5) * PARKING_SLOT_M
+                            + rng.random_range(-0.3..0.3)
+                    }
                     // Traffic lights stand at the ends of a sidewalk run: the corners.
                     Item::TrafficLight => {
                         if rng.random::<bool>() {
@@ -143,12 +159,14 @@ impl SideBuilder<'_> {
                 let across = match item {
                     Item::ParkedCar => w - 1.1,
                     Item::Tree => w + rng.random_range(0.8..band.max(1.0) + 2.5),
-                    Item::Bush => w + band + rng.random_range(0.6..4.0),
+                    // In the gardens behind the frontage.
+                    Item::Bush => w + band + rng.random_range(1.8..5.0),
                     Item::StreetLight | Item::TrafficLight => w + 0.6,
                     Item::Sign => w + 0.4,
                     Item::Bollard => w + 0.35,
                     Item::Bin => w + band - 0.4,
-                    Item::Hedge => w + band + 0.6,
+                    Item::Bench => w + band - 0.5,
+                    Item::Cabinet => w + 0.5,
                 };
                 if item == Item::ParkedCar && (s - from < 3.0 || to - s < 3.0) {
                     continue;
@@ -159,7 +177,8 @@ impl SideBuilder<'_> {
                     continue;
                 }
                 let base = f64::from(self.field.height_at(p[0] as f32, p[1] as f32));
-                let pieces = self.item_pieces(item, p, base, &mut rng);
+                let side = (self.street.yaw_rad(), self.side);
+                let pieces = item_pieces(item, p, base, side, &mut rng);
                 if pieces.is_empty() {
                     continue;
                 }
@@ -168,151 +187,6 @@ impl SideBuilder<'_> {
             }
         }
         out
-    }
-
-    fn item_pieces(&self, item: Item, p: [f64; 2], base: f64, rng: &mut ChaCha8Rng) -> Vec<Piece> {
-        let yaw = self.street.yaw_rad();
-        let (x, y) = (p[0] as f32, p[1] as f32);
-        let column = |half: f32, r: f32, z0: f64, semantic, reflectivity: f32| Piece {
-            shape: PieceShape::Column(half, r),
-            centre_m: [x, y, z0 as f32 + half],
-            yaw_rad: 0.0,
-            semantic,
-            reflectivity,
-            material: Material::SOLID,
-        };
-        match item {
-            Item::Tree => {
-                let trunk_h = rng.random_range(2.2f32..3.5);
-                let crown = rng.random_range(1.4f32..2.8);
-                vec![
-                    column(
-                        trunk_h / 2.0 + 0.1,
-                        rng.random_range(0.12..0.25),
-                        base - 0.1,
-                        SemanticClass::Trunk,
-                        0.35,
-                    ),
-                    Piece {
-                        shape: PieceShape::Ball(crown),
-                        centre_m: [x, y, (base as f32) + trunk_h + 0.7 * crown],
-                        yaw_rad: 0.0,
-                        semantic: SemanticClass::Vegetation,
-                        reflectivity: 0.5,
-                        material: Material::foliage(0.6),
-                    },
-                ]
-            }
-            Item::Bush => {
-                let r = rng.random_range(0.5f32..1.1);
-                vec![Piece {
-                    shape: PieceShape::Ball(r),
-                    centre_m: [x, y, base as f32 + 0.55 * r],
-                    yaw_rad: 0.0,
-                    semantic: SemanticClass::Vegetation,
-                    reflectivity: 0.45,
-                    material: Material::foliage(0.3),
-                }]
-            }
-            Item::StreetLight => vec![column(3.6, 0.09, base - 0.1, SemanticClass::Pole, 0.5)],
-            Item::Hedge => {
-                let length = rng.random_range(3.0..10.0);
-                let height = rng.random_range(0.9..1.8);
-                vec![
-                    Piece::block(
-                        p,
-                        base - 0.1,
-                        [length, 0.9, height + 0.1],
-                        yaw,
-                        SemanticClass::Vegetation,
-                        0.45,
-                    )
-                    .with_material(Material::foliage(0.25)),
-                ]
-            }
-            Item::Bollard => vec![column(0.5, 0.09, base - 0.1, SemanticClass::Pole, 0.45)],
-            Item::Bin => vec![column(
-                0.55,
-                0.3,
-                base - 0.1,
-                SemanticClass::OtherObject,
-                0.3,
-            )],
-            Item::Sign => vec![
-                column(1.3, 0.04, base - 0.1, SemanticClass::Pole, 0.5),
-                Piece::block(
-                    p,
-                    base + 2.0,
-                    [0.04, 0.65, 0.65],
-                    yaw,
-                    SemanticClass::TrafficSign,
-                    0.9,
-                ),
-            ],
-            Item::TrafficLight => vec![
-                column(1.9, 0.08, base - 0.1, SemanticClass::Pole, 0.45),
-                Piece::block(
-                    p,
-                    base + 2.5,
-                    [0.35, 0.35, 1.0],
-                    yaw,
-                    SemanticClass::TrafficSign,
-                    0.3,
-                ),
-            ],
-            Item::ParkedCar => {
-                let size = match rng.random_range(0..3u8) {
-                    0 => [3.9, 1.7, 1.45],
-                    1 => [4.7, 1.8, 1.45],
-                    _ => [5.1, 1.95, 1.95],
-                };
-                let heading = if self.side > 0.0 {
-                    yaw + std::f64::consts::PI
-                } else {
-                    yaw
-                };
-                let reflectivity = rng.random_range(0.1f32..0.8);
-                parked_car_parts(size, reflectivity, [p[0], p[1]], heading, base)
-            }
-        }
-    }
-}
-
-/// Kinds of street clutter.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Item {
-    ParkedCar,
-    Tree,
-    Bush,
-    StreetLight,
-    Sign,
-    Bollard,
-    Bin,
-    TrafficLight,
-    Hedge,
-}
-
-impl Item {
-    /// Footprint radius for spacing, metres.
-    fn radius_m(self) -> f64 {
-        match self {
-            Self::ParkedCar => 2.6,
-            Self::Tree => 0.6,
-            Self::Bush => 1.0,
-            Self::Bin => 0.35,
-            Self::Hedge => 5.0,
-            Self::StreetLight | Self::Sign | Self::Bollard | Self::TrafficLight => 0.2,
-        }
-    }
-
-    /// Half width across a driver's corridor, metres (a parked car lies along the street).
-    fn lateral_m(self) -> f64 {
-        match self {
-            Self::ParkedCar => 1.0,
-            Self::Tree => 0.3,
-            Self::Hedge => 0.5,
-            other => other.radius_m(),
-        }
     }
 }
 

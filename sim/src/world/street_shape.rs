@@ -14,6 +14,7 @@ use rapier3d::parry::query::{PointProjection, PointQuery, Ray, RayCast, RayInter
 use rapier3d::parry::shape::{FeatureId, Shape, ShapeType, TypedShape};
 use rapier3d::prelude::{Real, Vector};
 
+use super::piece_grid::HitNormal;
 use super::{GroundField, PieceGrid};
 
 /// Sine of the depression below which a beam is cast on the ground first (8°: it meets a flat
@@ -99,6 +100,45 @@ impl StreetShape {
                 (Some((g, cell)), Some((t, _))) if g < t => Some((g, StreetPart::Ground(cell))),
                 (Some((g, cell)), None) => Some((g, StreetPart::Ground(cell))),
                 (_, Some((t, k))) => Some((t, StreetPart::Piece(k))),
+                (None, None) => None,
+            }
+        }
+    }
+
+    /// [`StreetShape::cast`] with the world normal and feature where a piece is hit (`None` on
+    /// the ground, whose normal [`GroundField::normal_at`] gives at the hit point), from the same
+    /// shape tests as the hit itself.
+    #[inline]
+    pub fn cast_with_normal(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+    ) -> Option<(f32, StreetPart, Option<HitNormal>)> {
+        let (o, d) = (ray.origin, ray.dir);
+        let ground = |max: f32| {
+            self.ground
+                .as_ref()
+                .and_then(|g| g.cast([o.x, o.y, o.z], [d.x, d.y, d.z], max))
+        };
+        let piece_hit = |(t, k, n)| Some((t, StreetPart::Piece(k), Some(n)));
+        if d.z < -STEEP_SIN {
+            let ground = ground(max_toi);
+            let limit = ground.map_or(max_toi, |(t, _)| t);
+            match (self.pieces.cast_with_normal(ray, limit), ground) {
+                (Some(hit), Some((g, _))) if hit.0 <= g => piece_hit(hit),
+                (Some(hit), None) => piece_hit(hit),
+                (_, Some((g, cell))) => Some((g, StreetPart::Ground(cell), None)),
+                (None, None) => None,
+            }
+        } else {
+            let piece = self.pieces.cast_with_normal(ray, max_toi);
+            let limit = piece.map_or(max_toi, |(t, _, _)| t);
+            match (ground(limit), piece) {
+                (Some((g, cell)), Some((t, _, _))) if g < t => {
+                    Some((g, StreetPart::Ground(cell), None))
+                }
+                (Some((g, cell)), None) => Some((g, StreetPart::Ground(cell), None)),
+                (_, Some(hit)) => piece_hit(hit),
                 (None, None) => None,
             }
         }
