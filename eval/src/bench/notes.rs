@@ -55,7 +55,7 @@ pub(crate) fn notes(
             .to_owned(),
     );
     notes.push(
-        "Baselines on simulated clusters: every target point is segmented cleanly and range noise is 2 cm, so ICP and the Kalman filter are far better here than on the thesis' real data, where partial views and segmentation errors hurt ICP (thesis 4.4). The auto-association variants show the cost of doing the association without ground truth."
+        "Baselines on simulated clusters: the situations are simulated on the default realism rung (`urban`), where street clutter, parked cars, mixed pixels and ray drop join, split and hide parts of clusters, as partial views and segmentation errors do on the thesis' real data (4.4); on the `ideal` rung (the realism study below) every target point is segmented cleanly and ICP and the Kalman filter are far better than on real data. The auto-association variants show the cost of doing the association without ground truth."
             .to_owned(),
     );
     notes.push(
