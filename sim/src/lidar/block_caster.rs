@@ -6,7 +6,7 @@
 //! the first release ([`BlockCaster::cast_ray`], byte for byte); any other world or sensor the
 //! realistic one ([`BlockCaster::cast_ray_real`], in `real_return.rs`).
 
-use patchflow_dataset::PointLabel;
+use patchflow_dataset::{PointLabel, SemanticClass};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
 use rand_distr::StandardNormal;
@@ -183,17 +183,7 @@ impl<'a> BlockCaster<'a> {
         let range_m = (toi + noise_m).max(0.0);
         let point = self.origin_in_reference
             + rotate_z(self.yaw_since_reference_cos_sin, in_sensor) * range_m;
-        let states = self.query.actor_states();
-        let (label, flow_mps) = match surface
-            .actor
-            .and_then(|a| Some((*self.actor_labels.get(a)?, states.get(a)?)))
-        {
-            Some((label, state)) => {
-                let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);
-                (label, [v[0] as f32, v[1] as f32, 0.0])
-            }
-            None => (PointLabel::new(surface.semantic, 0), [0.0; 3]),
-        };
+        let (label, flow_mps) = self.label_and_flow(surface.actor, surface.semantic, hit);
         Some(Return {
             point_in_sensor: [point.x, point.y, point.z],
             intensity: intensity(
@@ -208,6 +198,25 @@ impl<'a> BlockCaster<'a> {
             ring,
             range_m,
         })
+    }
+
+    /// The label and true flow of a hit at world point `hit`: an actor's label and its rigid
+    /// velocity there, or the static class `semantic` and no flow.
+    #[inline]
+    pub(super) fn label_and_flow(
+        &self,
+        actor: Option<usize>,
+        semantic: SemanticClass,
+        hit: Vector,
+    ) -> (PointLabel, [f32; 3]) {
+        let states = self.query.actor_states();
+        match actor.and_then(|a| Some((*self.actor_labels.get(a)?, states.get(a)?))) {
+            Some((label, state)) => {
+                let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);
+                (label, [v[0] as f32, v[1] as f32, 0.0])
+            }
+            None => (PointLabel::new(semantic, 0), [0.0; 3]),
+        }
     }
 }
 

@@ -4,7 +4,6 @@
 //! sensor detects what comes back ([`SensorModel::detection_probability`]), range noise growing
 //! with range, and the channel's intensity gain. Labels and flow are those of the surface hit.
 
-use patchflow_dataset::PointLabel;
 use rand::RngExt;
 use rand::rngs::Xoshiro256PlusPlus;
 use rand_distr::StandardNormal;
@@ -123,17 +122,7 @@ impl BlockCaster<'_> {
             let noisy = (range + std * rng.sample::<f32, _>(StandardNormal)).max(0.0);
             let point = self.origin_in_reference
                 + rotate_z(self.yaw_since_reference_cos_sin, in_sensor) * noisy;
-            let states = self.query.actor_states();
-            let (label, flow_mps) = match surface
-                .actor
-                .and_then(|a| Some((*self.actor_labels.get(a)?, states.get(a)?)))
-            {
-                Some((label, state)) => {
-                    let v = state.velocity_at_mps([f64::from(hit.x), f64::from(hit.y)]);
-                    (label, [v[0] as f32, v[1] as f32, 0.0])
-                }
-                None => (PointLabel::new(semantic, 0), [0.0; 3]),
-            };
+            let (label, flow_mps) = self.label_and_flow(surface.actor, semantic, hit);
             let gain = self.sensor.gain(channel);
             return Some(Return {
                 point_in_sensor: [point.x, point.y, point.z],
