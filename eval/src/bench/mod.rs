@@ -19,6 +19,7 @@ pub use plan::{
 pub use run::{BenchOutcome, run_bench};
 pub use seed_spread::{MethodSpread, SeedFigure, SeedSpread};
 pub(crate) use short_tracks::shortened_tracks;
+pub(crate) use stages::collect_feature_draws_with_bar;
 pub use stages::{
     collect_draws_with_bar, collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar,
     generate_with_progress, occupancy_with_bar,

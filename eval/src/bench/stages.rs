@@ -105,11 +105,21 @@ pub fn collect_draws_with_bar(
     draws: &[(f64, u64)],
     n: usize,
 ) -> Result<Vec<SampleSet>, EvalError> {
+    collect_feature_draws_with_bar(dataset, &FeatureParams::default(), draws, n)
+}
+
+/// [`collect_draws_with_bar`] with other map and patch parameters (the studies' cell sizes).
+pub(crate) fn collect_feature_draws_with_bar(
+    dataset: &Dataset,
+    features: &FeatureParams,
+    draws: &[(f64, u64)],
+    n: usize,
+) -> Result<Vec<SampleSet>, EvalError> {
     let bar = progress_bar(0, "sampling patches");
     let lines = ProgressLines::new("sweeps sampled");
     let sets = SampleSet::collect_draws(
         dataset,
-        &FeatureParams::default(),
+        features,
         draws,
         FeatureKind::Patch,
         n,

@@ -7,12 +7,14 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{EstimatorParams, FeatureKind, FeatureParams, MotionEstimator, SampleSet};
+use patchflow_learn::{EstimatorParams, FeatureParams, MotionEstimator, SampleSet};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
-use crate::bench::{evaluate_with_bar, generate_with_progress, shortened_tracks};
+use crate::bench::{
+    collect_feature_draws_with_bar, evaluate_with_bar, generate_with_progress, shortened_tracks,
+};
 use crate::error::EvalError;
-use crate::progress::{ProgressLines, progress_bar, spinner};
+use crate::progress::spinner;
 use crate::report::{create_dir, write_atomic};
 use crate::study::merge::{StudyFiles, merge_study};
 use crate::study::plan::{StudyPlan, StudyPoint};
@@ -117,21 +119,7 @@ fn sample_patches(
     n: usize,
     seed: u64,
 ) -> Result<SampleSet, EvalError> {
-    let bar = progress_bar(0, "sampling patches");
-    let lines = ProgressLines::new("sweeps sampled");
-    let sets = SampleSet::collect_draws(
-        dataset,
-        features,
-        &[(0.5, seed)],
-        FeatureKind::Patch,
-        n,
-        &|done, total| {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
-            lines.update(done, total);
-        },
-    );
-    bar.finish_and_clear();
+    let sets = collect_feature_draws_with_bar(dataset, features, &[(0.5, seed)], n);
     sets?
         .into_iter()
         .next()
