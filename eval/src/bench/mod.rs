@@ -3,6 +3,7 @@
 //! evaluate every method on every sequence (thesis 4.4 and the whole scene), map the DGPOM paper's
 //! T-junction (its Table 1 and Figure 6), write the report.
 
+mod bar_check;
 mod notes;
 mod plan;
 mod run;

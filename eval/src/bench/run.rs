@@ -6,9 +6,10 @@ use std::time::Instant;
 
 use patchflow_dataset::Dataset;
 use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
-use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
+use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard};
 use rayon::prelude::*;
 
+use crate::bench::bar_check::{bar_entry, bar_markdown, bar_rows, ideal_scores};
 use crate::bench::notes::notes;
 use crate::bench::plan::BenchPlan;
 use crate::bench::run_files::{
@@ -228,6 +229,13 @@ pub fn run_bench(
     if let Some(realism) = &realism {
         append(&files.report_md, &realism_sections(realism, &cv, plan))?;
     }
+    // 10. The GP estimator against the README's bar, and what the data says where it misses.
+    let bar = bar_rows(&report.situations, &ideal_scores(realism.as_ref()));
+    insert_after_summary(
+        &files.report_md,
+        &bar_markdown(&bar, Realism::default().name()),
+    )?;
+    add_to_metrics(&files.metrics_json, bar_entry(&bar)?)?;
     let perception = PerceptionSummary::of_scenes(&report.scenes);
     Ok(BenchOutcome {
         report,

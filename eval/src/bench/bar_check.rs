@@ -1,0 +1,372 @@
+//! The bar the README holds the GP estimator to (issue #9): SPGP-HET-ALL's heading RMSE under 25°
+//! and its speed RMSE under 1.5 m/s in a situation. Where a run misses it, this section says from
+//! the run's own data what kind of miss it is: a few outlier scans or a spread misreading, the
+//! scans right after the target was hidden, the range that carries the error, a speed bias, and
+//! whether the same models meet the bar on the `ideal` rung (then the world breaks them, not the
+//! training). The causes found by ablation are in README's "Why the GPs lost accuracy".
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use patchflow_sim::Realism;
+
+use crate::error::EvalError;
+use crate::method::Method;
+use crate::metrics::{MIN_SCORED_SPEED_MPS, heading_error_deg, rmse, score_method};
+use crate::result::SituationResult;
+use crate::study::{Scores, StudyReport};
+
+/// Heading RMSE the GP estimator must stay under, degrees.
+pub const BAR_HEADING_DEG: f64 = 25.0;
+/// Speed RMSE the GP estimator must stay under, m/s.
+pub const BAR_SPEED_MPS: f64 = 1.5;
+/// The method held to the bar.
+const HELD: Method = Method::SpgpHetAll;
+/// Share of the scored scans counted as "the worst" (at least one scan).
+const WORST_SHARE: f64 = 0.1;
+/// Range bins of the squared heading error (as the report's breakdown).
+const RANGE_BINS: [(&str, f64); 3] = [
+    ("under 15 m", 15.0),
+    ("15-30 m", 30.0),
+    ("30 m and more", f64::INFINITY),
+];
+
+/// One situation against the bar.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BarRow {
+    /// Situation name.
+    pub situation: String,
+    /// Heading RMSE, degrees.
+    pub heading_rmse_deg: Option<f64>,
+    /// Speed RMSE, m/s.
+    pub speed_rmse_mps: Option<f64>,
+    /// Both under the bar.
+    pub met: bool,
+    /// Scans whose heading was scored.
+    pub scored_scans: usize,
+    /// Share of the squared heading error in the worst tenth of the scored scans.
+    pub worst_tenth_share: f64,
+    /// Heading RMSE without the worst tenth, degrees.
+    pub heading_rmse_without_worst_deg: Option<f64>,
+    /// Scored scans whose previous scan saw no point of the target (its motion cannot show in
+    /// the difference map), and their share of the squared heading error.
+    pub after_hidden_scans: usize,
+    /// See `after_hidden_scans`.
+    pub after_hidden_share: f64,
+    /// The range bin carrying most of the squared heading error, and its share.
+    pub worst_range: Option<(String, f64)>,
+    /// Mean signed speed error (estimate − truth), m/s.
+    pub speed_bias_mps: Option<f64>,
+    /// The same models on the `ideal` rung (the realism study), when it covered the situation.
+    pub ideal: Option<Scores>,
+}
+
+/// Every situation with estimates of the held method, against the bar; `ideal` maps situation
+/// names to the held method's scores on the `ideal` rung.
+pub fn bar_rows(situations: &[SituationResult], ideal: &BTreeMap<String, Scores>) -> Vec<BarRow> {
+    situations
+        .iter()
+        .filter_map(|s| row(s, ideal.get(&s.name).cloned()))
+        .collect()
+}
+
+fn row(situation: &SituationResult, ideal: Option<Scores>) -> Option<BarRow> {
+    let estimates = situation.methods.get(&HELD)?;
+    let metrics = score_method(&situation.truth, estimates).ok()?;
+    // Squared heading errors with what each scan was like.
+    let mut scans = Vec::new();
+    let mut speed_errors = Vec::new();
+    for (k, (truth, estimate)) in situation.truth.iter().zip(estimates).enumerate() {
+        let Some(e) = estimate else { continue };
+        speed_errors.push(e.speed_mps - truth.speed_mps);
+        if truth.speed_mps < MIN_SCORED_SPEED_MPS {
+            continue;
+        }
+        let error = heading_error_deg(e.heading_rad, truth.heading_rad);
+        let hidden_before = k > 0 && situation.truth[k - 1].target_points == Some(0);
+        scans.push((error * error, hidden_before, truth.range_m));
+    }
+    let total: f64 = scans.iter().map(|s| s.0).sum();
+    let share = |part: f64| if total > 0.0 { part / total } else { 0.0 };
+    let mut squared: Vec<f64> = scans.iter().map(|s| s.0).collect();
+    squared.sort_by(|a, b| b.total_cmp(a));
+    let worst = ((squared.len() as f64 * WORST_SHARE).ceil() as usize).min(squared.len());
+    let rest: Vec<f64> = squared[worst..].iter().map(|s| s.sqrt()).collect();
+    let hidden: Vec<&(f64, bool, Option<f64>)> = scans.iter().filter(|s| s.1).collect();
+    let mut by_range = [0.0; 3];
+    for (sq, _, range) in &scans {
+        if let Some(bin) = range.and_then(|r| RANGE_BINS.iter().position(|(_, edge)| r < *edge)) {
+            by_range[bin] += sq;
+        }
+    }
+    let worst_range = (0..3)
+        .max_by(|&a, &b| by_range[a].total_cmp(&by_range[b]))
+        .filter(|&b| by_range[b] > 0.0)
+        .map(|b| (RANGE_BINS[b].0.to_owned(), share(by_range[b])));
+    let under = |v: Option<f64>, bar: f64| v.is_some_and(|v| v < bar);
+    Some(BarRow {
+        situation: situation.name.clone(),
+        heading_rmse_deg: metrics.heading_rmse_deg,
+        speed_rmse_mps: metrics.speed_rmse_mps,
+        met: under(metrics.heading_rmse_deg, BAR_HEADING_DEG)
+            && under(metrics.speed_rmse_mps, BAR_SPEED_MPS),
+        scored_scans: scans.len(),
+        worst_tenth_share: share(squared[..worst].iter().sum()),
+        heading_rmse_without_worst_deg: rmse(&rest),
+        after_hidden_scans: hidden.len(),
+        after_hidden_share: share(hidden.iter().map(|s| s.0).sum()),
+        worst_range,
+        speed_bias_mps: (!speed_errors.is_empty())
+            .then(|| speed_errors.iter().sum::<f64>() / speed_errors.len() as f64),
+        ideal,
+    })
+}
+
+/// Whether scores are under the bar.
+fn meets(scores: &Scores) -> bool {
+    scores.heading_rmse_deg.is_some_and(|h| h < BAR_HEADING_DEG)
+        && scores.speed_rmse_mps.is_some_and(|s| s < BAR_SPEED_MPS)
+}
+
+/// The report section: the table, then for every missed situation what the data says.
+pub fn bar_markdown(rows: &[BarRow], rung: &str) -> String {
+    let mut md = String::new();
+    let met = rows.iter().filter(|r| r.met).count();
+    let f = |v: Option<f64>, d: usize| v.map_or("–".into(), |v| format!("{v:.d$}"));
+    // Writing to a String cannot fail.
+    let _ = writeln!(
+        md,
+        "## Against the bar: {HELD} under {BAR_HEADING_DEG}° and {BAR_SPEED_MPS} m/s\n\n\
+         On the `{rung}` rung {HELD} meets the bar in **{met} of {}** situations. Where it does \
+         not, the columns say what kind of miss it is (computed from this run's scans): the share \
+         of the squared heading error in the worst tenth of the scans and the RMSE without them \
+         (outliers or a spread misreading), the scans right after the target was hidden (no \
+         point of it in the previous scan, so its motion cannot show in the difference map), the \
+         range that carries most of the error, the mean signed speed error, and the same models \
+         on the `ideal` rung (realism study below).\n",
+        rows.len()
+    );
+    let _ = writeln!(
+        md,
+        "| situation | heading / speed RMSE | met | worst tenth of scans: share, RMSE without | \
+         after hidden: scans, share | range with most error | speed bias (m/s) | same models on `ideal` |\n\
+         |---|---|---|---|---|---|---|---|"
+    );
+    for r in rows {
+        let ideal = r.ideal.as_ref().map_or("–".into(), |s| {
+            let verdict = if meets(s) { "met" } else { "missed" };
+            let heading = f(s.heading_rmse_deg, 1);
+            format!("{heading}° / {} m/s ({verdict})", f(s.speed_rmse_mps, 2))
+        });
+        let range = r.worst_range.as_ref().map_or("–".into(), |(bin, s)| {
+            format!("{bin} ({:.0} %)", 100.0 * s)
+        });
+        let _ = writeln!(
+            md,
+            "| {} | {}° / {} m/s | {} | {:.0} %, {}° | {}, {:.0} % | {range} | {} | {ideal} |",
+            r.situation,
+            f(r.heading_rmse_deg, 1),
+            f(r.speed_rmse_mps, 2),
+            if r.met { "yes" } else { "**no**" },
+            100.0 * r.worst_tenth_share,
+            f(r.heading_rmse_without_worst_deg, 1),
+            r.after_hidden_scans,
+            100.0 * r.after_hidden_share,
+            f(r.speed_bias_mps, 2),
+        );
+    }
+    let _ = writeln!(md);
+    for r in rows.iter().filter(|r| !r.met) {
+        let _ = writeln!(md, "- {}", reading(r));
+    }
+    if rows.iter().any(|r| !r.met) {
+        let _ = writeln!(
+            md,
+            "\nThe causes behind these patterns were found by ablation (one realism knob at a \
+             time; README, \"Why the GPs lost accuracy on `urban`\"): street clutter and parked \
+             cars next to far targets, and a crossing target learned worse from urban training \
+             tracks.\n"
+        );
+    }
+    md
+}
+
+/// One missed situation in words, from its row.
+fn reading(r: &BarRow) -> String {
+    let mut parts = Vec::new();
+    if r.worst_tenth_share >= 0.5 {
+        parts.push(format!(
+            "a few scans carry most of the heading error ({:.0} % in the worst tenth; {:.1}° \
+             without them)",
+            100.0 * r.worst_tenth_share,
+            r.heading_rmse_without_worst_deg.unwrap_or(f64::NAN)
+        ));
+    } else {
+        parts.push(format!(
+            "the heading error is spread over the scans ({:.0} % in the worst tenth): a \
+             systematic misreading, not outliers",
+            100.0 * r.worst_tenth_share
+        ));
+    }
+    if r.after_hidden_share >= 0.2 {
+        parts.push(format!(
+            "{:.0} % of it falls on the {} scans right after the target was hidden",
+            100.0 * r.after_hidden_share,
+            r.after_hidden_scans
+        ));
+    }
+    if let Some((bin, share)) = &r.worst_range {
+        parts.push(format!("{:.0} % of it at {bin}", 100.0 * share));
+    }
+    if let Some(bias) = r.speed_bias_mps.filter(|b| b.abs() >= 0.5 * BAR_SPEED_MPS) {
+        let way = if bias < 0.0 { "under" } else { "over" };
+        parts.push(format!(
+            "the speed is {way}estimated by {:.2} m/s on average",
+            bias.abs()
+        ));
+    }
+    match &r.ideal {
+        Some(s) if meets(s) => parts.push(
+            "the same models meet the bar on `ideal`: the world breaks them here, not the training"
+                .into(),
+        ),
+        Some(_) => parts.push(
+            "they miss it on `ideal` too: the models read this motion wrongly whatever the world"
+                .into(),
+        ),
+        None => {}
+    }
+    format!("**{}**: {}.", r.situation, parts.join("; "))
+}
+
+/// The held method's scores per situation on the `ideal` rung of a realism study.
+pub fn ideal_scores(realism: Option<&StudyReport>) -> BTreeMap<String, Scores> {
+    let Some(ideal) =
+        realism.and_then(|r| r.points.iter().find(|p| p.label == Realism::Ideal.name()))
+    else {
+        return BTreeMap::new();
+    };
+    ideal
+        .situations
+        .iter()
+        .filter_map(|(name, methods)| Some((name.clone(), methods.get(HELD.name())?.clone())))
+        .collect()
+}
+
+/// `metrics.json`'s `bar` entry: the bar and every situation's row.
+pub fn bar_entry(rows: &[BarRow]) -> Result<serde_json::Map<String, serde_json::Value>, EvalError> {
+    let value = serde_json::json!({
+        "method": HELD.name(),
+        "heading_rmse_deg": BAR_HEADING_DEG,
+        "speed_rmse_mps": BAR_SPEED_MPS,
+        "met": rows.iter().filter(|r| r.met).count(),
+        "situations": serde_json::to_value(rows).map_err(|e| EvalError::BadResult {
+            situation: "-".into(),
+            reason: format!("bar rows: {e}"),
+        })?,
+    });
+    let mut entries = serde_json::Map::new();
+    entries.insert("bar".into(), value);
+    Ok(entries)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimate::MotionEstimate;
+    use crate::truth_at_scan::TruthAtScan;
+
+    /// 20 scans of a car at 8 m/s heading 90°, 20 m away with 100 points; `estimate(k)` gives
+    /// the held method's heading (degrees) and speed at scan k.
+    fn situation(estimate: impl Fn(usize) -> (f64, f64)) -> SituationResult {
+        let truth: Vec<TruthAtScan> = (0..20)
+            .map(|k| TruthAtScan {
+                range_m: Some(20.0),
+                target_points: Some(100),
+                ..TruthAtScan::from_velocity(k, [0.0, 8.0])
+            })
+            .collect();
+        let estimates = (0..20)
+            .map(|k| {
+                let (h, s) = estimate(k);
+                let h = h.to_radians();
+                Some(MotionEstimate::from_velocity([s * h.cos(), s * h.sin()]))
+            })
+            .collect();
+        SituationResult {
+            name: "situation4".into(),
+            scans: 20,
+            truth,
+            methods: BTreeMap::from([(HELD, estimates)]),
+        }
+    }
+
+    fn only_row(s: &SituationResult) -> BarRow {
+        bar_rows(std::slice::from_ref(s), &BTreeMap::new()).remove(0)
+    }
+
+    #[test]
+    fn small_errors_meet_the_bar() {
+        let row = only_row(&situation(|k| {
+            (90.0 + if k % 2 == 0 { 5.0 } else { -5.0 }, 8.3)
+        }));
+        assert!(row.met);
+        assert!((row.heading_rmse_deg.unwrap() - 5.0).abs() < 1e-9);
+        assert!((row.speed_bias_mps.unwrap() - 0.3).abs() < 1e-9);
+    }
+
+    #[test]
+    fn one_reversed_scan_is_read_as_an_outlier() {
+        let row = only_row(&situation(|k| (if k == 7 { 270.0 } else { 90.0 }, 8.0)));
+        assert!(!row.met, "one 180° error in 20 scans is an RMSE of 40°");
+        // The worst tenth (2 scans) holds the whole squared error; without it the RMSE is 0.
+        assert!((row.worst_tenth_share - 1.0).abs() < 1e-12);
+        assert!(row.heading_rmse_without_worst_deg.unwrap() < 1e-9);
+        let md = bar_markdown(&[row], "urban");
+        assert!(md.contains("meets the bar in **0 of 1**"), "{md}");
+        assert!(
+            md.contains("a few scans carry most of the heading error"),
+            "{md}"
+        );
+    }
+
+    #[test]
+    fn a_constant_offset_is_read_as_a_spread_misreading() {
+        let row = only_row(&situation(|_| (130.0, 4.0)));
+        assert!((row.worst_tenth_share - 0.1).abs() < 1e-12);
+        assert!((row.speed_bias_mps.unwrap() + 4.0).abs() < 1e-9);
+        let md = bar_markdown(&[row], "urban");
+        assert!(md.contains("systematic misreading"), "{md}");
+        assert!(md.contains("underestimated by 4.00 m/s"), "{md}");
+    }
+
+    #[test]
+    fn scans_right_after_the_target_was_hidden_are_counted_with_their_error() {
+        let mut s = situation(|k| (if k == 5 { 180.0 } else { 90.0 }, 8.0));
+        s.truth[4].target_points = Some(0);
+        let row = only_row(&s);
+        assert_eq!(row.after_hidden_scans, 1);
+        assert!((row.after_hidden_share - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_ideal_rung_decides_between_world_and_training() {
+        let bad = only_row(&situation(|_| (130.0, 8.0)));
+        let ideal = |h: f64| Scores {
+            heading_rmse_deg: Some(h),
+            speed_rmse_mps: Some(0.5),
+            coverage: 1.0,
+            scans: 20,
+        };
+        let world = BarRow {
+            ideal: Some(ideal(10.0)),
+            ..bad.clone()
+        };
+        let training = BarRow {
+            ideal: Some(ideal(40.0)),
+            ..bad
+        };
+        assert!(bar_markdown(&[world], "urban").contains("the world breaks them here"));
+        assert!(bar_markdown(&[training], "urban").contains("they miss it on `ideal` too"));
+    }
+}
