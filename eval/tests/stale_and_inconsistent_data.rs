@@ -63,6 +63,39 @@ fn an_edited_scenario_into_a_finished_folder_is_refused() {
 }
 
 #[test]
+fn an_edited_mesh_file_into_a_finished_folder_is_refused() {
+    // The scenario text stays the same; only the vehicle model it names changes.
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("tiny.toml");
+    let text = std::fs::read_to_string(tiny_scenario()).unwrap();
+    std::fs::write(
+        &scenario,
+        text.replace("target = true\n", "target = true\nmesh = \"car.obj\"\n"),
+    )
+    .unwrap();
+    let cube = |x: f32| {
+        format!(
+            "v 0 0 0\nv {x} 0 0\nv {x} 1 0\nv 0 1 0\nv 0 0 1\nv {x} 0 1\nv {x} 1 1\nv 0 1 1\n\
+             f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n"
+        )
+    };
+    std::fs::write(dir.path().join("car.obj"), cube(2.0)).unwrap();
+    let data = dir.path().join("data");
+    let run = || {
+        patchflow(&[
+            "generate",
+            scenario.to_str().unwrap(),
+            "--out",
+            data.to_str().unwrap(),
+        ])
+    };
+    assert_success(&run());
+    assert_success(&run()); // the same request again: skipped, not refused
+    std::fs::write(dir.path().join("car.obj"), cube(2.5)).unwrap();
+    assert_clean_failure(&run(), &["sequences/tiny", "another scenario text"]);
+}
+
+#[test]
 fn two_identical_runs_into_one_folder_both_succeed_and_leave_no_temporary_files() {
     let dir = tempfile::tempdir().unwrap();
     let data = dir.path().join("data");

@@ -223,7 +223,8 @@ fn available_memory_bytes() -> Option<u64> {
 
 /// Generates (or completes) one sequence, holding its folder's lock: a finished sequence of the
 /// same request is skipped, an unfinished one resumed; one of another request is an error naming
-/// the difference, or with `overwrite` deleted and generated anew.
+/// the difference, or with `overwrite` deleted and generated anew. A request is the resolved
+/// scenario text plus the geometry of every mesh file it names (an edited mesh is another request).
 pub fn generate_sequence(
     scenario: &Scenario,
     root: &Path,
@@ -236,8 +237,9 @@ pub fn generate_sequence(
     let on_wait = || progress(Progress::Waiting { name: name.clone() });
     let lock = FolderLock::acquire(&dir, &on_wait)?;
     let text = format!(
-        "# resolved scenario {name}, generated with seed {seed}\n{}",
-        scenario.to_toml()
+        "# resolved scenario {name}, generated with seed {seed}\n{}{}",
+        scenario.to_toml(),
+        mesh_digests(scenario)
     );
     match (provenance(&dir, &text, seed, GENERATOR), overwrite) {
         (_, true) => lock.clear()?,
@@ -308,6 +310,21 @@ pub fn generate_sequence(
         skipped: false,
     });
     Ok(())
+}
+
+/// One comment line per actor with a mesh: its file and the SHA-256 of its geometry, so that the
+/// sequence's recorded request changes when the file's contents do.
+fn mesh_digests(scenario: &Scenario) -> String {
+    std::iter::once(&scenario.ego)
+        .chain(&scenario.actors)
+        .filter_map(|a| Some((a.mesh.as_ref()?, a.mesh_data.as_ref()?)))
+        .map(|(file, mesh)| {
+            format!(
+                "# mesh {file}: geometry sha256 {}\n",
+                mesh.geometry_sha256()
+            )
+        })
+        .collect()
 }
 
 #[cfg(test)]

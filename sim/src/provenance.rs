@@ -50,7 +50,7 @@ pub(crate) fn provenance(
             ))
         } else if stored != wanted {
             Provenance::Different(format!(
-                "it was generated from another scenario text (scenario.toml sha256 {}…, this run's {}…)",
+                "it was generated from another scenario text or mesh geometry (scenario.toml sha256 {}…, this run's {}…)",
                 &stored.get(..12).unwrap_or(""),
                 &wanted[..12]
             ))

@@ -87,6 +87,20 @@ impl VehicleMesh {
         Ok(mesh)
     }
 
+    /// SHA-256 (hex) of the geometry the simulator uses: every vertex's bits and every
+    /// triangle's indices. `generate` records it beside the resolved scenario text, so an edited
+    /// mesh file makes another request rather than being mixed into a dataset made with the old.
+    pub fn geometry_sha256(&self) -> String {
+        let mut bytes = Vec::with_capacity(12 * (self.vertices.len() + self.triangles.len()));
+        for v in &self.vertices {
+            bytes.extend(v.iter().flat_map(|c| c.to_bits().to_le_bytes()));
+        }
+        for t in &self.triangles {
+            bytes.extend(t.iter().flat_map(|i| i.to_le_bytes()));
+        }
+        patchflow_dataset::sha256_hex(&bytes)
+    }
+
     /// Why the mesh cannot stand for a vehicle, if it cannot.
     fn check(&self) -> Result<(), String> {
         if self.triangles.is_empty() {
