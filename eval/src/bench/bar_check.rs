@@ -57,6 +57,8 @@ pub struct BarRow {
     pub worst_range: Option<(String, f64)>,
     /// Mean signed speed error (estimate − truth), m/s.
     pub speed_bias_mps: Option<f64>,
+    /// Share of the squared speed error in the worst tenth of the scans with an estimate.
+    pub speed_worst_tenth_share: f64,
     /// The same models on the `ideal` rung (the realism study), when it covered the situation.
     pub ideal: Option<Scores>,
 }
@@ -87,11 +89,16 @@ fn row(situation: &SituationResult, ideal: Option<Scores>) -> Option<BarRow> {
         scans.push((error * error, hidden_before, truth.range_m));
     }
     let total: f64 = scans.iter().map(|s| s.0).sum();
-    let share = |part: f64| if total > 0.0 { part / total } else { 0.0 };
-    let mut squared: Vec<f64> = scans.iter().map(|s| s.0).collect();
-    squared.sort_by(|a, b| b.total_cmp(a));
-    let worst = ((squared.len() as f64 * WORST_SHARE).ceil() as usize).min(squared.len());
+    // `+ 0.0` turns an empty sum's −0 into 0.
+    let share = |part: f64| if total > 0.0 { part / total + 0.0 } else { 0.0 };
+    let squared = worst_first(scans.iter().map(|s| s.0));
+    let worst = worst_count(squared.len());
     let rest: Vec<f64> = squared[worst..].iter().map(|s| s.sqrt()).collect();
+    let speed_squared = worst_first(speed_errors.iter().map(|e| e * e));
+    let speed_total: f64 = speed_squared.iter().sum();
+    let speed_worst: f64 = speed_squared[..worst_count(speed_squared.len())]
+        .iter()
+        .sum();
     let hidden: Vec<&(f64, bool, Option<f64>)> = scans.iter().filter(|s| s.1).collect();
     let mut by_range = [0.0; 3];
     for (sq, _, range) in &scans {
@@ -118,8 +125,25 @@ fn row(situation: &SituationResult, ideal: Option<Scores>) -> Option<BarRow> {
         worst_range,
         speed_bias_mps: (!speed_errors.is_empty())
             .then(|| speed_errors.iter().sum::<f64>() / speed_errors.len() as f64),
+        speed_worst_tenth_share: if speed_total > 0.0 {
+            speed_worst / speed_total
+        } else {
+            0.0
+        },
         ideal,
     })
+}
+
+/// Squared errors, largest first.
+fn worst_first(squared: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut v: Vec<f64> = squared.collect();
+    v.sort_by(|a, b| b.total_cmp(a));
+    v
+}
+
+/// How many of `n` scans are "the worst tenth" (at least one where there is one).
+fn worst_count(n: usize) -> usize {
+    ((n as f64 * WORST_SHARE).ceil() as usize).min(n)
 }
 
 /// Whether scores are under the bar.
@@ -193,50 +217,79 @@ pub fn bar_markdown(rows: &[BarRow], rung: &str) -> String {
 
 /// One missed situation in words, from its row.
 fn reading(r: &BarRow) -> String {
+    let f = |v: Option<f64>, d: usize| v.map_or("–".into(), |v| format!("{v:.d$}"));
+    let heading_missed = !r.heading_rmse_deg.is_some_and(|h| h < BAR_HEADING_DEG);
+    let speed_missed = !r.speed_rmse_mps.is_some_and(|s| s < BAR_SPEED_MPS);
+    let mut missed = Vec::new();
+    if heading_missed {
+        missed.push(format!("heading ({}°)", f(r.heading_rmse_deg, 1)));
+    }
+    if speed_missed {
+        missed.push(format!("speed ({} m/s)", f(r.speed_rmse_mps, 2)));
+    }
     let mut parts = Vec::new();
-    if r.worst_tenth_share >= 0.5 {
-        parts.push(format!(
-            "a few scans carry most of the heading error ({:.0} % in the worst tenth; {:.1}° \
-             without them)",
-            100.0 * r.worst_tenth_share,
-            r.heading_rmse_without_worst_deg.unwrap_or(f64::NAN)
-        ));
-    } else {
-        parts.push(format!(
-            "the heading error is spread over the scans ({:.0} % in the worst tenth): a \
-             systematic misreading, not outliers",
-            100.0 * r.worst_tenth_share
-        ));
+    if heading_missed {
+        let mut heading = if r.worst_tenth_share >= 0.5 {
+            format!(
+                "heading: a few scans carry most of the error ({:.0} % in the worst tenth, {}° \
+                 without them)",
+                100.0 * r.worst_tenth_share,
+                f(r.heading_rmse_without_worst_deg, 1)
+            )
+        } else {
+            format!(
+                "heading: the error is spread over the scans ({:.0} % in the worst tenth), a \
+                 systematic misreading, not outliers",
+                100.0 * r.worst_tenth_share
+            )
+        };
+        if r.after_hidden_share >= 0.2 {
+            let _ = write!(
+                heading,
+                ", {:.0} % of it on the {} scans right after the target was hidden",
+                100.0 * r.after_hidden_share,
+                r.after_hidden_scans
+            );
+        }
+        if let Some((bin, share)) = &r.worst_range {
+            let _ = write!(heading, ", {:.0} % of it at {bin}", 100.0 * share);
+        }
+        parts.push(heading);
     }
-    if r.after_hidden_share >= 0.2 {
-        parts.push(format!(
-            "{:.0} % of it falls on the {} scans right after the target was hidden",
-            100.0 * r.after_hidden_share,
-            r.after_hidden_scans
-        ));
-    }
-    if let Some((bin, share)) = &r.worst_range {
-        parts.push(format!("{:.0} % of it at {bin}", 100.0 * share));
-    }
-    if let Some(bias) = r.speed_bias_mps.filter(|b| b.abs() >= 0.5 * BAR_SPEED_MPS) {
+    if speed_missed {
+        let bias = r.speed_bias_mps.unwrap_or(0.0);
         let way = if bias < 0.0 { "under" } else { "over" };
         parts.push(format!(
-            "the speed is {way}estimated by {:.2} m/s on average",
-            bias.abs()
+            "speed: {way}estimated by {:.2} m/s on average, {:.0} % of the squared error in the \
+             worst tenth",
+            bias.abs(),
+            100.0 * r.speed_worst_tenth_share
         ));
     }
-    match &r.ideal {
-        Some(s) if meets(s) => parts.push(
-            "the same models meet the bar on `ideal`: the world breaks them here, not the training"
-                .into(),
-        ),
-        Some(_) => parts.push(
-            "they miss it on `ideal` too: the models read this motion wrongly whatever the world"
-                .into(),
-        ),
-        None => {}
+    if let Some(s) = &r.ideal {
+        let figures = format!(
+            "{}° / {} m/s",
+            f(s.heading_rmse_deg, 1),
+            f(s.speed_rmse_mps, 2)
+        );
+        parts.push(if meets(s) {
+            format!(
+                "the same models meet the bar on `ideal` ({figures}): the world breaks them here, \
+                 not the training"
+            )
+        } else {
+            format!(
+                "they miss it on `ideal` too ({figures}): the models read this motion wrongly \
+                 whatever the world"
+            )
+        });
     }
-    format!("**{}**: {}.", r.situation, parts.join("; "))
+    format!(
+        "**{}** misses on {}: {}.",
+        r.situation,
+        missed.join(" and "),
+        parts.join("; ")
+    )
 }
 
 /// The held method's scores per situation on the `ideal` rung of a realism study.
@@ -325,7 +378,7 @@ mod tests {
         let md = bar_markdown(&[row], "urban");
         assert!(md.contains("meets the bar in **0 of 1**"), "{md}");
         assert!(
-            md.contains("a few scans carry most of the heading error"),
+            md.contains("heading: a few scans carry most of the error"),
             "{md}"
         );
     }
@@ -338,6 +391,10 @@ mod tests {
         let md = bar_markdown(&[row], "urban");
         assert!(md.contains("systematic misreading"), "{md}");
         assert!(md.contains("underestimated by 4.00 m/s"), "{md}");
+        assert!(
+            md.contains("misses on heading (40.0°) and speed (4.00 m/s)"),
+            "{md}"
+        );
     }
 
     #[test]
