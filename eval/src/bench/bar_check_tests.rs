@@ -1,0 +1,103 @@
+//! Tests of the bar check: what kind of miss each pattern of errors is read as.
+
+use super::*;
+use crate::estimate::MotionEstimate;
+use crate::truth_at_scan::TruthAtScan;
+
+/// 20 scans of a car at 8 m/s heading 90°, 20 m away with 100 points; `estimate(k)` gives
+/// the held method's heading (degrees) and speed at scan k.
+fn situation(estimate: impl Fn(usize) -> (f64, f64)) -> SituationResult {
+    let truth: Vec<TruthAtScan> = (0..20)
+        .map(|k| TruthAtScan {
+            range_m: Some(20.0),
+            target_points: Some(100),
+            ..TruthAtScan::from_velocity(k, [0.0, 8.0])
+        })
+        .collect();
+    let estimates = (0..20)
+        .map(|k| {
+            let (h, s) = estimate(k);
+            let h = h.to_radians();
+            Some(MotionEstimate::from_velocity([s * h.cos(), s * h.sin()]))
+        })
+        .collect();
+    SituationResult {
+        name: "situation4".into(),
+        scans: 20,
+        truth,
+        methods: BTreeMap::from([(HELD, estimates)]),
+    }
+}
+
+fn only_row(s: &SituationResult) -> BarRow {
+    bar_rows(std::slice::from_ref(s), &BTreeMap::new()).remove(0)
+}
+
+#[test]
+fn small_errors_meet_the_bar() {
+    let row = only_row(&situation(|k| {
+        (90.0 + if k % 2 == 0 { 5.0 } else { -5.0 }, 8.3)
+    }));
+    assert!(row.met);
+    assert!((row.heading_rmse_deg.unwrap() - 5.0).abs() < 1e-9);
+    assert!((row.speed_bias_mps.unwrap() - 0.3).abs() < 1e-9);
+}
+
+#[test]
+fn one_reversed_scan_is_read_as_an_outlier() {
+    let row = only_row(&situation(|k| (if k == 7 { 270.0 } else { 90.0 }, 8.0)));
+    assert!(!row.met, "one 180° error in 20 scans is an RMSE of 40°");
+    // The worst tenth (2 scans) holds the whole squared error; without it the RMSE is 0.
+    assert!((row.worst_tenth_share - 1.0).abs() < 1e-12);
+    assert!(row.heading_rmse_without_worst_deg.unwrap() < 1e-9);
+    let md = bar_markdown(&[row], "urban");
+    assert!(md.contains("meets the bar in **0 of 1**"), "{md}");
+    assert!(
+        md.contains("heading: a few scans carry most of the error"),
+        "{md}"
+    );
+}
+
+#[test]
+fn a_constant_offset_is_read_as_a_spread_misreading() {
+    let row = only_row(&situation(|_| (130.0, 4.0)));
+    assert!((row.worst_tenth_share - 0.1).abs() < 1e-12);
+    assert!((row.speed_bias_mps.unwrap() + 4.0).abs() < 1e-9);
+    let md = bar_markdown(&[row], "urban");
+    assert!(md.contains("systematic misreading"), "{md}");
+    assert!(md.contains("underestimated by 4.00 m/s"), "{md}");
+    assert!(
+        md.contains("misses on heading (40.0°) and speed (4.00 m/s)"),
+        "{md}"
+    );
+}
+
+#[test]
+fn scans_right_after_the_target_was_hidden_are_counted_with_their_error() {
+    let mut s = situation(|k| (if k == 5 { 180.0 } else { 90.0 }, 8.0));
+    s.truth[4].target_points = Some(0);
+    let row = only_row(&s);
+    assert_eq!(row.after_hidden_scans, 1);
+    assert!((row.after_hidden_share - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn the_ideal_rung_decides_between_world_and_training() {
+    let bad = only_row(&situation(|_| (130.0, 8.0)));
+    let ideal = |h: f64| Scores {
+        heading_rmse_deg: Some(h),
+        speed_rmse_mps: Some(0.5),
+        coverage: 1.0,
+        scans: 20,
+    };
+    let world = BarRow {
+        ideal: Some(ideal(10.0)),
+        ..bad.clone()
+    };
+    let training = BarRow {
+        ideal: Some(ideal(40.0)),
+        ..bad
+    };
+    assert!(bar_markdown(&[world], "urban").contains("the world breaks them here"));
+    assert!(bar_markdown(&[training], "urban").contains("they miss it on `ideal` too"));
+}
