@@ -5,9 +5,8 @@
 //! shared ray-cast tree, so the blocks need no Rapier step, tree refit or thread barrier between
 //! them.
 
-use rapier3d::parry::bounding_volume::{Aabb, BoundingVolume};
-use rapier3d::parry::query::RayCast;
-use rapier3d::prelude::{ColliderSet, Pose, Ray};
+use rapier3d::parry::bounding_volume::Aabb;
+use rapier3d::prelude::{ColliderSet, Pose, Ray, Vector};
 
 use super::collider_tables::MoverPart;
 use super::{SceneActor, Surface};
@@ -96,17 +95,66 @@ impl SceneInstant {
     /// box test can never reject a ray that hits the collider). The spanning tree's leaf of an
     /// actor covers all its parts over the whole sweep (metres for a fast car); this test keeps
     /// the rays that reach the leaf but not the part at this instant from a full shape cast.
+    /// The slab test runs on whole vectors: a zero direction component gives infinite slab
+    /// times (or NaN for an origin exactly on the grown box's face, where the ray stays outside
+    /// the box proper), which the lane-wise min and max resolve to a rejection only where the
+    /// ray cannot meet the box.
     #[inline]
     pub(super) fn may_hit(&self, k: usize, ray: &Ray, max_toi: f32) -> bool {
-        self.mover_boxes.get(k).is_none_or(|b| {
-            b.loosened(BOX_MARGIN_M)
-                .intersects_local_ray(ray, max_toi + BOX_MARGIN_M)
-        })
+        self.mover_boxes
+            .get(k)
+            .is_none_or(|b| meets_grown_box(b, ray, max_toi))
     }
 
     /// Surface of moving collider `k` placed at the instant.
     #[inline]
     pub(super) fn mover_surface(&self, k: usize) -> Option<&Surface> {
         self.mover_surfaces.get(k)?.as_ref()
+    }
+}
+
+/// True unless `ray` passes outside `b` grown by [`BOX_MARGIN_M`] or only meets it beyond
+/// `max_toi` (+ the margin); see [`SceneInstant::may_hit`].
+#[inline]
+fn meets_grown_box(b: &Aabb, ray: &Ray, max_toi: f32) -> bool {
+    let inverse = Vector::ONE / ray.dir;
+    let t1 = (b.mins - Vector::splat(BOX_MARGIN_M) - ray.origin) * inverse;
+    let t2 = (b.maxs + Vector::splat(BOX_MARGIN_M) - ray.origin) * inverse;
+    let near = t1.min(t2).max_element().max(0.0);
+    let far = t1.max(t2).min_element().min(max_toi + BOX_MARGIN_M);
+    near <= far
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rapier3d::parry::query::RayCast;
+    use rapier3d::parry::shape::{Cuboid, Shape};
+
+    #[test]
+    fn no_ray_that_hits_a_shape_within_reach_misses_its_grown_box() {
+        let car = Cuboid::new(Vector::new(2.0, 0.9, 0.7));
+        let pose = Pose::new(Vector::new(12.0, 3.0, 0.7), Vector::new(0.0, 0.0, 0.4));
+        let b = car.compute_aabb(&pose);
+        let (mut hits, mut rejected) = (0, 0);
+        for k in 0..20_000 {
+            let a = k as f32 * 0.000_37;
+            // Directions with zero components too (rays parallel to the box faces).
+            let dir = match k % 4 {
+                0 => Vector::new(1.0, 0.0, 0.0),
+                1 => Vector::new(a.cos(), a.sin(), 0.0),
+                _ => Vector::new(a.cos(), a.sin(), -0.02 * (k % 7) as f32).normalize(),
+            };
+            let origin = Vector::new(0.0, (k % 9) as f32 - 1.0, 0.1 * (k % 13) as f32);
+            let ray = Ray::new(origin, dir);
+            let reach = 5.0 + (k % 11) as f32 * 2.0;
+            let meets = meets_grown_box(&b, &ray, reach);
+            if car.cast_ray(&pose, &ray, reach, true).is_some() {
+                hits += 1;
+                assert!(meets, "ray {k} hits the car but not its box");
+            }
+            rejected += usize::from(!meets);
+        }
+        assert!(hits > 1000 && rejected > 1000, "{hits} hits, {rejected} rejected");
     }
 }
