@@ -101,7 +101,13 @@ impl SensorModel {
     /// 10⁻⁵ around it decides the same way, and a draw inside the band (about one in 10⁵) is
     /// decided by the formula itself.
     #[inline]
-    pub(crate) fn detects(&self, reflectivity: f32, cos_incidence: f32, range_m: f32, u: f32) -> bool {
+    pub(crate) fn detects(
+        &self,
+        reflectivity: f32,
+        cos_incidence: f32,
+        range_m: f32,
+        u: f32,
+    ) -> bool {
         const BAND: f64 = 1e-5;
         if self.threshold <= 0.0 {
             return u < 1.0;
@@ -180,7 +186,11 @@ mod tests {
             // Random draws, and draws on and next to the probability itself.
             for u in [rng.random::<f32>(), p, p.next_down(), p.next_up()] {
                 if (0.0..1.0).contains(&u) {
-                    assert_eq!(m.detects(r, c, d, u), u < p, "r {r} c {c} d {d} u {u} p {p}");
+                    assert_eq!(
+                        m.detects(r, c, d, u),
+                        u < p,
+                        "r {r} c {c} d {d} u {u} p {p}"
+                    );
                 }
             }
             near_the_edge += usize::from(p > 1e-3 && p < 0.999);

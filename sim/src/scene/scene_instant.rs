@@ -155,6 +155,9 @@ mod tests {
             }
             rejected += usize::from(!meets);
         }
-        assert!(hits > 1000 && rejected > 1000, "{hits} hits, {rejected} rejected");
+        assert!(
+            hits > 1000 && rejected > 1000,
+            "{hits} hits, {rejected} rejected"
+        );
     }
 }
