@@ -10,22 +10,34 @@ use std::time::Instant;
 
 use patchflow_sim::{EMBEDDED_SCENARIOS, QueryTree, Scenario, Simulation};
 
-/// Process CPU seconds (user + system, all threads) per call of `work`, over `n` calls; `None`
-/// where `/proc/self/stat` is not readable.
-fn cpu_secs_per(n: usize, mut work: impl FnMut()) -> Option<f64> {
-    let before = process_cpu_secs()?;
-    for _ in 0..n {
-        work();
+/// CPU seconds of all of this process's threads so far: the sum of each thread's time on a CPU
+/// (Linux `/proc/self/task/*/schedstat`, nanoseconds, so one call can be timed); `None` where
+/// not readable.
+fn process_cpu_secs() -> Option<f64> {
+    let mut nanos = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").ok()?.flatten() {
+        let Ok(text) = std::fs::read_to_string(task.path().join("schedstat")) else {
+            continue;
+        };
+        nanos += text.split_whitespace().next()?.parse::<u64>().ok()?;
     }
-    Some((process_cpu_secs()? - before) / n.max(1) as f64)
+    Some(nanos as f64 * 1e-9)
 }
 
-/// User + system CPU seconds of this process so far (Linux `/proc/self/stat`, 100 ticks a second).
-fn process_cpu_secs() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
-    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
-    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
-    Some(ticks / 100.0)
+/// CPU seconds that `work` takes (all threads), with its result.
+fn cpu_secs_of<T>(work: impl FnOnce() -> T) -> (Option<f64>, T) {
+    let before = process_cpu_secs();
+    let out = work();
+    let spent = process_cpu_secs()
+        .zip(before)
+        .map(|(after, before)| after - before);
+    (spent, out)
+}
+
+/// Minimum and median of `samples`, `None` if empty.
+fn min_and_median(samples: &mut [f64]) -> Option<(f64, f64)> {
+    samples.sort_by(f64::total_cmp);
+    Some((*samples.first()?, samples[samples.len() / 2]))
 }
 
 fn main() {
@@ -68,10 +80,17 @@ fn main() {
     let (mut labelled, mut bare, mut one, mut moves) = (f64::MAX, f64::MAX, f64::MAX, f64::MAX);
     let mut bare_rapier = f64::MAX;
     let (mut points, mut hits) = (0, 0);
+    // CPU seconds (all threads) of each labelled sweep and each bare loop, taken alternately:
+    // on a machine shared with other jobs the load drifts, and alternating calls see the same
+    // load, where the wall-clock minimum does not.
+    let (mut cpu_labelled, mut cpu_bare) = (Vec::new(), Vec::new());
     for _ in 0..repetitions {
         let start = Instant::now();
-        points = sim.sweep(index).len();
+        // The sweep is dropped inside the timed call, as a caller that writes it out would.
+        let (cpu, sweep_points) = cpu_secs_of(|| sim.sweep(index).len());
         labelled = labelled.min(start.elapsed().as_secs_f64());
+        points = sweep_points;
+        cpu_labelled.extend(cpu);
 
         let start = Instant::now();
         std::hint::black_box(one_instant.sweep(index).len());
@@ -80,10 +99,13 @@ fn main() {
         sim.scene_mut().move_to(t0);
         sim.scene_mut().rebuild_ray_tree();
         let start = Instant::now();
-        hits = sim
-            .lidar()
-            .bare_cast_ray_hits(sim.scene(), t0, QueryTree::RayCast);
+        let (cpu, bare_hits) = cpu_secs_of(|| {
+            sim.lidar()
+                .bare_cast_ray_hits(sim.scene(), t0, QueryTree::RayCast)
+        });
         bare = bare.min(start.elapsed().as_secs_f64());
+        hits = bare_hits;
+        cpu_bare.extend(cpu);
 
         let start = Instant::now();
         let rapier_hits =
@@ -99,27 +121,20 @@ fn main() {
         }
         moves = moves.min(start.elapsed().as_secs_f64());
     }
-    // CPU seconds (all threads) per labelled sweep and per bare loop, from the process's own
-    // counters: robust on a machine shared with other jobs, where the wall-clock minimum is not.
-    let cpu_labelled = cpu_secs_per(repetitions, || {
-        std::hint::black_box(sim.sweep(index).len());
-    });
-    sim.scene_mut().move_to(t0);
-    sim.scene_mut().rebuild_ray_tree();
-    let cpu_bare = cpu_secs_per(repetitions, || {
-        std::hint::black_box(
-            sim.lidar()
-                .bare_cast_ray_hits(sim.scene(), t0, QueryTree::RayCast),
-        );
-    });
-    if let (Some(l), Some(b)) = (cpu_labelled, cpu_bare) {
+    if let (Some((l_min, l_median)), Some((b_min, b_median))) = (
+        min_and_median(&mut cpu_labelled),
+        min_and_median(&mut cpu_bare),
+    ) {
         println!(
-            "{name} CPU time per sweep (all threads): labelled {:.1} ms, bare cast_ray loop {:.1} ms, ratio {:.2}; on 2 cores at full use a labelled sweep takes {:.1} ms ({:.1} × real time at {} Hz)",
-            l * 1e3,
-            b * 1e3,
-            l / b,
-            l * 1e3 / 2.0,
-            scenario.lidar.period_secs() / (l / 2.0),
+            "{name} CPU time per sweep (all threads, min / median of {repetitions} alternating calls): labelled {:.1} / {:.1} ms, bare cast_ray loop {:.1} / {:.1} ms, ratio {:.2} (of the medians {:.2}); on 2 cores at full use a labelled sweep takes {:.1} ms (median; {:.1} × real time at {} Hz)",
+            l_min * 1e3,
+            l_median * 1e3,
+            b_min * 1e3,
+            b_median * 1e3,
+            l_min / b_min,
+            l_median / b_median,
+            l_median * 1e3 / 2.0,
+            scenario.lidar.period_secs() / (l_median / 2.0),
             scenario.lidar.rate_hz
         );
     }

@@ -68,9 +68,8 @@ impl BlockCaster<'_> {
                 SurfaceKind::Box => cos = surface.cos_incidence(hit, dir),
                 SurfaceKind::Ground => {
                     if let Some(ground) = self.query.scene().ground() {
-                        let n = ground.normal_at(hit.x, hit.y);
+                        let (n, material, r) = ground.surface_at(hit.x, hit.y);
                         cos = (n[0] * dir.x + n[1] * dir.y + n[2] * dir.z).abs();
-                        let (material, r) = ground.material_at(hit.x, hit.y);
                         semantic = material.semantic();
                         reflectivity = r;
                         visible = ground_visible_share(cos);
@@ -112,10 +111,8 @@ impl BlockCaster<'_> {
                     cos = 0.7;
                 }
             }
-            let detected = self
-                .sensor
-                .detection_probability(reflectivity * visible, cos, range);
-            if rng.random::<f32>() >= detected {
+            let u = rng.random::<f32>();
+            if !self.sensor.detects(reflectivity * visible, cos, range, u) {
                 return None;
             }
             let std = self.noise_std_m + self.sensor.extra_noise_std_m(range);

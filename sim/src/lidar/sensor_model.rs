@@ -91,6 +91,40 @@ impl SensorModel {
         1.0 / (1.0 + ratio * ratio)
     }
 
+    /// Whether a return with the uniform draw `u` in [0, 1) is detected: exactly
+    /// `u < detection_probability(reflectivity, cos_incidence, range_m)`, bit for bit, but
+    /// mostly without its three chained divisions (the lidar asks this for every return, and a
+    /// drop decided late stalls the next beam). In f64 the probability is `P² / (P² + T²D²)`
+    /// (`P` = reflectivity × cosine, `D` = range², `T` the threshold, all as the f32 formula
+    /// rounds them), and the draw is compared with it by multiplying out; the f32 formula lies
+    /// within 7 units of 2⁻²⁴ (relative) of that value, so a draw outside a relative band of
+    /// 10⁻⁵ around it decides the same way, and a draw inside the band (about one in 10⁵) is
+    /// decided by the formula itself.
+    #[inline]
+    pub(crate) fn detects(
+        &self,
+        reflectivity: f32,
+        cos_incidence: f32,
+        range_m: f32,
+        u: f32,
+    ) -> bool {
+        const BAND: f64 = 1e-5;
+        if self.threshold <= 0.0 {
+            return u < 1.0;
+        }
+        let p = f64::from(reflectivity.max(1e-4) * cos_incidence.abs().max(1e-4));
+        let td = f64::from(self.threshold) * f64::from((range_m * range_m).max(1e-6));
+        let (kept, all) = (p * p, p * p + td * td);
+        let lhs = f64::from(u) * all;
+        if lhs < kept * (1.0 - BAND) {
+            true
+        } else if lhs > kept * (1.0 + BAND) {
+            false
+        } else {
+            u < self.detection_probability(reflectivity, cos_incidence, range_m)
+        }
+    }
+
     /// Std of the range noise at `range_m` beyond the constant part, metres.
     #[inline]
     pub(crate) fn extra_noise_std_m(&self, range_m: f32) -> f32 {
@@ -137,6 +171,33 @@ mod tests {
         // A bright wall at 100 m nearly always; asphalt at 60 m at a grazing 1.7° nearly never.
         assert!(p(0.5, 0.9, 100.0) > 0.9);
         assert!(p(0.15, 0.03, 60.0) < 0.1);
+    }
+
+    #[test]
+    fn the_detection_decision_is_exactly_the_draw_against_the_probability() {
+        let m = urban();
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut near_the_edge = 0;
+        for _ in 0..200_000 {
+            let r = rng.random_range(0.0f32..1.0);
+            let c = rng.random_range(-1.0f32..1.0);
+            let d = rng.random_range(0.0f32..200.0);
+            let p = m.detection_probability(r, c, d);
+            // Random draws, and draws on and next to the probability itself.
+            for u in [rng.random::<f32>(), p, p.next_down(), p.next_up()] {
+                if (0.0..1.0).contains(&u) {
+                    assert_eq!(
+                        m.detects(r, c, d, u),
+                        u < p,
+                        "r {r} c {c} d {d} u {u} p {p}"
+                    );
+                }
+            }
+            near_the_edge += usize::from(p > 1e-3 && p < 0.999);
+        }
+        assert!(near_the_edge > 10_000, "{near_the_edge} cases in the ramp");
+        let ideal = SensorModel::new(SensorKnobs::of(Realism::Ideal), 64, 3);
+        assert!(ideal.detects(0.01, 0.01, 119.0, 0.999_999));
     }
 
     #[test]

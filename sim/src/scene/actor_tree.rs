@@ -57,12 +57,12 @@ impl ActorTree {
         let leaves = self.parts.iter().enumerate().filter_map(|(a, range)| {
             let mut aabb: Option<Aabb> = None;
             for k in range.clone() {
-                let Some(collider) = colliders.get(movers[k as usize].handle) else {
+                if colliders.get(movers[k as usize].handle).is_none() {
                     continue;
-                };
-                for pose in instants.iter().filter_map(|i| i.mover_pose(k as usize)) {
-                    let part = collider.shape().compute_aabb(pose);
-                    aabb = Some(aabb.map_or(part, |a| a.merged(&part)));
+                }
+                // The part's box at each instant, as the instant computed it from its pose.
+                for part in instants.iter().filter_map(|i| i.mover_box(k as usize)) {
+                    aabb = Some(aabb.map_or(*part, |a| a.merged(part)));
                 }
             }
             Some((a, aabb?))

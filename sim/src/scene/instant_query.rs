@@ -99,6 +99,9 @@ impl InstantQuery<'_> {
         let actor = self.actor_tree.cast(ray, limit, |k, max| {
             let part = self.scene.movers.get(k as usize)?;
             let pose = self.instant.mover_pose(k as usize)?;
+            if !self.instant.may_hit(k as usize, ray, max) {
+                return None;
+            }
             let collider = self.colliders.get(part.handle)?;
             collider.shape().cast_ray(pose, ray, max, solid)
         });

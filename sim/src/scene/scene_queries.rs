@@ -20,7 +20,7 @@ impl Scene {
             t_secs,
             (&self.ego, &self.actors),
             &self.movers,
-            &self.surfaces,
+            (&self.surfaces, &self.colliders),
         )
     }
 

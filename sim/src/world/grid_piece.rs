@@ -43,6 +43,7 @@ impl Solid {
         }
     }
 
+    #[inline]
     fn cast_local_with_normal(
         &self,
         ray: &Ray,
@@ -172,13 +173,29 @@ impl GridPiece {
         max_toi: f32,
         solid: bool,
     ) -> Option<RayIntersection> {
-        let mut hit = self
-            .solid
-            .cast_local_with_normal(&self.to_local(ray), max_toi, solid)?;
-        let (c, s) = self.yaw_cos_sin;
-        let n = hit.normal;
-        hit.normal = Vector::new(c * n.x - s * n.y, s * n.x + c * n.y, n.z);
+        let mut hit = self.cast_with_local_normal(ray, max_toi, solid)?;
+        hit.normal = self.world_normal(hit.normal);
         Some(hit)
+    }
+
+    /// [`GridPiece::cast_with_normal`] with the normal left in the piece's frame (a cell walk
+    /// turns only the first hit's normal into the world frame, with [`GridPiece::world_normal`]).
+    #[inline]
+    pub(crate) fn cast_with_local_normal(
+        &self,
+        ray: &Ray,
+        max_toi: f32,
+        solid: bool,
+    ) -> Option<RayIntersection> {
+        self.solid
+            .cast_local_with_normal(&self.to_local(ray), max_toi, solid)
+    }
+
+    /// A normal in the piece's frame turned into the world frame.
+    #[inline]
+    pub(crate) fn world_normal(&self, n: Vector) -> Vector {
+        let (c, s) = self.yaw_cos_sin;
+        Vector::new(c * n.x - s * n.y, s * n.x + c * n.y, n.z)
     }
 }
 

@@ -178,10 +178,13 @@ impl PieceGrid {
         ray: &Ray,
         max_toi: f32,
     ) -> Option<(f32, u32, HitNormal)> {
-        self.walk(ray, max_toi, |piece, best_t| {
-            let hit = piece.cast_with_normal(ray, best_t, true)?;
+        let (t, k, (normal, feature)) = self.walk(ray, max_toi, |piece, best_t| {
+            let hit = piece.cast_with_local_normal(ray, best_t, true)?;
             Some((hit.time_of_impact, (hit.normal, hit.feature)))
-        })
+        })?;
+        // Only the first hit's normal is turned into the world frame.
+        let normal = self.pieces.get(k as usize)?.world_normal(normal);
+        Some((t, k, (normal, feature)))
     }
 
     /// The cell walk shared by both casts: `test(piece, best_t)` casts the ray on one piece and
