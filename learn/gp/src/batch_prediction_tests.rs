@@ -31,17 +31,20 @@ fn fitted(kind: GpKind, x: &DMatrix<f64>, y: &DVector<f64>) -> GpModel {
         .expect("fits")
 }
 
-/// Largest relative difference between two predictions, over mean and both variances.
+/// Largest relative difference between two predictions: of the means relative to the larger of
+/// the mean and the predictive standard deviation (a mean near zero is a sum of terms that
+/// cancel, so its own magnitude is no scale for rounding), of both variances to their values.
 fn worst_relative(a: &GpPrediction, b: &GpPrediction) -> f64 {
-    [
-        (&a.mean, &b.mean),
-        (&a.var_latent, &b.var_latent),
-        (&a.var_y, &b.var_y),
-    ]
-    .iter()
-    .flat_map(|(u, v)| u.iter().zip(v.iter()))
-    .map(|(u, v)| (u - v).abs() / u.abs().max(v.abs()).max(1e-300))
-    .fold(0.0, f64::max)
+    let relative = |u: f64, v: f64, scale: f64| (u - v).abs() / u.abs().max(v.abs()).max(scale);
+    (0..a.mean.len())
+        .flat_map(|i| {
+            [
+                relative(a.mean[i], b.mean[i], a.var_y[i].sqrt()),
+                relative(a.var_latent[i], b.var_latent[i], 1e-300),
+                relative(a.var_y[i], b.var_y[i], 1e-300),
+            ]
+        })
+        .fold(0.0, f64::max)
 }
 
 #[test]
