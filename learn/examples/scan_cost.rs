@@ -17,8 +17,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use patchflow_dataset::Dataset;
 use nalgebra::DMatrix;
+use patchflow_dataset::Dataset;
 use patchflow_learn::{GpPrediction, MotionEstimator, ScanStream, SweepFeatures};
 
 type Failure = Box<dyn std::error::Error + Send + Sync>;
@@ -75,7 +75,10 @@ fn worst_relative(a: &GpPrediction, b: &GpPrediction) -> [f64; 3] {
 fn check_batched(model: &MotionEstimator, features: &SweepFeatures) -> Result<[f64; 3], Failure> {
     let mut rows = Vec::new();
     for c in features.object_hypotheses() {
-        for &xy in &features.cell_samples(features.clusters().members(c)).positions {
+        for &xy in &features
+            .cell_samples(features.clusters().members(c))
+            .positions
+        {
             rows.extend(features.patch_at(xy, features.bearing_at(xy)).values);
         }
     }
