@@ -1,42 +1,45 @@
 //! Predictions at thousands of test inputs per call, given one after another in a flat slice
-//! (the whole-scan step predicts every hypothesis cell of a scan this way).
+//! (the whole-scan step predicts every hypothesis cell of a scan this way), with the bits of
+//! [`GpModel::predict`].
 //!
-//! The sparse posterior (thesis eqs. 3.32-3.33) is evaluated in blocks of [`BLOCK_POINTS`] test
-//! points, spread over the rayon pool: per block, the cross-covariances K_MB through the crate's
-//! packing-free products (the fit's kernels), the mean K_MBᵀw, and the latent variance
-//! s − diag(K_MBᵀ W K_MB) with W K_MB through the same products. Every value of a point comes
-//! from sequential multiply-add chains over its own column, so a point's prediction does not
-//! depend on the other points of the call, on the blocks or on the number of threads: a row
-//! gets the same bits alone, in any batch, on one core or two.
+//! The sparse posterior (thesis eqs. 3.32-3.33) is evaluated in blocks of at most
+//! [`BLOCK_POINTS`] test points spread over the rayon pool, with the arithmetic of `predict`:
+//! K_MB through the crate's packing-free products, the mean K_MBᵀw and the latent variance
+//! s − colsum(K_MB ∘ W K_MB) through nalgebra. Every step but one computes each point's values
+//! from its own column alone, so the block a point falls in does not matter. The exception is
+//! W K_MB: nalgebra hands it to matrixmultiply when the product has more than five columns and
+//! runs its own loop otherwise, which rounds differently. So each group of rows keeps the path
+//! a call on the group alone takes (`predict` on more than five rows: matrixmultiply, padded to
+//! six columns where a block holds fewer of them; on five or fewer: nalgebra's loop, five columns
+//! at most at a time), and a row's prediction is the same whatever else is in the call and
+//! however many threads run it.
 
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
-use super::direct_gemm::{Lhs, Rhs, Structure, product};
-use super::hyper::Hyper;
+use super::gemm::{SMALL_DIM, mul};
 use super::kernel::{Kernel, OwnedPoints, Points};
-use super::linalg::dot;
+use super::linalg::colsum_product;
 use super::model::{GpModel, GpPrediction, Posterior};
-use super::simd::vectorised;
 use super::sparse_posterior::SparsePosterior;
 use crate::{GpError, Result};
 
-/// Test points per block: K_MB (M×B) and the block's inputs (D×B) stay in the second-level
-/// cache, the M×D pseudo-input work repeated per block is about 1 % of the block's product,
-/// and a scan's few thousand points make dozens of blocks to balance over the cores.
+/// Most test points per block: K_MB (M×B) and the block's inputs (D×B) stay in the
+/// second-level cache, and a scan's few thousand points make dozens of blocks for the cores.
 const BLOCK_POINTS: usize = 128;
 
-/// Mean and latent variance of one block, standardised.
-struct BlockMoments {
-    mean: Vec<f64>,
-    var: Vec<f64>,
+/// One block of rows: where it starts, how many, and which of them take nalgebra's
+/// small-product loop for W K_MB.
+struct Block {
+    start: usize,
+    len: usize,
+    small: Vec<bool>,
 }
 
 impl<K: Kernel> GpModel<K> {
     /// Predicts at the test inputs in `rows`, given one after another (row-major, T×D for the
-    /// model's D input columns), on the rayon pool. Same predictive distribution as
-    /// [`GpModel::predict`] (to rounding), with each row's result independent of the batch it
-    /// comes in and of the number of threads.
+    /// model's D input columns), on the rayon pool: bit for bit what [`GpModel::predict`] gives
+    /// on the same rows.
     ///
     /// ```
     /// use nalgebra::{DMatrix, DVector};
@@ -47,30 +50,60 @@ impl<K: Kernel> GpModel<K> {
     /// let model = GpParams::new(GpKind::Spgp).pseudo_inputs(8).max_iters(30).fit(&x, &y)?;
     /// let rows = [2.0, 4.0, 0.5, 1.0];
     /// let p = model.predict_rows(&rows)?;
-    /// assert_eq!(p.mean.len(), 2);
+    /// assert_eq!(p, model.predict(&DMatrix::from_row_slice(2, 2, &rows))?);
     /// # Ok::<(), patchflow_gp::GpError>(())
     /// ```
     pub fn predict_rows(&self, rows: &[f64]) -> Result<GpPrediction> {
+        let t = rows.len() / self.input_names.len().max(1);
+        self.predict_row_groups(rows, &[t])
+    }
+
+    /// Predicts at consecutive groups of rows (`group_rows` rows each, in order, together all
+    /// of `rows`; row-major as in [`GpModel::predict_rows`]) in one call: every group gets the
+    /// bits [`GpModel::predict`] gives on that group alone, e.g. each cluster of a scan the
+    /// prediction a call on the cluster would give.
+    pub fn predict_row_groups(&self, rows: &[f64], group_rows: &[usize]) -> Result<GpPrediction> {
         let d = self.input_names.len();
         let t = self.checked_row_count(rows, d)?;
+        if group_rows.iter().sum::<usize>() != t {
+            return Err(GpError::InvalidParams(format!(
+                "groups of {} rows in all, but {t} rows were given",
+                group_rows.iter().sum::<usize>()
+            )));
+        }
         let (mean, var) = match &self.posterior {
             Posterior::Sparse(p) => {
                 let z = OwnedPoints::of_rows(&self.hyper.pseudo_inputs, &self.hyper.kernel);
-                let blocks: Vec<BlockMoments> = rows
-                    .par_chunks(BLOCK_POINTS * d.max(1))
-                    .map(|block| self.sparse_block(p, z.points(), block, d))
+                let m = p.weights.len();
+                let small: Vec<bool> = group_rows
+                    .iter()
+                    .flat_map(|&n| std::iter::repeat_n(m.min(n) <= SMALL_DIM, n))
                     .collect();
-                let mut mean = Vec::with_capacity(t);
-                let mut var = Vec::with_capacity(t);
-                for b in blocks {
-                    mean.extend(b.mean);
-                    var.extend(b.var);
-                }
-                (DVector::from_vec(mean), DVector::from_vec(var))
+                let blocks: Vec<(DVector<f64>, DVector<f64>)> = blocks(&small)
+                    .into_par_iter()
+                    .map(|b| {
+                        let rows = &rows[b.start * d..(b.start + b.len) * d];
+                        self.sparse_block(p, z.points(), rows, &b.small, d)
+                    })
+                    .collect();
+                let mean = blocks.iter().flat_map(|(mu, _)| mu.iter().copied());
+                let var = blocks.iter().flat_map(|(_, v)| v.iter().copied());
+                (
+                    DVector::from_iterator(t, mean),
+                    DVector::from_iterator(t, var),
+                )
             }
             Posterior::Full(p) => {
-                let xs = self.inputs.apply(&DMatrix::from_row_slice(t, d, rows));
-                p.predict(&self.hyper, &xs)?
+                let (mut mean, mut var) = (Vec::with_capacity(t), Vec::with_capacity(t));
+                let mut start = 0;
+                for &n in group_rows {
+                    let x = DMatrix::from_row_slice(n, d, &rows[start * d..(start + n) * d]);
+                    let (mu, v) = p.predict(&self.hyper, &self.inputs.apply(&x))?;
+                    mean.extend(mu.iter());
+                    var.extend(v.iter());
+                    start += n;
+                }
+                (DVector::from_vec(mean), DVector::from_vec(var))
             }
         };
         let noisy = var.map(|v| v + self.hyper.noise_variance);
@@ -83,7 +116,7 @@ impl<K: Kernel> GpModel<K> {
 
     /// The number of rows in `rows`; errors if it is not whole rows of `d` finite values.
     fn checked_row_count(&self, rows: &[f64], d: usize) -> Result<usize> {
-        if d == 0 || rows.len() % d != 0 {
+        if d == 0 || !rows.len().is_multiple_of(d) {
             return Err(GpError::InvalidParams(format!(
                 "{} test values are not whole rows of the model's {d} input columns",
                 rows.len()
@@ -99,44 +132,30 @@ impl<K: Kernel> GpModel<K> {
         Ok(rows.len() / d)
     }
 
-    /// Standardised mean and latent variance at the rows of one block.
+    /// Standardised mean and latent variance at the rows of one block (as `SparsePosterior::
+    /// predict` computes them), `small` saying which rows take nalgebra's small-product loop.
     fn sparse_block(
         &self,
         posterior: &SparsePosterior,
         z: Points<'_>,
-        block: &[f64],
+        rows: &[f64],
+        small: &[bool],
         d: usize,
-    ) -> BlockMoments {
-        let h: &Hyper<K> = &self.hyper;
-        let coords = self.standardised_columns(block, d);
+    ) -> (DVector<f64>, DVector<f64>) {
+        let h = &self.hyper;
+        let coords = self.standardised_columns(rows, d);
         let extra = h.kernel.point_data(&coords);
         let test = Points::new(&coords, extra.as_ref());
         let k_star = h.kernel.cross(z, test); // M×B
-        let m = k_star.nrows();
-        let wk = product(
-            Lhs::of(&posterior.var_matrix),
-            Structure::General,
-            Rhs::of(&k_star),
-        );
+        let mean = k_star.tr_mul(&posterior.weights);
+        let wk = variance_product(&posterior.var_matrix, &k_star, small);
+        let quad = colsum_product(&k_star, &wk);
         let prior = h.kernel.diag(test);
-        let weights = posterior.weights.as_slice();
-        let mut mean = Vec::with_capacity(coords.ncols());
-        let mut var = Vec::with_capacity(coords.ncols());
-        vectorised(
-            #[inline(always)]
-            || {
-                for ((k_col, wk_col), k_prior) in k_star
-                    .as_slice()
-                    .chunks_exact(m.max(1))
-                    .zip(wk.as_slice().chunks_exact(m.max(1)))
-                    .zip(prior.iter())
-                {
-                    mean.push(dot(k_col, weights));
-                    var.push((k_prior - dot(k_col, wk_col)).max(0.0));
-                }
-            },
+        let var = DVector::from_iterator(
+            prior.len(),
+            quad.iter().zip(prior.iter()).map(|(q, k)| (k - q).max(0.0)),
         );
-        BlockMoments { mean, var }
+        (mean, var)
     }
 
     /// The rows of `block` (row-major, D values each) standardised as the fit's inputs, one
@@ -154,6 +173,50 @@ impl<K: Kernel> GpModel<K> {
         }
         DMatrix::from_vec(d, block.len() / d, out)
     }
+}
+
+/// Blocks of at most [`BLOCK_POINTS`] rows; every row in one.
+fn blocks(small: &[bool]) -> Vec<Block> {
+    (0..small.len())
+        .step_by(BLOCK_POINTS)
+        .map(|start| {
+            let len = BLOCK_POINTS.min(small.len() - start);
+            Block {
+                start,
+                len,
+                small: small[start..start + len].to_vec(),
+            }
+        })
+        .collect()
+}
+
+/// W K_MB with each column computed on the path its group takes in `predict`: the columns of
+/// large groups together through matrixmultiply (at least SMALL_DIM + 1 of them, zero-padded),
+/// the others at most SMALL_DIM at a time through nalgebra's own loop.
+fn variance_product(w: &DMatrix<f64>, k_star: &DMatrix<f64>, small: &[bool]) -> DMatrix<f64> {
+    let m = k_star.nrows();
+    let mut out = DMatrix::zeros(m, k_star.ncols());
+    let (small_cols, large_cols): (Vec<usize>, Vec<usize>) =
+        (0..k_star.ncols()).partition(|&j| small[j]);
+    if !large_cols.is_empty() {
+        let width = large_cols.len().max(SMALL_DIM + 1);
+        let mut gathered = DMatrix::zeros(m, width);
+        for (k, &j) in large_cols.iter().enumerate() {
+            gathered.set_column(k, &k_star.column(j));
+        }
+        let product = mul(w, &gathered);
+        for (k, &j) in large_cols.iter().enumerate() {
+            out.set_column(j, &product.column(k));
+        }
+    }
+    for cols in small_cols.chunks(SMALL_DIM) {
+        let gathered = DMatrix::from_fn(m, cols.len(), |i, k| k_star[(i, cols[k])]);
+        let product = mul(w, &gathered);
+        for (k, &j) in cols.iter().enumerate() {
+            out.set_column(j, &product.column(k));
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
-//! Batch predictions against the matrix path, per-row independence of the batch and the threads,
-//! and bad test rows.
+//! Batch predictions against the matrix path bit for bit, per group and on any number of
+//! threads, and bad test rows.
 
 use nalgebra::{DMatrix, DVector};
 use rand::{RngExt, SeedableRng};
@@ -31,62 +31,53 @@ fn fitted(kind: GpKind, x: &DMatrix<f64>, y: &DVector<f64>) -> GpModel {
         .expect("fits")
 }
 
-/// Largest relative difference between two predictions: of the means relative to the larger of
-/// the mean and the predictive standard deviation (a mean near zero is a sum of terms that
-/// cancel, so its own magnitude is no scale for rounding), of both variances to their values.
-fn worst_relative(a: &GpPrediction, b: &GpPrediction) -> f64 {
-    let relative = |u: f64, v: f64, scale: f64| (u - v).abs() / u.abs().max(v.abs()).max(scale);
-    (0..a.mean.len())
-        .flat_map(|i| {
-            [
-                relative(a.mean[i], b.mean[i], a.var_y[i].sqrt()),
-                relative(a.var_latent[i], b.var_latent[i], 1e-300),
-                relative(a.var_y[i], b.var_y[i], 1e-300),
-            ]
-        })
-        .fold(0.0, f64::max)
+/// `predict` on rows `start .. start + n` of the row-major `rows`.
+fn matrix_path(model: &GpModel, rows: &[f64], start: usize, n: usize) -> GpPrediction {
+    let x = DMatrix::from_row_slice(n, D, &rows[start * D..(start + n) * D]);
+    model.predict(&x).expect("predicts")
 }
 
 #[test]
-fn batch_predictions_agree_with_the_matrix_path_to_1e_9_relative() {
+fn batch_predictions_have_the_bits_of_the_matrix_path() {
     let (x, y, rows) = toy(150, 300, 3);
     for kind in [GpKind::Spgp, GpKind::SpgpHet, GpKind::Full] {
         let model = fitted(kind, &x, &y);
-        let want = model
-            .predict(&DMatrix::from_row_slice(300, D, &rows))
-            .expect("predicts");
-        let got = model.predict_rows(&rows).expect("predicts rows");
-        let worst = worst_relative(&got, &want);
-        assert!(
-            worst < 1e-9,
-            "{kind:?}: worst relative difference {worst:e}"
-        );
+        for t in [1, 3, 5, 6, 7, 130, 300] {
+            let got = model.predict_rows(&rows[..t * D]).expect("predicts rows");
+            assert_eq!(got, matrix_path(&model, &rows, 0, t), "{kind:?}, {t} rows");
+        }
     }
 }
 
 #[test]
-fn a_row_gets_the_same_bits_alone_in_any_batch_and_on_any_number_of_threads() {
-    let (x, y, rows) = toy(150, 261, 4);
-    let model = fitted(GpKind::SpgpHet, &x, &y);
-    let in_pool = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("pool")
-            .install(|| model.predict_rows(&rows).expect("predicts rows"))
-    };
-    let (one, two) = (in_pool(1), in_pool(2));
-    assert_eq!(one, two);
-    for r in [0, 7, 128, 260] {
-        let alone = model
-            .predict_rows(&rows[r * D..(r + 1) * D])
-            .expect("predicts one row");
-        assert_eq!(alone.mean[0].to_bits(), two.mean[r].to_bits(), "row {r}");
-        assert_eq!(alone.var_y[0].to_bits(), two.var_y[r].to_bits(), "row {r}");
+fn each_group_gets_the_bits_of_a_call_on_it_alone_on_any_number_of_threads() {
+    let (x, y, rows) = toy(150, 300, 4);
+    let groups = [3, 1, 140, 6, 5, 2, 130, 13];
+    assert_eq!(groups.iter().sum::<usize>(), 300);
+    for kind in [GpKind::SpgpHet, GpKind::Full] {
+        let model = fitted(kind, &x, &y);
+        let in_pool = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("pool")
+                .install(|| model.predict_row_groups(&rows, &groups).expect("predicts"))
+        };
+        let (one, two) = (in_pool(1), in_pool(2));
+        assert_eq!(one, two, "{kind:?}");
+        let mut start = 0;
+        for n in groups {
+            let alone = matrix_path(&model, &rows, start, n);
+            let range = start..start + n;
+            assert_eq!(&two.mean.as_slice()[range.clone()], alone.mean.as_slice());
+            assert_eq!(
+                &two.var_latent.as_slice()[range.clone()],
+                alone.var_latent.as_slice()
+            );
+            assert_eq!(&two.var_y.as_slice()[range], alone.var_y.as_slice());
+            start += n;
+        }
     }
-    let tail = model.predict_rows(&rows[5 * D..]).expect("predicts");
-    assert_eq!(tail.mean.as_slice(), &two.mean.as_slice()[5..]);
-    assert_eq!(tail.var_latent.as_slice(), &two.var_latent.as_slice()[5..]);
 }
 
 #[test]
@@ -108,6 +99,10 @@ fn values_that_are_not_whole_rows_are_an_error() {
     let model = fitted(GpKind::Spgp, &x, &y);
     assert!(matches!(
         model.predict_rows(&rows[..D + 1]),
+        Err(GpError::InvalidParams(_))
+    ));
+    assert!(matches!(
+        model.predict_row_groups(&rows, &[1]),
         Err(GpError::InvalidParams(_))
     ));
     let empty = model.predict_rows(&[]).expect("no rows is no predictions");

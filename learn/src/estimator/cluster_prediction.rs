@@ -3,9 +3,9 @@
 //!
 //! The positions of every cluster go one after another into one row-major input buffer per step
 //! (patches built in parallel tasks of [`TASK_ROWS`] rows), and each GP predicts the whole buffer
-//! in one [`GpModel::predict_rows`](crate::GpModel::predict_rows) call, which spreads it over the
-//! cores. A row's prediction does not depend on the other rows of the call nor on the threads, so
-//! every cluster gets, bit for bit, what a call on its own positions would give.
+//! in one [`GpModel::predict_row_groups`](crate::GpModel::predict_row_groups) call, which spreads
+//! it over the cores and gives every cluster, bit for bit, what `GpModel::predict` on its own
+//! positions would give, whatever the other clusters and the threads.
 
 use rayon::prelude::*;
 
@@ -58,6 +58,7 @@ impl MotionEstimator {
             ..PredictionTiming::default()
         };
         let positions: Vec<[f64; 2]> = clusters.iter().flat_map(|m| m.iter().copied()).collect();
+        let sizes: Vec<usize> = clusters.iter().map(|m| m.len()).collect();
         // 3a: heading patches aligned to each point's bearing (thesis 2.2.2).
         let x = timed(&mut timing.patches_secs, || {
             self.input_rows(features, positions.len(), |r| {
@@ -68,8 +69,8 @@ impl MotionEstimator {
         // 3b: per-point sin and cos of the heading relative to the bearing (thesis 3.1.1).
         let (sin, cos) = timed(&mut timing.gp_secs, || {
             Ok::<_, LearnError>((
-                self.heading_sin.predict_rows(&x)?,
-                self.heading_cos.predict_rows(&x)?,
+                self.heading_sin.predict_row_groups(&x, &sizes)?,
+                self.heading_cos.predict_row_groups(&x, &sizes)?,
             ))
         })?;
         drop(x);
@@ -80,7 +81,7 @@ impl MotionEstimator {
                 .zip(gaussians(&sin).zip(gaussians(&cos)))
                 .map(|(&xy, (s, c))| HeadingVote::from_relative(features.bearing_at(xy), s, c))
                 .collect();
-            let votes = per_job(clusters.iter().map(|m| m.len()), rows);
+            let votes = per_job(sizes.iter().copied(), rows);
             let headings: Vec<[Option<MergedHeading>; 2]> = votes
                 .iter()
                 .map(|v| {
@@ -94,6 +95,7 @@ impl MotionEstimator {
         });
         // 4a: speed patches aligned to each merged heading (thesis 2.2.2, 3.1.1).
         let (jobs, job_of) = speed_jobs(&headings);
+        let speed_sizes: Vec<usize> = jobs.iter().map(|&(k, _)| clusters[k].len()).collect();
         let speed_rows: Vec<([f64; 2], f64)> = jobs
             .iter()
             .flat_map(|&(k, heading_rad)| clusters[k].iter().map(move |&xy| (xy, heading_rad)))
@@ -102,14 +104,13 @@ impl MotionEstimator {
             self.input_rows(features, speed_rows.len(), |r| speed_rows[r])
         })?;
         // 4b: per-point speeds.
-        let speed = timed(&mut timing.gp_secs, || self.speed.predict_rows(&speed_x))?;
+        let speed = timed(&mut timing.gp_secs, || {
+            self.speed.predict_row_groups(&speed_x, &speed_sizes)
+        })?;
         drop(speed_x);
         // 4c: one speed per cluster and merge rule (thesis 3.1.4).
         let merged = timed(&mut timing.merge_secs, || {
-            let speeds = per_job(
-                jobs.iter().map(|&(k, _)| clusters[k].len()),
-                gaussians(&speed).collect(),
-            );
+            let speeds = per_job(speed_sizes.iter().copied(), gaussians(&speed).collect());
             let estimates = headings
                 .iter()
                 .zip(&job_of)

@@ -4,6 +4,7 @@ use super::*;
 use crate::estimator::merge::{HeadingVote, merge_heading, merge_scalar};
 use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 use crate::{ClusterEstimate, ClusterMotion, Gaussian, MergeRule, SweepFeatures};
+use nalgebra::DMatrix;
 use patchflow_dataset::{Pose, SequenceWriter, Sweep};
 
 /// A car at `speed_mps` driving at `heading_rad` past a sensor at the origin; `sweeps` sweeps.
@@ -122,8 +123,9 @@ fn patch_rows_go_into_the_gp_input_rows_unchanged_and_in_order() {
     assert_eq!(x, expected);
 }
 
-/// Thesis 3.1 steps 3-4 on one cluster with one GP call per step, predicted at `positions`: the
-/// reference the predictions of many clusters in one batch must reproduce exactly.
+/// Thesis 3.1 steps 3-4 on one cluster with one `GpModel::predict` call per step, predicted at
+/// `positions`: the reference the predictions of many clusters in one batch must reproduce
+/// exactly.
 fn reference_estimate(
     estimator: &MotionEstimator,
     features: &SweepFeatures,
@@ -133,12 +135,9 @@ fn reference_estimate(
         .iter()
         .map(|&xy| features.patch_at(xy, features.bearing_at(xy)))
         .collect();
-    let x: Vec<f64> = patches.iter().flat_map(|p| p.values).collect();
+    let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
     let [sin_gp, cos_gp, speed_gp] = estimator.gps();
-    let (sin, cos) = (
-        sin_gp.predict_rows(&x).unwrap(),
-        cos_gp.predict_rows(&x).unwrap(),
-    );
+    let (sin, cos) = (sin_gp.predict(&x).unwrap(), cos_gp.predict(&x).unwrap());
     let votes: Vec<HeadingVote> = positions
         .iter()
         .enumerate()
@@ -156,8 +155,8 @@ fn reference_estimate(
             .iter()
             .map(|&xy| features.patch_at(xy, heading.heading_rad))
             .collect();
-        let x: Vec<f64> = patches.iter().flat_map(|p| p.values).collect();
-        let speed = speed_gp.predict_rows(&x).unwrap();
+        let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
+        let speed = speed_gp.predict(&x).unwrap();
         let predictions: Vec<Gaussian> = (0..positions.len())
             .map(|k| Gaussian {
                 mean: speed.mean[k],
