@@ -148,7 +148,7 @@ const WHOLE_FROM: f64 = 4_503_599_627_370_496.0;
 /// library.
 #[inline(always)]
 fn floor(x: f64) -> f64 {
-    if !(x.abs() < WHOLE_FROM) {
+    if x.is_nan() || x.abs() >= WHOLE_FROM {
         return x.floor();
     }
     let t = x as i64 as f64; // towards zero, exact below 2⁵²
