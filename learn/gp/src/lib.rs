@@ -20,6 +20,7 @@
 //! ```
 
 mod ard_distance;
+mod batch_prediction;
 mod blocked;
 mod direct_gemm;
 mod error;

@@ -159,7 +159,8 @@ impl<K: Kernel> GpModel<K> {
         })
     }
 
-    /// Predicts at rows given as `f32` slices (each of length D), e.g. feature patches.
+    /// Predicts at rows given as `f32` slices (each of length D), e.g. feature patches, through
+    /// [`GpModel::predict_rows`].
     pub fn predict_rows_f32(&self, rows: &[&[f32]]) -> Result<GpPrediction> {
         let d = self.input_names.len();
         if let Some(bad) = rows.iter().position(|r| r.len() != d) {
@@ -168,8 +169,10 @@ impl<K: Kernel> GpModel<K> {
                 rows[bad].len()
             )));
         }
-        self.predict(&DMatrix::from_fn(rows.len(), d, |i, j| {
-            f64::from(rows[i][j])
-        }))
+        let flat: Vec<f64> = rows
+            .iter()
+            .flat_map(|r| r.iter().map(|&v| f64::from(v)))
+            .collect();
+        self.predict_rows(&flat)
     }
 }

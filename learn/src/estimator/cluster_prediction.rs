@@ -1,21 +1,23 @@
-//! Steps 3 and 4 of thesis Algorithm 3.1 for many clusters at once: per-point GP predictions in
-//! parallel row chunks, merged per cluster (thesis 3.1.4).
+//! Steps 3 and 4 of thesis Algorithm 3.1 for many clusters at once: per-point GP predictions for
+//! all clusters in one batch per GP, merged per cluster (thesis 3.1.4).
 //!
-//! Rows are predicted in chunks of at most [`CHUNK_ROWS`] points of one cluster; a cluster is cut
-//! into even pieces of more than five rows, so every row goes through the same matrix product
-//! (nalgebra hands products with every dimension above five to matrixmultiply) and gets the
-//! prediction a call on its cluster alone would give, bit for bit.
+//! The positions of every cluster go one after another into one row-major input buffer per step
+//! (patches built in parallel tasks of [`TASK_ROWS`] rows), and each GP predicts the whole buffer
+//! in one [`GpModel::predict_row_groups`](crate::GpModel::predict_row_groups) call, which spreads
+//! it over the cores and gives every cluster, bit for bit, what `GpModel::predict` on its own
+//! positions would give, whatever the other clusters and the threads.
 
-use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::cluster_estimate::{ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming};
 use super::merge::{Gaussian, HeadingVote, MergeRule, MergedHeading, merge_heading, merge_scalar};
 use crate::timing::timed;
-use crate::{GpPrediction, MotionEstimator, Patch, Result, SweepFeatures};
+use crate::{
+    FeatureKind, GpPrediction, LearnError, MotionEstimator, PATCH_LEN, Result, SweepFeatures,
+};
 
-/// Most rows in one GP call (a few hundred kB of inputs: stays in cache, balances the cores).
-const CHUNK_ROWS: usize = 128;
+/// Rows per parallel task when building the GP inputs (a few hundred kB of patches).
+const TASK_ROWS: usize = 64;
 
 /// The estimates of the clusters asked for, in their order.
 pub(super) struct ClusterPredictions {
@@ -27,36 +29,10 @@ pub(super) struct ClusterPredictions {
     pub timing: PredictionTiming,
 }
 
-/// Rows `start..end` of job `job` (a cluster, or a cluster along one heading).
-struct RowChunk {
-    job: usize,
-    start: usize,
-    end: usize,
-}
-
-/// Cuts jobs of `sizes` rows into chunks: whole if at most [`CHUNK_ROWS`], else even pieces.
-fn row_chunks(sizes: impl Iterator<Item = usize>) -> Vec<RowChunk> {
-    let mut chunks = Vec::new();
-    for (job, n) in sizes.enumerate() {
-        let pieces = n.div_ceil(CHUNK_ROWS);
-        for p in 0..pieces {
-            chunks.push(RowChunk {
-                job,
-                start: p * n / pieces,
-                end: (p + 1) * n / pieces,
-            });
-        }
-    }
-    chunks
-}
-
-/// Regroups per-chunk rows into one vector per job (chunks come in job order).
-fn per_job<T>(jobs: usize, chunks: &[RowChunk], rows: Vec<Vec<T>>) -> Vec<Vec<T>> {
-    let mut out: Vec<Vec<T>> = (0..jobs).map(|_| Vec::new()).collect();
-    for (chunk, rows) in chunks.iter().zip(rows) {
-        out[chunk.job].extend(rows);
-    }
-    out
+/// Cuts `values`, one per row of consecutive jobs of `sizes` rows, into one vector per job.
+fn per_job<T>(sizes: impl Iterator<Item = usize>, values: Vec<T>) -> Vec<Vec<T>> {
+    let mut rest = values.into_iter();
+    sizes.map(|n| rest.by_ref().take(n).collect()).collect()
 }
 
 fn gaussians(prediction: &GpPrediction) -> impl Iterator<Item = Gaussian> + '_ {
@@ -81,38 +57,31 @@ impl MotionEstimator {
             rows: clusters.iter().map(|m| m.len()).sum(),
             ..PredictionTiming::default()
         };
+        let positions: Vec<[f64; 2]> = clusters.iter().flat_map(|m| m.iter().copied()).collect();
+        let sizes: Vec<usize> = clusters.iter().map(|m| m.len()).collect();
         // 3a: heading patches aligned to each point's bearing (thesis 2.2.2).
-        let chunks = row_chunks(clusters.iter().map(|m| m.len()));
         let x = timed(&mut timing.patches_secs, || {
-            self.chunk_inputs(features, &chunks, |c| {
-                let rows = &clusters[c.job][c.start..c.end];
-                rows.iter()
-                    .map(|&xy| features.patch_at(xy, features.bearing_at(xy)))
-                    .collect()
+            self.input_rows(features, positions.len(), |r| {
+                let xy = positions[r];
+                (xy, features.bearing_at(xy))
             })
         })?;
         // 3b: per-point sin and cos of the heading relative to the bearing (thesis 3.1.1).
-        let predictions = timed(&mut timing.gp_secs, || {
-            x.par_iter()
-                .map(|x| Ok((self.heading_sin.predict(x)?, self.heading_cos.predict(x)?)))
-                .collect::<Result<Vec<_>>>()
+        let (sin, cos) = timed(&mut timing.gp_secs, || {
+            Ok::<_, LearnError>((
+                self.heading_sin.predict_row_groups(&x, &sizes)?,
+                self.heading_cos.predict_row_groups(&x, &sizes)?,
+            ))
         })?;
+        drop(x);
         // 3c: the votes turned into the world frame, one heading per cluster and merge rule.
         let (votes, headings) = timed(&mut timing.merge_secs, || {
-            let rows = chunks
+            let rows: Vec<HeadingVote> = positions
                 .iter()
-                .zip(&predictions)
-                .map(|(c, (sin, cos))| {
-                    let rows = &clusters[c.job][c.start..c.end];
-                    rows.iter()
-                        .zip(gaussians(sin).zip(gaussians(cos)))
-                        .map(|(&xy, (s, c))| {
-                            HeadingVote::from_relative(features.bearing_at(xy), s, c)
-                        })
-                        .collect()
-                })
+                .zip(gaussians(&sin).zip(gaussians(&cos)))
+                .map(|(&xy, (s, c))| HeadingVote::from_relative(features.bearing_at(xy), s, c))
                 .collect();
-            let votes: Vec<Vec<HeadingVote>> = per_job(clusters.len(), &chunks, rows);
+            let votes = per_job(sizes.iter().copied(), rows);
             let headings: Vec<[Option<MergedHeading>; 2]> = votes
                 .iter()
                 .map(|v| {
@@ -126,26 +95,22 @@ impl MotionEstimator {
         });
         // 4a: speed patches aligned to each merged heading (thesis 2.2.2, 3.1.1).
         let (jobs, job_of) = speed_jobs(&headings);
-        let speed_chunks = row_chunks(jobs.iter().map(|&(k, _)| clusters[k].len()));
+        let speed_sizes: Vec<usize> = jobs.iter().map(|&(k, _)| clusters[k].len()).collect();
+        let speed_rows: Vec<([f64; 2], f64)> = jobs
+            .iter()
+            .flat_map(|&(k, heading_rad)| clusters[k].iter().map(move |&xy| (xy, heading_rad)))
+            .collect();
         let speed_x = timed(&mut timing.patches_secs, || {
-            self.chunk_inputs(features, &speed_chunks, |c| {
-                let (k, heading_rad) = jobs[c.job];
-                let rows = &clusters[k][c.start..c.end];
-                rows.iter()
-                    .map(|&xy| features.patch_at(xy, heading_rad))
-                    .collect()
-            })
+            self.input_rows(features, speed_rows.len(), |r| speed_rows[r])
         })?;
         // 4b: per-point speeds.
-        let speed_rows = timed(&mut timing.gp_secs, || {
-            speed_x
-                .par_iter()
-                .map(|x| Ok(gaussians(&self.speed.predict(x)?).collect()))
-                .collect::<Result<Vec<Vec<Gaussian>>>>()
+        let speed = timed(&mut timing.gp_secs, || {
+            self.speed.predict_row_groups(&speed_x, &speed_sizes)
         })?;
+        drop(speed_x);
         // 4c: one speed per cluster and merge rule (thesis 3.1.4).
         let merged = timed(&mut timing.merge_secs, || {
-            let speeds = per_job(jobs.len(), &speed_chunks, speed_rows);
+            let speeds = per_job(speed_sizes.iter().copied(), gaussians(&speed).collect());
             let estimates = headings
                 .iter()
                 .zip(&job_of)
@@ -175,17 +140,47 @@ impl MotionEstimator {
         })
     }
 
-    /// One input matrix per chunk, from the patches `patches_of` gives for it (in parallel).
-    fn chunk_inputs(
+    /// The GP inputs of `n` rows one after another (row-major): the features of the patch
+    /// centred on the position and aligned to the axis that `patch_of` gives for each row
+    /// (thesis 2.2.2), built in parallel tasks; patch values go straight into their row.
+    pub(super) fn input_rows(
         &self,
         features: &SweepFeatures,
-        chunks: &[RowChunk],
-        patches_of: impl Fn(&RowChunk) -> Vec<Patch> + Sync,
-    ) -> Result<Vec<DMatrix<f64>>> {
-        chunks
-            .par_iter()
-            .map(|c| self.feature_matrix(features, &patches_of(c)))
-            .collect()
+        n: usize,
+        patch_of: impl Fn(usize) -> ([f64; 2], f64) + Sync,
+    ) -> Result<Vec<f64>> {
+        let d = self.feature.names().len();
+        let mut x = vec![0.0; n * d];
+        if d == 0 {
+            return Ok(x);
+        }
+        x.par_chunks_mut(TASK_ROWS * d)
+            .enumerate()
+            .try_for_each(|(task, out)| {
+                for (j, row) in out.chunks_exact_mut(d).enumerate() {
+                    let (xy, axis_rad) = patch_of(task * TASK_ROWS + j);
+                    let values = match self.feature {
+                        FeatureKind::Patch => match <&mut [f64; PATCH_LEN]>::try_from(&mut *row) {
+                            Ok(values) => {
+                                features.patch_values_at(xy, axis_rad, values);
+                                continue;
+                            }
+                            Err(_) => Vec::new(), // a length error below
+                        },
+                        kind => features.feature_of(&features.patch_at(xy, axis_rad), kind),
+                    };
+                    if values.len() != d {
+                        return Err(LearnError::DegenerateData(format!(
+                            "a {:?} feature row has {} values, expected {d}",
+                            self.feature,
+                            values.len()
+                        )));
+                    }
+                    row.copy_from_slice(&values);
+                }
+                Ok(())
+            })?;
+        Ok(x)
     }
 }
 
@@ -246,24 +241,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn small_jobs_stay_whole_and_large_ones_split_into_even_pieces_above_five_rows() {
-        let chunks = row_chunks([3, CHUNK_ROWS, CHUNK_ROWS + 1, 0, 5 * CHUNK_ROWS - 1].into_iter());
-        let sizes: Vec<(usize, usize)> = chunks.iter().map(|c| (c.job, c.end - c.start)).collect();
-        assert_eq!(sizes[..4], [(0, 3), (1, CHUNK_ROWS), (2, 64), (2, 65)]);
-        let last: Vec<usize> = sizes.iter().filter(|s| s.0 == 4).map(|s| s.1).collect();
-        assert_eq!(last.len(), 5);
-        assert_eq!(last.iter().sum::<usize>(), 5 * CHUNK_ROWS - 1);
-        assert!(last.iter().all(|&n| n > 5 && n <= CHUNK_ROWS));
-    }
-
-    #[test]
-    fn rows_are_regrouped_per_job_in_order() {
-        let chunks = row_chunks([2, 0, 300].into_iter());
-        let rows: Vec<Vec<usize>> = chunks.iter().map(|c| (c.start..c.end).collect()).collect();
-        let jobs = per_job(3, &chunks, rows);
-        assert_eq!(jobs[0], [0, 1]);
-        assert!(jobs[1].is_empty());
-        assert_eq!(jobs[2], (0..300).collect::<Vec<_>>());
+    fn rows_are_cut_per_job_in_order() {
+        let jobs = per_job([2, 0, 3].into_iter(), (0..5).collect());
+        assert_eq!(jobs, [vec![0, 1], vec![], vec![2, 3, 4]]);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! The motion estimator of thesis 3.1: three GPs learned from importance-sampled map patches
 //! (training here; the per-scan step, thesis Algorithm 3.1, in `scan_motion.rs`).
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use patchflow_dataset::Dataset;
 
 use super::feature_matrix::rows_to_matrix;
@@ -220,27 +220,6 @@ impl MotionEstimator {
     /// The three GPs: sin and cos of the relative heading, and the speed.
     pub fn gps(&self) -> [&GpModel; 3] {
         [&self.heading_sin, &self.heading_cos, &self.speed]
-    }
-
-    /// The GP inputs of patches: one row of patch values or Gabor responses per patch. Patch
-    /// values go straight into the matrix (no row vectors in between: the whole-scan step builds
-    /// thousands of rows per scan).
-    pub(super) fn feature_matrix(
-        &self,
-        features: &SweepFeatures,
-        patches: &[crate::Patch],
-    ) -> Result<DMatrix<f64>> {
-        if self.feature == FeatureKind::Patch {
-            return Ok(DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| {
-                patches[r].values[c]
-            }));
-        }
-        let rows: Vec<Vec<f64>> = patches
-            .iter()
-            .map(|p| features.feature_of(p, self.feature))
-            .collect();
-        let d = self.feature.names().len();
-        rows_to_matrix(rows.iter().map(Vec::as_slice), d)
     }
 }
 

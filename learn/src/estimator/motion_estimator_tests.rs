@@ -4,6 +4,7 @@ use super::*;
 use crate::estimator::merge::{HeadingVote, merge_heading, merge_scalar};
 use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 use crate::{ClusterEstimate, ClusterMotion, Gaussian, MergeRule, SweepFeatures};
+use nalgebra::DMatrix;
 use patchflow_dataset::{Pose, SequenceWriter, Sweep};
 
 /// A car at `speed_mps` driving at `heading_rad` past a sensor at the origin; `sweeps` sweeps.
@@ -100,24 +101,31 @@ fn quick_estimator(dir: &std::path::Path) -> MotionEstimator {
 }
 
 #[test]
-fn patch_rows_go_into_the_gp_input_matrix_unchanged_and_in_order() {
+fn patch_rows_go_into_the_gp_input_rows_unchanged_and_in_order() {
     let dir = tempfile::tempdir().unwrap();
     let estimator = quick_estimator(dir.path());
     let sweeps = car_sweeps(0.5, 5.0, 2);
     let features =
         SweepFeatures::compute(&sweeps[0], &sweeps[1], estimator.feature_params()).unwrap();
-    let patches: Vec<_> = (0..features.len().min(40))
-        .map(|i| features.heading_patch(i))
+    let n = features.len().min(150);
+    assert!(n > 100, "{n} points: more than one task of rows");
+    let axis_of = |i: usize| -> ([f64; 2], f64) {
+        let p = &features.points()[i];
+        ([p.x_m, p.y_m], 0.3 * i as f64)
+    };
+    let x = estimator.input_rows(&features, n, axis_of).unwrap();
+    let expected: Vec<f64> = (0..n)
+        .flat_map(|i| {
+            let (xy, axis_rad) = axis_of(i);
+            features.patch_at(xy, axis_rad).values
+        })
         .collect();
-    assert!(patches.len() > 5);
-    let x = estimator.feature_matrix(&features, &patches).unwrap();
-    let rows: Vec<&[f64]> = patches.iter().map(|p| &p.values[..]).collect();
-    let expected = rows_to_matrix(rows.into_iter(), crate::PATCH_LEN).unwrap();
     assert_eq!(x, expected);
 }
 
-/// Thesis 3.1 steps 3-4 on one cluster with one GP call per step, predicted at `positions`: the
-/// reference the batched, chunked predictions must reproduce exactly.
+/// Thesis 3.1 steps 3-4 on one cluster with one `GpModel::predict` call per step, predicted at
+/// `positions`: the reference the predictions of many clusters in one batch must reproduce
+/// exactly.
 fn reference_estimate(
     estimator: &MotionEstimator,
     features: &SweepFeatures,
@@ -127,7 +135,7 @@ fn reference_estimate(
         .iter()
         .map(|&xy| features.patch_at(xy, features.bearing_at(xy)))
         .collect();
-    let x = estimator.feature_matrix(features, &patches).unwrap();
+    let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
     let [sin_gp, cos_gp, speed_gp] = estimator.gps();
     let (sin, cos) = (sin_gp.predict(&x).unwrap(), cos_gp.predict(&x).unwrap());
     let votes: Vec<HeadingVote> = positions
@@ -147,7 +155,7 @@ fn reference_estimate(
             .iter()
             .map(|&xy| features.patch_at(xy, heading.heading_rad))
             .collect();
-        let x = estimator.feature_matrix(features, &patches).unwrap();
+        let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
         let speed = speed_gp.predict(&x).unwrap();
         let predictions: Vec<Gaussian> = (0..positions.len())
             .map(|k| Gaussian {
@@ -170,10 +178,10 @@ fn reference_estimate(
 }
 
 #[test]
-fn batched_chunked_predictions_equal_one_gp_call_per_step_bit_for_bit() {
+fn batched_predictions_equal_one_gp_call_per_cluster_and_step_bit_for_bit() {
     let dir = tempfile::tempdir().unwrap();
     let estimator = quick_estimator(dir.path());
-    // A close car (hundreds of points: several row chunks), a far one, and a long wall.
+    // A close car (hundreds of points: several blocks of GP rows), a far one, and a long wall.
     let scene = SyntheticScene {
         boxes: vec![
             SceneBox::car(1, [6.0, 2.5], 0.3, 6.0),
@@ -195,7 +203,7 @@ fn batched_chunked_predictions_equal_one_gp_call_per_step_bit_for_bit() {
     for c in 0..3 {
         let members = features.clusters().members(c);
         let wall = features.points()[members[0]].y_m < -10.0;
-        // Every point, as for the thesis' hand-labelled target (several row chunks for the close car).
+        // Every point, as for the thesis' hand-labelled target (several blocks for the close car).
         let points: Vec<[f64; 2]> = members
             .iter()
             .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])

@@ -13,7 +13,7 @@ use crate::features::difference_map::MapPair;
 use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::{GABOR_FILTERS, GaborBank};
 use crate::features::grid::{GridMap, GridWindow};
-use crate::features::patch::Patch;
+use crate::features::patch::{PATCH_LEN, Patch};
 use crate::features::slice::{HeightSlice, SlicedPoint};
 use crate::timing::timed;
 use crate::{FeatureParams, FeatureValidParams, Result};
@@ -242,6 +242,11 @@ impl SweepFeatures {
     /// Patch centred on a world position, rotated to the axis `axis_rad` (thesis 2.2.2).
     pub fn patch_at(&self, xy: [f64; 2], axis_rad: f64) -> Patch {
         Patch::extract(&self.maps, xy, axis_rad)
+    }
+
+    /// [`SweepFeatures::patch_at`] written into `values` (a row of a GP input buffer).
+    pub fn patch_values_at(&self, xy: [f64; 2], axis_rad: f64, values: &mut [f64; PATCH_LEN]) {
+        Patch::extract_into(&self.maps, xy, axis_rad, values);
     }
 
     /// The members of a cluster grouped by map cell, one sample at the mean of each cell's points
