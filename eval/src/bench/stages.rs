@@ -18,8 +18,8 @@ use crate::cv_params::CvParams;
 use crate::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 use crate::error::EvalError;
 use crate::occupancy::{
-    OccupancyReport, dgpom_notes, evaluate_occupancy, learn_motion_map, occupancy_methods,
-    occupancy_notes, height_slice_note, SequenceKind, occupancy_sequences, predict_ahead,
+    OccupancyReport, SequenceKind, dgpom_notes, evaluate_occupancy, height_slice_note,
+    learn_motion_map, occupancy_methods, occupancy_notes, occupancy_sequences, predict_ahead,
 };
 use crate::progress::{ProgressLines, progress_bar, progress_line, stderr_is_terminal};
 use crate::report::CvReport;
@@ -192,26 +192,25 @@ pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> Result<OccupancyRepor
     // maps run one after the other; the clock restarts once a scenario's sequences are read and
     // its motion map is learned).
     let cpu = Mutex::new((crate::cpu_time::process_total_cpu_secs(), BTreeMap::new()));
-    let methods_for = |sequence: &OccupancySequence,
-                       kind: SequenceKind,
-                       training: Option<&OccupancySequence>| {
-        let map = match training {
-            Some(training) => {
-                bar.set_message("DGPOM motion map");
-                let map = learn_motion_map(training)?;
-                bar.set_message("occupancy maps");
-                motion_maps
-                    .borrow_mut()
-                    .insert(sequence.name.clone(), Arc::clone(&map));
-                Some(map)
+    let methods_for =
+        |sequence: &OccupancySequence, kind: SequenceKind, training: Option<&OccupancySequence>| {
+            let map = match training {
+                Some(training) => {
+                    bar.set_message("DGPOM motion map");
+                    let map = learn_motion_map(training)?;
+                    bar.set_message("occupancy maps");
+                    motion_maps
+                        .borrow_mut()
+                        .insert(sequence.name.clone(), Arc::clone(&map));
+                    Some(map)
+                }
+                None => None,
+            };
+            if let Ok(mut guard) = cpu.lock() {
+                guard.0 = crate::cpu_time::process_total_cpu_secs();
             }
-            None => None,
+            Ok(occupancy_methods(&kind.sample_params(seed), map))
         };
-        if let Ok(mut guard) = cpu.lock() {
-            guard.0 = crate::cpu_time::process_total_cpu_secs();
-        }
-        Ok(occupancy_methods(&kind.sample_params(seed), map))
-    };
     let on_map = |scenario: &str, method: &str, _t: usize| {
         bar.inc(1);
         let now = crate::cpu_time::process_total_cpu_secs();
@@ -238,7 +237,11 @@ pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> Result<OccupancyRepor
     predict_ahead(dataset, &mut report, &ahead, &|| bar.inc(1))?;
     bar.finish_and_clear();
     report.notes = occupancy_notes(&params);
-    if report.kinds.values().any(|&k| k == SequenceKind::HeightSlice) {
+    if report
+        .kinds
+        .values()
+        .any(|&k| k == SequenceKind::HeightSlice)
+    {
         report.notes.push(height_slice_note());
     }
     if !report.motion_maps.is_empty() {

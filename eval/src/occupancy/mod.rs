@@ -18,7 +18,7 @@ pub use ahead::predict_ahead;
 pub use dgpom::{dgpom_method, dgpom_notes, learn_motion_map};
 pub use markdown::occupancy_section;
 pub use run::{
-    OccupancyReport, height_slice_note, evaluate_occupancy, occupancy_methods, occupancy_notes,
+    OccupancyReport, evaluate_occupancy, height_slice_note, occupancy_methods, occupancy_notes,
     occupancy_sequences,
 };
 pub use sequence_kind::{SequenceKind, load_sequence};

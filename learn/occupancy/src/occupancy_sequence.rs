@@ -51,11 +51,10 @@ impl OccupancySequence {
         let mut actors = Vec::with_capacity(reader.len());
         for index in 0..reader.len() {
             let sweep = reader.read_sweep(index)?;
-            let scan =
-                to_plane(&sweep, &sensor).map_err(|reason| OccupancyError::Unsupported {
-                    path: reader.dir().to_owned(),
-                    reason: format!("scan {index}: {reason}"),
-                })?;
+            let scan = to_plane(&sweep, &sensor).map_err(|reason| OccupancyError::Unsupported {
+                path: reader.dir().to_owned(),
+                reason: format!("scan {index}: {reason}"),
+            })?;
             scans.push(scan);
             actors.push((sweep.stamp_secs, sweep.objects));
         }
