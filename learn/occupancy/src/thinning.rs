@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::{OccupancyError, OccupancySample, Result};
+use crate::{OccupancyError, Result};
 
 /// How a scan's samples are thinned.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -54,27 +54,25 @@ impl Thinning {
         Ok(())
     }
 
-    /// The samples of one scan thinned to the budget, in their original order; a scan within
-    /// the budget is returned whole.
+    /// Which of one scan's samples, given as (position in the plane, occupied), are kept: their
+    /// indices in order; a scan within the budget is kept whole.
     ///
     /// ```
-    /// use patchflow_occupancy::{OccupancySample, Thinning};
-    /// let line: Vec<OccupancySample> = (0..1000)
-    ///     .map(|i| OccupancySample { xy_m: [i as f64 * 0.01, 0.0], t_secs: 0.0, occupied: true })
-    ///     .collect();
+    /// use patchflow_occupancy::Thinning;
+    /// let line: Vec<([f64; 2], bool)> = (0..1000).map(|i| ([i as f64 * 0.01, 0.0], true)).collect();
     /// let thin = Thinning { budget_per_scan: 100, start_cell_m: 0.05 };
-    /// assert!(thin.thin(&line).len() <= 100);
+    /// assert!(thin.kept(&line).len() <= 100);
     /// ```
-    pub fn thin(&self, samples: &[OccupancySample]) -> Vec<OccupancySample> {
+    pub fn kept(&self, samples: &[([f64; 2], bool)]) -> Vec<usize> {
         if samples.len() <= self.budget_per_scan {
-            return samples.to_vec();
+            return (0..samples.len()).collect();
         }
         let mut cell_m = self.start_cell_m;
         loop {
             let kept = kept_indices(samples, cell_m);
             // Terminates: once one cell holds every sample, at most one per class is kept.
             if kept.len() <= self.budget_per_scan {
-                return kept.into_iter().map(|i| samples[i]).collect();
+                return kept;
             }
             cell_m *= std::f64::consts::SQRT_2;
         }
@@ -83,11 +81,11 @@ impl Thinning {
 
 /// Indices of the samples kept on a lattice of `cell_m`: per cell and class, the one nearest
 /// the cell centre (the earlier on a tie), sorted.
-fn kept_indices(samples: &[OccupancySample], cell_m: f64) -> Vec<usize> {
+fn kept_indices(samples: &[([f64; 2], bool)], cell_m: f64) -> Vec<usize> {
     let mut best: BTreeMap<(i64, i64, bool), (f64, usize)> = BTreeMap::new();
-    for (i, s) in samples.iter().enumerate() {
-        let (u, v) = (s.xy_m[0] / cell_m, s.xy_m[1] / cell_m);
-        let cell = (u.floor() as i64, v.floor() as i64, s.occupied);
+    for (i, &(xy_m, occupied)) in samples.iter().enumerate() {
+        let (u, v) = (xy_m[0] / cell_m, xy_m[1] / cell_m);
+        let cell = (u.floor() as i64, v.floor() as i64, occupied);
         let d2 = (u - u.floor() - 0.5).powi(2) + (v - v.floor() - 0.5).powi(2);
         best.entry(cell)
             .and_modify(|b| {
@@ -107,7 +105,7 @@ mod tests {
     use super::*;
 
     /// A seeded cloud: 5,000 free samples over 40 m × 40 m, 3,000 occupied ones on a 10 m wall.
-    fn cloud() -> Vec<OccupancySample> {
+    fn cloud() -> Vec<([f64; 2], bool)> {
         let mut z: u64 = 12345;
         let mut next = || {
             z = z.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
@@ -121,11 +119,7 @@ mod tests {
             } else {
                 [40.0 * next() - 20.0, 40.0 * next() - 20.0]
             };
-            out.push(OccupancySample {
-                xy_m,
-                t_secs: 1.0,
-                occupied,
-            });
+            out.push((xy_m, occupied));
         }
         out
     }
@@ -138,14 +132,11 @@ mod tests {
                 budget_per_scan: budget,
                 ..Thinning::default()
             };
-            let kept = thin.thin(&samples);
+            let kept = thin.kept(&samples);
             assert!(kept.len() <= budget, "{} > {budget}", kept.len());
-            assert!(kept.iter().any(|s| s.occupied) && kept.iter().any(|s| !s.occupied));
-            // Every kept sample is one of the input, in the input's order.
-            let mut at = 0;
-            for k in &kept {
-                at += samples[at..].iter().position(|s| s == k).unwrap() + 1;
-            }
+            assert!(kept.iter().any(|&i| samples[i].1) && kept.iter().any(|&i| !samples[i].1));
+            // Kept samples stay in the input's order, each once.
+            assert!(kept.windows(2).all(|w| w[0] < w[1]));
         }
     }
 
@@ -153,10 +144,10 @@ mod tests {
     fn thinning_is_deterministic_and_leaves_a_scan_within_budget_whole() {
         let samples = cloud();
         let thin = Thinning::default();
-        let once = thin.thin(&samples);
+        let once = thin.kept(&samples);
         assert!(once.len() > 1000, "{}", once.len());
-        assert_eq!(once, thin.thin(&samples));
-        assert_eq!(thin.thin(&samples[..1500]), samples[..1500].to_vec());
+        assert_eq!(once, thin.kept(&samples));
+        assert_eq!(thin.kept(&samples[..1500]), (0..1500).collect::<Vec<_>>());
     }
 
     #[test]
@@ -166,12 +157,17 @@ mod tests {
             budget_per_scan: 400,
             ..Thinning::default()
         };
-        let kept = thin.thin(&cloud());
-        let free: Vec<_> = kept.iter().filter(|s| !s.occupied).collect();
+        let samples = cloud();
+        let free: Vec<[f64; 2]> = thin
+            .kept(&samples)
+            .into_iter()
+            .filter(|&i| !samples[i].1)
+            .map(|i| samples[i].0)
+            .collect();
         for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
             let n = free
                 .iter()
-                .filter(|s| s.xy_m[0] * sx > 0.0 && s.xy_m[1] * sy > 0.0)
+                .filter(|p| p[0] * sx > 0.0 && p[1] * sy > 0.0)
                 .count() as f64;
             let share = n / free.len() as f64;
             assert!((0.15..0.35).contains(&share), "quadrant share {share}");

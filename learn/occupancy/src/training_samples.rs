@@ -81,7 +81,11 @@ pub fn window_samples(
         let samples = scan_samples(scan, params);
         drawn += samples.len();
         match &params.thinning {
-            Some(thinning) => kept.extend(thinning.thin(&samples)),
+            Some(thinning) => {
+                let places: Vec<([f64; 2], bool)> =
+                    samples.iter().map(|s| (s.xy_m, s.occupied)).collect();
+                kept.extend(thinning.kept(&places).into_iter().map(|i| samples[i]));
+            }
             None => kept.extend(samples),
         }
     }
