@@ -11,11 +11,12 @@ use std::cell::RefCell;
 use std::sync::Arc;
 
 use patchflow_eval::{
-    OccupancyReport, evaluate_occupancy, learn_motion_map, predict_ahead, write_occupancy_report,
+    OccupancyReport, SequenceKind, evaluate_occupancy, learn_motion_map, load_sequence,
+    occupancy_sequences, predict_ahead, write_occupancy_report,
 };
 use patchflow_occupancy::{
     AheadParams, DgpomMethod, DgpomParams, GpomMethod, MapMethod, OccupancyGridMethod,
-    OccupancyParams, OccupancySequence, SampleParams,
+    OccupancyParams, OccupancySequence, SampleParams, Thinning,
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
@@ -46,26 +47,28 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
         ..m
     };
     let motion_map = RefCell::new(None);
-    let methods = |sequence: &OccupancySequence, training: Option<&OccupancySequence>| {
-        // The training run is handed over for methods that learn beforehand, and not scored.
-        assert_eq!(sequence.name, "dgpom_tjunction");
-        assert_eq!(training.map(|t| t.scans.len()), Some(100));
-        let map = learn_motion_map(training.unwrap()).unwrap();
-        *motion_map.borrow_mut() = Some(Arc::clone(&map));
-        // DGPOM keeps its default pseudo-inputs: with 60 its map at t = 3 fell to AUC 0.59.
-        let dgpom = DgpomParams {
-            samples: samples.clone(),
-            max_iters: 25,
-            ..DgpomParams::default()
+    let methods =
+        |sequence: &OccupancySequence, kind: SequenceKind, training: Option<&OccupancySequence>| {
+            assert_eq!(kind, SequenceKind::Planar);
+            // The training run is handed over for methods that learn beforehand, and not scored.
+            assert_eq!(sequence.name, "dgpom_tjunction");
+            assert_eq!(training.map(|t| t.scans.len()), Some(100));
+            let map = learn_motion_map(training.unwrap()).unwrap();
+            *motion_map.borrow_mut() = Some(Arc::clone(&map));
+            // DGPOM keeps its default pseudo-inputs: with 60 its map at t = 3 fell to AUC 0.59.
+            let dgpom = DgpomParams {
+                samples: samples.clone(),
+                max_iters: 25,
+                ..DgpomParams::default()
+            };
+            let methods: Vec<Box<dyn MapMethod>> = vec![
+                Box::new(DgpomMethod::new(dgpom, map)),
+                Box::new(small(GpomMethod::space(samples.clone()))),
+                Box::new(small(GpomMethod::space_time(samples.clone()))),
+                Box::new(OccupancyGridMethod::default()),
+            ];
+            Ok(methods)
         };
-        let methods: Vec<Box<dyn MapMethod>> = vec![
-            Box::new(DgpomMethod::new(dgpom, map)),
-            Box::new(small(GpomMethod::space(samples.clone()))),
-            Box::new(small(GpomMethod::space_time(samples.clone()))),
-            Box::new(OccupancyGridMethod::default()),
-        ];
-        Ok(methods)
-    };
     let params = OccupancyParams {
         query_scans: vec![3, 5],
         ..OccupancyParams::default()
@@ -132,11 +135,101 @@ fn a_dataset_without_static_truth_is_refused_naming_the_file() {
     let dataset = generate(&data, &["dgpom_tjunction"]);
     let static_json = data.join("sequences/dgpom_tjunction/static.json");
     std::fs::remove_file(&static_json).unwrap();
-    let grid = |_: &OccupancySequence, _: Option<&OccupancySequence>| {
+    let grid = |_: &OccupancySequence, _: SequenceKind, _: Option<&OccupancySequence>| {
         let methods: Vec<Box<dyn MapMethod>> = vec![Box::new(OccupancyGridMethod::default())];
         Ok(methods)
     };
     let params = OccupancyParams::default();
     let err = evaluate_occupancy(&dataset, &grid, &params, 7, &|_, _, _| {}).unwrap_err();
     assert!(err.to_string().contains("static.json"), "{err}");
+}
+
+/// A small street for the 3-D lidar: a wall across the road 25 m ahead, a car crossing at 12 m,
+/// the sensor parked; `rate` and `sweeps` as given.
+fn street_3d(rate_hz: f64) -> String {
+    format!(
+        r#"description = "a parked 3-D lidar, a car crossing in front of a wall"
+sweeps = 5
+realism = "ideal"
+
+[lidar]
+channels = 32
+azimuth_steps = 720
+rate_hz = {rate_hz}
+rolling_shutter = false
+max_range_m = 30.0
+
+[ego]
+path_m = [[0.0, 0.0], [1.0, 0.0]]
+speed_mps = 0.0
+
+[[actors]]
+name = "crossing"
+path_m = [[12.0, -20.0], [12.0, 40.0]]
+speed_mps = 5.0
+
+[[structures]]
+kind = "wall"
+centre_m = [25.0, 0.0]
+size_m = [0.5, 40.0, 3.0]
+"#
+    )
+}
+
+#[test]
+fn a_one_hertz_3d_lidar_is_mapped_through_the_height_slice_and_a_ten_hertz_one_is_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let files = [("slice_1hz", 1.0), ("driving_10hz", 10.0)].map(|(name, rate)| {
+        let path = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&path, street_3d(rate)).unwrap();
+        path
+    });
+    let names: Vec<&str> = files.iter().map(|p| p.to_str().unwrap()).collect();
+    let dataset = generate(&dir.path().join("data"), &names);
+    // Recognition: only the 1 Hz sequence is scored, read through the slice.
+    assert_eq!(occupancy_sequences(&dataset).unwrap(), ["slice_1hz"]);
+    let err = load_sequence(&dataset, "driving_10hz").unwrap_err();
+    assert!(err.to_string().contains("10 Hz"), "{err}");
+    let (sequence, kind) = load_sequence(&dataset, "slice_1hz").unwrap();
+    assert_eq!(kind, SequenceKind::HeightSlice);
+    assert!((sequence.scan_height_m() - 0.75).abs() < 1e-12);
+    assert!(sequence.scans.iter().all(|s| s.hits() > 50));
+    // The wall's slice returns lie on its face (x = 24.75), the car's on its side near x = 12.
+    let hits: Vec<[f64; 2]> = sequence.scans[3]
+        .beams
+        .iter()
+        .filter(|b| b.hit)
+        .map(|b| b.end_m)
+        .collect();
+    assert!(
+        hits.iter()
+            .all(|p| (p[0] - 24.75).abs() < 0.1 || (p[0] - 12.0).abs() < 1.5)
+    );
+    // Mapped and scored: GPOM-RD on thinned samples ranks the truth well above chance.
+    let samples = SampleParams {
+        thinning: Some(Thinning {
+            budget_per_scan: 300,
+            ..Thinning::default()
+        }),
+        ..kind.sample_params(7)
+    };
+    let gpom = GpomMethod {
+        pseudo_inputs: 60,
+        max_iters: 25,
+        ..GpomMethod::space(samples)
+    };
+    let methods: Vec<&dyn MapMethod> = vec![&gpom];
+    let params = OccupancyParams {
+        query_scans: vec![3],
+        figure_scans: vec![],
+        query_spacing_m: 1.0,
+        ..OccupancyParams::default()
+    };
+    let scores =
+        patchflow_occupancy::evaluate_sequence(&sequence, &methods, &params, &|_, _| {}).unwrap();
+    let m = &scores.methods["GPOM-RD"];
+    assert!(m.training_points_per_map[0] <= 4 * 300);
+    assert!(m.drawn_points_per_map[0] > m.training_points_per_map[0]);
+    let auc = m.auc_by_query_scan[&3].unwrap();
+    assert!(auc > 0.75, "AUC {auc}");
 }

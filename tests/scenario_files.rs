@@ -180,3 +180,43 @@ fn the_tjunction_has_the_papers_fixed_scanner_two_lanes_and_occluded_cars() {
         );
     }
 }
+
+#[test]
+fn the_3d_lidar_intersection_is_the_planar_one_with_only_its_lidar_changed() {
+    let dir = patchflow_tests::workspace_root().join("scenarios");
+    for (planar, lidar3d) in [
+        ("dgpom_intersection", "dgpom_intersection_lidar3d"),
+        (
+            "dgpom_intersection_train",
+            "dgpom_intersection_lidar3d_train",
+        ),
+    ] {
+        let load = |name: &str| Scenario::from_file(&dir.join(format!("{name}.toml"))).unwrap();
+        let (a, b) = (load(planar), load(lidar3d));
+        let same = |what: &str, x: String, y: String| assert_eq!(x, y, "{lidar3d}: {what}");
+        same("ego", format!("{:?}", a.ego), format!("{:?}", b.ego));
+        same(
+            "actors",
+            format!("{:?}", a.actors),
+            format!("{:?}", b.actors),
+        );
+        same(
+            "structures",
+            format!("{:?}", a.structures),
+            format!("{:?}", b.structures),
+        );
+        same("world", format!("{:?}", a.world), format!("{:?}", b.world));
+        same(
+            "sweeps, start, realism",
+            format!("{:?}", (a.sweeps, a.start_secs, a.realism)),
+            format!("{:?}", (b.sweeps, b.start_secs, b.realism)),
+        );
+        // The 3-D lidar: the default 64 channels at the paper's 1 Hz, cast at one instant, and
+        // the planar scanner's reach.
+        assert_eq!(b.lidar.kind, SensorKind::Spinning, "{lidar3d}");
+        assert_eq!(b.lidar.channels, 64, "{lidar3d}");
+        assert_eq!((b.lidar.rate_hz, a.lidar.rate_hz), (1.0, 1.0), "{lidar3d}");
+        assert!(!b.lidar.rolling_shutter, "{lidar3d}");
+        assert_eq!(b.lidar.max_range_m, a.lidar.max_range_m, "{lidar3d}");
+    }
+}

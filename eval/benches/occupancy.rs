@@ -50,7 +50,8 @@ fn bench_one_map(c: &mut Criterion) {
     );
     let mut group = c.benchmark_group("occupancy_map_tjunction_t5");
     group.sample_size(10);
-    for method in occupancy_methods(7, Some(motion_map)) {
+    let samples = patchflow_eval::SequenceKind::Planar.sample_params(7);
+    for method in occupancy_methods(&samples, Some(motion_map)) {
         let output = method.map(&window, &grid.points_m).expect("maps");
         println!(
             "{}: {} training points, {} query points; {}",

@@ -99,8 +99,9 @@ pub use cv_params::CvParams;
 
 // ── Occupancy maps (DGPOM paper, SPEC §5b) ──────────────────────────────────────────────────
 pub use occupancy::{
-    OccupancyReport, dgpom_method, evaluate_occupancy, learn_motion_map, occupancy_methods,
-    predict_ahead, write_occupancy_report,
+    OccupancyReport, SequenceKind, dgpom_method, evaluate_occupancy, height_slice_scan,
+    learn_motion_map, load_sequence, occupancy_methods, occupancy_sequences, predict_ahead,
+    write_occupancy_report,
 };
 
 // ── Reports ─────────────────────────────────────────────────────────────────────────────────

@@ -9,7 +9,7 @@ use std::sync::Mutex;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use patchflow_dataset::{Dataset, Manifest};
 use patchflow_learn::{FeatureKind, FeatureParams, MotionEstimator, SampleSet};
-use patchflow_occupancy::{AheadParams, OccupancyParams, OccupancySequence};
+use patchflow_occupancy::{AheadParams, OccupancyParams, OccupancySequence, SampleParams};
 use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, generate_dataset};
 
 use crate::baseline_params::BaselineParams;
@@ -18,8 +18,8 @@ use crate::cv_params::CvParams;
 use crate::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 use crate::error::EvalError;
 use crate::occupancy::{
-    OccupancyReport, dgpom_notes, evaluate_occupancy, learn_motion_map, occupancy_methods,
-    occupancy_notes, occupancy_sequences, predict_ahead,
+    OccupancyReport, SequenceKind, dgpom_notes, evaluate_occupancy, height_slice_note,
+    learn_motion_map, occupancy_methods, occupancy_notes, occupancy_sequences, predict_ahead,
 };
 use crate::progress::{ProgressLines, progress_bar, progress_line, stderr_is_terminal};
 use crate::report::CvReport;
@@ -182,34 +182,68 @@ pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> Result<OccupancyRepor
             dataset.sequences().iter().any(|s| s.name == training)
         })
         .count();
-    let methods_per_scenario = occupancy_methods(seed, None).len();
+    let methods_per_scenario = occupancy_methods(&SampleParams::default(), None).len();
     let maps = (names.len() * methods_per_scenario + trained) * params.query_scans.len()
         + trained * ahead.start_scans.len();
     let bar = progress_bar(maps as u64, "occupancy maps");
     // DGPOM's motion map is learned from the training run before the scenario is mapped.
     let motion_maps = RefCell::new(BTreeMap::new());
-    let methods_for = |sequence: &OccupancySequence, training: Option<&OccupancySequence>| {
-        let map = match training {
-            Some(training) => {
-                bar.set_message("DGPOM motion map");
-                let map = learn_motion_map(training)?;
-                bar.set_message("occupancy maps");
-                motion_maps
-                    .borrow_mut()
-                    .insert(sequence.name.clone(), Arc::clone(&map));
-                Some(map)
+    // CPU seconds of each map: the process's CPU time between one map's end and the next's (the
+    // maps run one after the other; the clock restarts once a scenario's sequences are read and
+    // its motion map is learned).
+    let cpu = Mutex::new((crate::cpu_time::process_total_cpu_secs(), BTreeMap::new()));
+    let methods_for =
+        |sequence: &OccupancySequence, kind: SequenceKind, training: Option<&OccupancySequence>| {
+            let map = match training {
+                Some(training) => {
+                    bar.set_message("DGPOM motion map");
+                    let map = learn_motion_map(training)?;
+                    bar.set_message("occupancy maps");
+                    motion_maps
+                        .borrow_mut()
+                        .insert(sequence.name.clone(), Arc::clone(&map));
+                    Some(map)
+                }
+                None => None,
+            };
+            if let Ok(mut guard) = cpu.lock() {
+                guard.0 = crate::cpu_time::process_total_cpu_secs();
             }
-            None => None,
+            Ok(occupancy_methods(&kind.sample_params(seed), map))
         };
-        Ok(occupancy_methods(seed, map))
+    let on_map = |scenario: &str, method: &str, _t: usize| {
+        bar.inc(1);
+        let now = crate::cpu_time::process_total_cpu_secs();
+        if let Ok(mut guard) = cpu.lock() {
+            let (last, by) = &mut *guard;
+            if let (Some(now), Some(before)) = (now, *last) {
+                let per_method: &mut BTreeMap<String, Vec<f64>> =
+                    by.entry(scenario.to_owned()).or_default();
+                per_method
+                    .entry(method.to_owned())
+                    .or_default()
+                    .push(now - before);
+            }
+            *last = now;
+        }
     };
-    let report = evaluate_occupancy(dataset, &methods_for, &params, seed, &|_, _, _| bar.inc(1));
+    let report = evaluate_occupancy(dataset, &methods_for, &params, seed, &on_map);
     let mut report = report?;
+    if let Ok((_, by)) = cpu.into_inner() {
+        report.cpu_seconds = by;
+    }
     report.motion_maps = motion_maps.into_inner();
     bar.set_message("DGPOM predicting ahead");
     predict_ahead(dataset, &mut report, &ahead, &|| bar.inc(1))?;
     bar.finish_and_clear();
     report.notes = occupancy_notes(&params);
+    if report
+        .kinds
+        .values()
+        .any(|&k| k == SequenceKind::HeightSlice)
+    {
+        report.notes.push(height_slice_note());
+    }
     if !report.motion_maps.is_empty() {
         report.notes.extend(dgpom_notes(&ahead));
     }

@@ -4,11 +4,12 @@
 use std::sync::Arc;
 
 use patchflow_dataset::Dataset;
-use patchflow_occupancy::{AheadParams, OccupancySequence, evaluate_ahead};
+use patchflow_occupancy::{AheadParams, evaluate_ahead};
 use rayon::prelude::*;
 
 use super::dgpom::dgpom_method;
 use super::run::OccupancyReport;
+use super::sequence_kind::load_sequence;
 use crate::error::EvalError;
 
 /// Scores DGPOM's predictions ahead (Figure 10) on every scenario of `report` with a motion map;
@@ -21,8 +22,8 @@ pub fn predict_ahead(
     on_start: &(dyn Fn() + Sync),
 ) -> Result<(), EvalError> {
     for (name, map) in &report.motion_maps {
-        let sequence = OccupancySequence::load(&dataset.sequence(name)?)?;
-        let method = dgpom_method(report.seed, Arc::clone(map));
+        let (sequence, kind) = load_sequence(dataset, name)?;
+        let method = dgpom_method(&kind.sample_params(report.seed), Arc::clone(map));
         let parts = params
             .start_scans
             .par_iter()

@@ -20,13 +20,11 @@ pub fn learn_motion_map(training: &OccupancySequence) -> Result<Arc<MotionMap>, 
     )?))
 }
 
-/// The DGPOM method of the run on `motion_map`; `seed` places the free-space samples.
-pub fn dgpom_method(seed: u64, motion_map: Arc<MotionMap>) -> DgpomMethod {
+/// The DGPOM method of the run on `motion_map`; `samples` says how training samples are drawn
+/// (the seed of the free-space samples, the thinning of dense scans).
+pub fn dgpom_method(samples: &SampleParams, motion_map: Arc<MotionMap>) -> DgpomMethod {
     let params = DgpomParams {
-        samples: SampleParams {
-            seed,
-            ..SampleParams::default()
-        },
+        samples: samples.clone(),
         ..DgpomParams::default()
     };
     DgpomMethod::new(params, motion_map)

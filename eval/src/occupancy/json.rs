@@ -24,6 +24,9 @@ struct OccupancyFile {
 #[derive(Serialize)]
 struct ScenarioEntry {
     methods: BTreeMap<String, MethodEntry>,
+    /// How the scenario was observed (`planar scanner`, `3-D lidar, height slice`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    observed_by: Option<&'static str>,
     /// DGPOM's motion map, if the scenario has a training run.
     #[serde(skip_serializing_if = "Option::is_none")]
     motion_map: Option<MotionMapEntry>,
@@ -81,6 +84,11 @@ fn ahead_entry(a: &AheadScores) -> AheadEntry {
 #[derive(Serialize)]
 struct MethodEntry {
     auc_by_query_time: BTreeMap<String, Option<f64>>,
+    /// CPU seconds per map (mean, all threads), where the run measured them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cpu_seconds_per_map: Option<f64>,
+    /// Training points per map before thinning (equal to `training_points_per_map` unthinned).
+    drawn_points_per_map: f64,
     mean_auc: Option<f64>,
     seconds_by_query_time: BTreeMap<String, f64>,
     seconds_per_map: f64,
@@ -98,7 +106,7 @@ pub(crate) fn query_time_key(scores: &SequenceScores, scan: usize) -> String {
     }
 }
 
-fn method_entry(scores: &SequenceScores, m: &MethodScores) -> MethodEntry {
+fn method_entry(scores: &SequenceScores, m: &MethodScores, cpu: Option<&Vec<f64>>) -> MethodEntry {
     let scans: Vec<usize> = m.auc_by_query_scan.keys().copied().collect();
     let by_time = |values: Vec<f64>| -> BTreeMap<String, f64> {
         scans
@@ -114,6 +122,8 @@ fn method_entry(scores: &SequenceScores, m: &MethodScores) -> MethodEntry {
             .iter()
             .map(|(&t, &auc)| (query_time_key(scores, t), auc))
             .collect(),
+        cpu_seconds_per_map: cpu.map(|c| mean(c)),
+        drawn_points_per_map: m.mean_drawn_points(),
         mean_auc: (!aucs.is_empty()).then(|| aucs.iter().sum::<f64>() / aucs.len() as f64),
         seconds_by_query_time: by_time(m.seconds_per_map.clone()),
         seconds_per_map: m.mean_seconds_per_map(),
@@ -124,6 +134,11 @@ fn method_entry(scores: &SequenceScores, m: &MethodScores) -> MethodEntry {
             .collect(),
         training_points_per_map: m.mean_training_points(),
     }
+}
+
+/// Mean of `values` (0 for none).
+pub(crate) fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len().max(1) as f64
 }
 
 /// The text of `occupancy.json` (pretty-printed, sorted keys, trailing newline).
@@ -142,9 +157,13 @@ pub fn occupancy_json(report: &OccupancyReport) -> Result<String, EvalError> {
                 methods: s
                     .methods
                     .iter()
-                    .map(|(name, m)| (name.clone(), method_entry(s, m)))
+                    .map(|(name, m)| {
+                        let cpu = report.cpu_seconds.get(&s.name).and_then(|c| c.get(name));
+                        (name.clone(), method_entry(s, m, cpu))
+                    })
                     .collect(),
                 motion_map: report.motion_maps.get(&s.name).map(|m| motion_map_entry(m)),
+                observed_by: report.kinds.get(&s.name).map(|k| k.label()),
                 occupied_points_by_query_time: keyed(&s.occupied_points),
                 query_points_by_query_time: keyed(&s.query_points),
                 predict_ahead: report.ahead.get(&s.name).map(ahead_entry),

@@ -40,8 +40,9 @@ pub fn occupancy_section(report: &OccupancyReport) -> String {
         report.params.scans_per_map.saturating_sub(1)
     );
     for scores in &report.scenarios {
-        auc_table(&mut md, scores);
-        timing_table(&mut md, scores);
+        let observed_by = report.kinds.get(&scores.name).map_or("", |k| k.label());
+        auc_table(&mut md, scores, observed_by);
+        timing_table(&mut md, scores, report.cpu_seconds.get(&scores.name));
         let _ = writeln!(
             md,
             "Figures (cf. the paper's Figure 6: ground truth with the scan, probability of occupancy, predictive variance):\n"
@@ -78,12 +79,16 @@ pub fn occupancy_markdown(report: &OccupancyReport) -> String {
     )
 }
 
-fn auc_table(md: &mut String, scores: &SequenceScores) {
+fn auc_table(md: &mut String, scores: &SequenceScores, observed_by: &str) {
     let scans: Vec<usize> = scores.query_secs.keys().copied().collect();
     let keys: Vec<String> = scans.iter().map(|&t| query_time_key(scores, t)).collect();
+    let by = match observed_by {
+        "" => String::new(),
+        label => format!(" ({label})"),
+    };
     let _ = writeln!(
         md,
-        "### {}: ROC AUC by query time (layout of the paper's Table 1)\n",
+        "### {}{by}: ROC AUC by query time (layout of the paper's Table 1)\n",
         scores.name
     );
     let header: Vec<String> = keys.iter().map(|k| format!("t = {k}")).collect();
@@ -155,10 +160,14 @@ fn fmt(value: Option<f64>) -> String {
     value.map_or_else(|| "–".to_owned(), |v| format!("{v:.4}"))
 }
 
-fn timing_table(md: &mut String, scores: &SequenceScores) {
+fn timing_table(
+    md: &mut String,
+    scores: &SequenceScores,
+    cpu: Option<&std::collections::BTreeMap<String, Vec<f64>>>,
+) {
     let _ = writeln!(
         md,
-        "One map (fit and prediction over the query points), per method:\n\n| method | seconds per map (mean) | slowest map (s) | training points per map (mean) | fit (last map) |\n|---|---|---|---|---|"
+        "One map (fit and prediction over the query points), per method; training points after thinning, and drawn before it (the same where nothing is thinned):\n\n| method | seconds per map (mean, wall) | CPU seconds per map (mean) | slowest map (s, wall) | training points per map (mean) | drawn per map (mean) | fit (last map) |\n|---|---|---|---|---|---|---|"
     );
     for method in ordered(scores) {
         let Some(m) = scores.methods.get(method) else {
@@ -167,10 +176,13 @@ fn timing_table(md: &mut String, scores: &SequenceScores) {
         let slowest = m.seconds_per_map.iter().copied().fold(0.0, f64::max);
         let _ = writeln!(
             md,
-            "| `{method}` | {:.3} | {:.3} | {:.0} | {} |",
+            "| `{method}` | {:.3} | {} | {:.3} | {:.0} | {:.0} | {} |",
             m.mean_seconds_per_map(),
+            cpu.and_then(|c| c.get(method))
+                .map_or("–".to_owned(), |c| format!("{:.2}", super::json::mean(c))),
             slowest,
             m.mean_training_points(),
+            m.mean_drawn_points(),
             m.summaries.last().map_or("", String::as_str)
         );
     }

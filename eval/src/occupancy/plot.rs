@@ -169,7 +169,7 @@ fn draw_panel(
                 BEAM.mix(0.35)
             };
             PathElement::new(
-                vec![(sx, sy), (b.end_m[0], b.end_m[1])],
+                vec![(b.start_m[0], b.start_m[1]), (b.end_m[0], b.end_m[1])],
                 ShapeStyle::from(colour).stroke_width(1),
             )
         }))?;

@@ -1,16 +1,18 @@
 //! The occupancy run over a dataset: which sequences are scored (every planar scanner's sequence
-//! but training runs), which methods are compared, and the report they make.
+//! and every 3-D lidar's at 1 Hz or slower, read through the height slice, but training runs; see
+//! `sequence_kind.rs`), which methods are compared, and the report they make.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use patchflow_dataset::{Dataset, SensorKind};
+use patchflow_dataset::Dataset;
 use patchflow_occupancy::{
     AheadScores, GpomMethod, MapMethod, MotionMap, OccupancyGridMethod, OccupancyParams,
-    OccupancySequence, SampleParams, SequenceScores, evaluate_sequence,
+    OccupancySequence, SampleParams, SequenceScores, Thinning, evaluate_sequence,
 };
 
 use super::dgpom::dgpom_method;
+use super::sequence_kind::{SequenceKind, load_sequence};
 use crate::error::EvalError;
 
 /// Scores of every method on every scored sequence, with what produced them.
@@ -28,42 +30,49 @@ pub struct OccupancyReport {
     pub motion_maps: BTreeMap<String, Arc<MotionMap>>,
     /// DGPOM's predictions ahead of the last scan, by scenario name (Figure 10).
     pub ahead: BTreeMap<String, AheadScores>,
+    /// How each scored scenario was observed, by scenario name.
+    pub kinds: BTreeMap<String, SequenceKind>,
+    /// CPU seconds of each map (all threads), by scenario and method, in query order, where the
+    /// run measured them (wall seconds are in the scores; on a shared machine they grow with
+    /// the load, CPU seconds hardly).
+    pub cpu_seconds: BTreeMap<String, BTreeMap<String, Vec<f64>>>,
 }
 
-/// The sequences of `dataset` to score: those of a planar scanner, except training runs (names
-/// ending in `_train`, kept for methods that learn beforehand). A sequence without `sensor.json`
-/// (a dataset of an older build) is an error naming the file; none to score is an error too.
+/// The sequences of `dataset` to score: those [`SequenceKind::of`] maps (a planar scanner's, a
+/// 3-D lidar's at 1 Hz or slower), except training runs (names ending in `_train`, kept for
+/// methods that learn beforehand). A sequence without `sensor.json` (a dataset of an older
+/// build) is an error naming the file; none to score is an error too.
 pub fn occupancy_sequences(dataset: &Dataset) -> Result<Vec<String>, EvalError> {
     let mut names = Vec::new();
     for info in dataset.sequences() {
         let sensor = dataset.sequence(&info.name)?.sensor()?;
-        if sensor.kind == SensorKind::Planar && !info.name.ends_with("_train") {
+        if SequenceKind::of(&sensor).is_some() && !info.name.ends_with("_train") {
             names.push(info.name.clone());
         }
     }
     if names.is_empty() {
         return Err(EvalError::BadResult {
             situation: dataset.root().display().to_string(),
-            reason: "no sequence of a planar scanner to map (generate e.g. dgpom_tjunction)".into(),
+            reason: "no sequence of a planar scanner or of a 3-D lidar at 1 Hz to map (generate e.g. dgpom_tjunction)".into(),
         });
     }
     Ok(names)
 }
 
 /// The methods compared: DGPOM (if a motion map was learned for the scenario), GPOM in ℜ^D and
-/// ℜ^{D+1} (the DGPOM paper's Table 1) and the grid baseline; `seed` places the free-space
-/// samples along the beams.
-pub fn occupancy_methods(seed: u64, motion_map: Option<Arc<MotionMap>>) -> Vec<Box<dyn MapMethod>> {
-    let samples = SampleParams {
-        seed,
-        ..SampleParams::default()
-    };
+/// ℜ^{D+1} (the DGPOM paper's Table 1) and the grid baseline; `samples` says how the GPs draw
+/// their training samples (the seed of the free-space samples, the thinning of dense scans:
+/// [`SequenceKind::sample_params`]).
+pub fn occupancy_methods(
+    samples: &SampleParams,
+    motion_map: Option<Arc<MotionMap>>,
+) -> Vec<Box<dyn MapMethod>> {
     let mut methods: Vec<Box<dyn MapMethod>> = Vec::new();
     if let Some(map) = motion_map {
-        methods.push(Box::new(dgpom_method(seed, map)));
+        methods.push(Box::new(dgpom_method(samples, map)));
     }
     methods.push(Box::new(GpomMethod::space(samples.clone())));
-    methods.push(Box::new(GpomMethod::space_time(samples)));
+    methods.push(Box::new(GpomMethod::space_time(samples.clone())));
     methods.push(Box::new(OccupancyGridMethod::default()));
     methods
 }
@@ -93,10 +102,24 @@ pub fn occupancy_notes(params: &OccupancyParams) -> Vec<String> {
     ]
 }
 
-/// Builds the methods for one scenario from the sequence and its training run (`<name>_train` in
-/// the same dataset, if there is one): methods that learn beforehand (DGPOM's motion map) learn
-/// from the training run.
-pub type MethodsFor<'a> = dyn Fn(&OccupancySequence, Option<&OccupancySequence>) -> Result<Vec<Box<dyn MapMethod>>, EvalError>
+/// What the report says about the 3-D lidar's sequences read through the height slice: how a
+/// sweep becomes observations and what it took to map them (issue 12, item 4).
+pub fn height_slice_note() -> String {
+    let thinning = Thinning::default();
+    format!(
+        "3-D lidar through the height slice (scenarios whose sensor is a spinning lidar at 1 Hz or slower; a planar scanner's are read as they are): each sweep is cut to the thesis' slice, 0.5-1.0 m above the ground estimated from the sweep itself (patchflow-learn's `HeightSlice`, the slice the motion features use), and every beam's part inside the slice becomes a beam in the plane, from where it enters the slice to where it leaves it or returns: a return in the slice is an occupied sample, its sliced stretch is sampled for free space as a planar beam is; a beam's stretch above or below the slice is left out (a ray from the sensor would cross cars it passed over). Truth is taken 0.75 m up. Scaling: an HDL-64E sweep gives about 110,000 returns, about 90,000 beams crossing the slice and about 100,000 samples on the busy intersection, so each scan's GP samples are thinned on a square lattice in the plane (per cell and class the sample nearest the cell centre; the cell starts at {} m and grows by √2 until the scan fits {} samples, about the planar scanner's per-scan count here), so a 3-D map's GP is as large as a planar one's (the same SPGP with fixed pseudo-inputs) and the query lattice is the same 0.5 m; the grid counts every sliced beam. `training points` are after thinning, `drawn` before.",
+        thinning.start_cell_m, thinning.budget_per_scan
+    )
+}
+
+/// Builds the methods for one scenario from the sequence, how it was observed and its training
+/// run (`<name>_train` in the same dataset, if there is one): methods that learn beforehand
+/// (DGPOM's motion map) learn from the training run.
+pub type MethodsFor<'a> = dyn Fn(
+        &OccupancySequence,
+        SequenceKind,
+        Option<&OccupancySequence>,
+    ) -> Result<Vec<Box<dyn MapMethod>>, EvalError>
     + 'a;
 
 /// Scores the methods `methods_for` builds on every sequence [`occupancy_sequences`] picks;
@@ -114,13 +137,14 @@ pub fn evaluate_occupancy(
         ..OccupancyReport::default()
     };
     for name in occupancy_sequences(dataset)? {
-        let sequence = OccupancySequence::load(&dataset.sequence(&name)?)?;
+        let (sequence, kind) = load_sequence(dataset, &name)?;
         let training_name = format!("{name}_train");
         let training = match dataset.sequences().iter().any(|s| s.name == training_name) {
-            true => Some(OccupancySequence::load(&dataset.sequence(&training_name)?)?),
+            true => Some(load_sequence(dataset, &training_name)?.0),
             false => None,
         };
-        let methods = methods_for(&sequence, training.as_ref())?;
+        report.kinds.insert(name.clone(), kind);
+        let methods = methods_for(&sequence, kind, training.as_ref())?;
         let methods: Vec<&dyn MapMethod> = methods.iter().map(|m| m.as_ref()).collect();
         let scores = evaluate_sequence(&sequence, &methods, params, &|method, t| {
             on_map(&name, method, t)

@@ -13,8 +13,8 @@ use patchflow_gp::{GpKind, GpParams, MotionAdapted, PlsClassifier, PlsParams};
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    MapMethod, MapOutput, MotionMap, OccupancyError, OccupancySample, Result, SampleParams,
-    ScanWindow, scan_samples,
+    MapMethod, MapOutput, MotionMap, OccupancyError, Result, SampleParams, ScanWindow,
+    window_samples,
 };
 
 /// Settings of DGPOM (the motion map is learned separately and shared).
@@ -60,15 +60,16 @@ impl DgpomMethod {
     }
 
     /// Fits the classifier to the window's samples, observations carried to `reference_secs`.
-    fn fit(&self, window: &ScanWindow<'_>, reference_secs: f64) -> Result<(Classifier, usize)> {
+    fn fit(
+        &self,
+        window: &ScanWindow<'_>,
+        reference_secs: f64,
+    ) -> Result<(Classifier, [usize; 2])> {
         self.params.samples.validate()?;
         let scan = window.query_scan().map_or(0, |s| s.index);
-        // Training data: returns occupied, free space along the beams, each at its scan's time.
-        let samples: Vec<OccupancySample> = window
-            .scans
-            .iter()
-            .flat_map(|s| scan_samples(s, &self.params.samples))
-            .collect();
+        // Training data: returns occupied, free space along the beams, each at its scan's time
+        // (thinned for dense scans).
+        let (samples, drawn) = window_samples(window.scans, &self.params.samples);
         let x = DMatrix::from_fn(samples.len(), 3, |i, d| match d {
             0 | 1 => samples[i].xy_m[d],
             _ => samples[i].t_secs,
@@ -87,7 +88,7 @@ impl DgpomMethod {
         let classifier = PlsParams::new(gp)
             .fit(&x, &labels)
             .map_err(|e| self.degenerate(scan, e.to_string()))?;
-        Ok((classifier, samples.len()))
+        Ok((classifier, [samples.len(), drawn]))
     }
 
     /// The map of the fitted classifier at `points_m` at `t_secs`.
@@ -96,7 +97,7 @@ impl DgpomMethod {
         classifier: &Classifier,
         points_m: &[[f64; 2]],
         t_secs: f64,
-        training_points: usize,
+        [training_points, drawn_points]: [usize; 2],
         scan: usize,
     ) -> Result<MapOutput> {
         let query = DMatrix::from_fn(points_m.len(), 3, |i, d| match d {
@@ -113,6 +114,7 @@ impl DgpomMethod {
             probability: prediction.probability.iter().copied().collect(),
             variance: Some(prediction.regression.var_latent.iter().copied().collect()),
             training_points,
+            drawn_points,
             summary: format!(
                 "ℓx {lx:.2} m, ℓy {ly:.2} m, a {:.2}, b {:.2} (l_t {:.2} s at ε = 0.5 m/s), σ² = {:.3}, α = {:.2}, β = {:.2}, {} evaluations",
                 kernel.time_scale_a(),

@@ -21,6 +21,8 @@ pub struct MethodScores {
     pub seconds_per_map: Vec<f64>,
     /// Training points of each map.
     pub training_points_per_map: Vec<usize>,
+    /// Training points of each map drawn before thinning (the same as above where none is).
+    pub drawn_points_per_map: Vec<usize>,
     /// What each map's fit learned, one line per map.
     pub summaries: Vec<String>,
 }
@@ -34,6 +36,11 @@ impl MethodScores {
     /// Mean training points per map.
     pub fn mean_training_points(&self) -> f64 {
         mean(self.training_points_per_map.iter().map(|&n| n as f64))
+    }
+
+    /// Mean training points per map before thinning.
+    pub fn mean_drawn_points(&self) -> f64 {
+        mean(self.drawn_points_per_map.iter().map(|&n| n as f64))
     }
 }
 
@@ -99,6 +106,7 @@ pub fn evaluate_sequence(
             entry.auc_by_query_scan.insert(t, *auc);
             entry.seconds_per_map.push(*seconds);
             entry.training_points_per_map.push(output.training_points);
+            entry.drawn_points_per_map.push(output.drawn_points);
             entry.summaries.push(output.summary.clone());
         }
         if params.figure_scans.contains(&t) {

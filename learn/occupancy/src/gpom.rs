@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::{
     MapMethod, MapOutput, OccupancyError, OccupancySample, Result, SampleParams, ScanWindow,
-    scan_samples,
+    window_samples,
 };
 
 /// Which inputs a GPOM sees.
@@ -58,13 +58,10 @@ impl GpomMethod {
         }
     }
 
-    /// The samples of every scan of `window`, oldest first.
-    pub fn training_samples(&self, window: &ScanWindow<'_>) -> Vec<OccupancySample> {
-        window
-            .scans
-            .iter()
-            .flat_map(|scan| scan_samples(scan, &self.samples))
-            .collect()
+    /// The samples of every scan of `window`, oldest first (each scan's thinned if the sample
+    /// parameters say so), and how many were drawn before thinning.
+    pub fn training_samples(&self, window: &ScanWindow<'_>) -> (Vec<OccupancySample>, usize) {
+        window_samples(window.scans, &self.samples)
     }
 
     fn inputs(&self, rows: impl ExactSizeIterator<Item = ([f64; 2], f64)>) -> DMatrix<f64> {
@@ -101,8 +98,9 @@ impl MapMethod for GpomMethod {
             scan,
             reason,
         };
-        // Training data: returns occupied, free space along the beams (Section 2).
-        let samples = self.training_samples(window);
+        // Training data: returns occupied, free space along the beams (Section 2), thinned for
+        // dense scans.
+        let (samples, drawn) = self.training_samples(window);
         let x = self.inputs(samples.iter().map(|s| (s.xy_m, s.t_secs)));
         let labels: Vec<bool> = samples.iter().map(|s| s.occupied).collect();
         // GP classification by probabilistic least squares, α and β by leave-one-out (GPML §6.5).
@@ -148,6 +146,7 @@ impl MapMethod for GpomMethod {
             probability: prediction.probability.iter().copied().collect(),
             variance: Some(prediction.regression.var_latent.iter().copied().collect()),
             training_points: samples.len(),
+            drawn_points: drawn,
             summary: format!(
                 "{}, σ² = {:.3}, α = {:.2}, β = {:.2}, {} evaluations",
                 scales.join(", "),
@@ -191,6 +190,7 @@ mod tests {
                 let hit = (c * range).abs() <= 4.0;
                 let r = if hit { range } else { 12.0 };
                 Beam {
+                    start_m: [0.0, 0.0],
                     end_m: [c * r, s * r],
                     hit,
                 }

@@ -28,6 +28,7 @@ mod planar_scan;
 mod predict_ahead;
 mod query_grid;
 mod scan_cells;
+mod thinning;
 mod training_samples;
 
 pub use auc::roc_auc;
@@ -48,4 +49,5 @@ pub use patchflow_gp::MotionField;
 pub use planar_scan::{Beam, PlanarScan};
 pub use predict_ahead::{AheadParams, AheadScores, evaluate_ahead};
 pub use query_grid::QueryGrid;
-pub use training_samples::{OccupancySample, SampleParams, scan_samples};
+pub use thinning::Thinning;
+pub use training_samples::{OccupancySample, SampleParams, scan_samples, window_samples};

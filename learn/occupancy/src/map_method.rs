@@ -32,6 +32,8 @@ pub struct MapOutput {
     pub variance: Option<Vec<f64>>,
     /// Training points the map was built from (samples for a GP; beams for a grid).
     pub training_points: usize,
+    /// Training points drawn before thinning (equal to `training_points` if none was thinned).
+    pub drawn_points: usize,
     /// What the fit learned, for the report (hyperparameters, squashing), one line.
     pub summary: String,
 }

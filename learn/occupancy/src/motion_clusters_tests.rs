@@ -21,6 +21,7 @@ fn scan(t: f64, segments: &[(f64, f64, f64)]) -> PlanarScan {
             let hit = range <= 20.0;
             let r = if hit { range } else { 20.0 };
             Beam {
+                start_m: [0.0, 0.0],
                 end_m: [c * r, s * r],
                 hit,
             }

@@ -1,7 +1,8 @@
 //! The occupancy-grid baseline (DGPOM paper, Table 1's comparison; Elfes): square cells, each
 //! holding hits / (hits + misses) of the beams of the window's scans, 0.5 where no beam passed.
-//! A beam is traced through every cell it crosses (Amanatides-Woo): cells before its end count a
-//! miss, the end cell a hit if the beam returned there, a miss if it saw nothing to maximum range.
+//! A beam is traced from its start (the sensor, or its entry into a 3-D lidar's height slice)
+//! through every cell it crosses (Amanatides-Woo): cells before its end count a miss, the end
+//! cell a hit if the beam returned there, a miss if it saw nothing to maximum range.
 
 use std::collections::HashMap;
 
@@ -33,10 +34,12 @@ impl MapMethod for OccupancyGridMethod {
             });
         }
         let grid = CountGrid::from_scans(window.scans, self.cell_m);
+        let beams = window.scans.iter().map(|s| s.beams.len()).sum();
         Ok(MapOutput {
             probability: points_m.iter().map(|&p| grid.probability(p)).collect(),
             variance: None,
-            training_points: window.scans.iter().map(|s| s.beams.len()).sum(),
+            training_points: beams,
+            drawn_points: beams,
             summary: format!(
                 "{} m cells, {} cells observed",
                 self.cell_m,
@@ -61,7 +64,7 @@ impl CountGrid {
         };
         for scan in scans {
             for beam in &scan.beams {
-                let cells = traced_cells(scan.sensor_m, beam.end_m, cell_m);
+                let cells = traced_cells(beam.start_m, beam.end_m, cell_m);
                 let last = cells.len().saturating_sub(1);
                 for (k, cell) in cells.into_iter().enumerate() {
                     let entry = grid.counts.entry(cell).or_default();
@@ -158,10 +161,12 @@ mod tests {
             yaw_rad: 0.0,
             beams: vec![
                 Beam {
+                    start_m: [0.25, 0.25],
                     end_m: [5.25, 0.25],
                     hit: true,
                 },
                 Beam {
+                    start_m: [0.25, 0.25],
                     end_m: [0.25, 5.25],
                     hit: false,
                 },

@@ -5,9 +5,12 @@
 
 use patchflow_dataset::{SensorInfo, SensorKind, Sweep};
 
-/// One beam in the ground plane, world frame, metres.
+/// One beam in the ground plane, world frame, metres: the stretch of it that observed the plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Beam {
+    /// Where the beam starts observing the plane: the sensor for a planar scanner; for a 3-D
+    /// lidar's beam cut to a height slice, where it enters the slice.
+    pub start_m: [f64; 2],
     /// Where the beam ends: its return, or the point at maximum range when it saw nothing.
     pub end_m: [f64; 2],
     /// True if the beam ended on a surface.
@@ -81,15 +84,16 @@ impl PlanarScan {
             let p = pose * nalgebra::Point3::new(r * c, r * s, 0.0);
             [p.x, p.y]
         };
+        let origin = pose.translation.vector;
         let beams = range_m
             .iter()
             .zip(0u32..)
             .map(|(range, column)| Beam {
+                start_m: [origin.x, origin.y],
                 end_m: to_world(range.unwrap_or(sensor.max_range_m), column),
                 hit: range.is_some(),
             })
             .collect();
-        let origin = pose.translation.vector;
         let forward = pose.rotation * nalgebra::Vector3::x();
         Ok(Self {
             index: sweep.index as usize,

@@ -29,7 +29,7 @@ impl ScanCells {
     pub fn from_scan(scan: &PlanarScan, cell_m: f64) -> Self {
         let mut cells = BTreeMap::new();
         for beam in &scan.beams {
-            for cell in traced_cells(scan.sensor_m, beam.end_m, cell_m) {
+            for cell in traced_cells(beam.start_m, beam.end_m, cell_m) {
                 cells.entry(cell).or_insert(false);
             }
             if beam.hit {
@@ -97,6 +97,7 @@ mod tests {
             sensor_m: [0.25, 0.25],
             yaw_rad: 0.0,
             beams: vec![Beam {
+                start_m: [0.25, 0.25],
                 end_m: [3.25, 0.25],
                 hit: true,
             }],

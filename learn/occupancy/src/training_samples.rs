@@ -1,6 +1,6 @@
 //! Training data of an occupancy map from planar scans (DGPOM paper, Section 2; GPOM): each
-//! return is an occupied sample, and free samples lie along every beam between the sensor and
-//! its return (stopping short of the surface) or out to maximum range for a beam that returned
+//! return is an occupied sample, and free samples lie along every beam between its start (the
+//! sensor, or where a 3-D beam enters the height slice) and its return (stopping short of the surface) or out to maximum range for a beam that returned
 //! nothing. Free samples are stratified along the beam, one per `free_spacing_m` at a seeded
 //! random place within its stretch, so beams of one scan do not put their samples on common
 //! circles around the sensor.
@@ -9,7 +9,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
-use crate::{OccupancyError, PlanarScan, Result};
+use crate::{OccupancyError, PlanarScan, Result, Thinning};
 
 /// One labelled training point: a place in the ground plane at a time, occupied or free.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,6 +32,9 @@ pub struct SampleParams {
     pub stop_short_m: f64,
     /// Seed of the places of the free samples along their stretches.
     pub seed: u64,
+    /// Thinning of each scan's samples to a budget, for dense scans (a 3-D lidar's height
+    /// slice); `None` keeps every sample (a planar scanner's scans).
+    pub thinning: Option<Thinning>,
 }
 
 impl Default for SampleParams {
@@ -40,6 +43,7 @@ impl Default for SampleParams {
             free_spacing_m: 3.0,
             stop_short_m: 0.5,
             seed: 7,
+            thinning: None,
         }
     }
 }
@@ -59,16 +63,41 @@ impl SampleParams {
                 reason: format!("must be zero or positive, got {}", self.stop_short_m),
             });
         }
-        Ok(())
+        match &self.thinning {
+            Some(thinning) => thinning.validate(),
+            None => Ok(()),
+        }
     }
+}
+
+/// The training samples of a map's `scans` (oldest first), each scan's thinned to its budget if
+/// `params` thins, and how many were drawn before thinning.
+pub fn window_samples(
+    scans: &[PlanarScan],
+    params: &SampleParams,
+) -> (Vec<OccupancySample>, usize) {
+    let (mut kept, mut drawn) = (Vec::new(), 0);
+    for scan in scans {
+        let samples = scan_samples(scan, params);
+        drawn += samples.len();
+        match &params.thinning {
+            Some(thinning) => {
+                let places: Vec<([f64; 2], bool)> =
+                    samples.iter().map(|s| (s.xy_m, s.occupied)).collect();
+                kept.extend(thinning.kept(&places).into_iter().map(|i| samples[i]));
+            }
+            None => kept.extend(samples),
+        }
+    }
+    (kept, drawn)
 }
 
 /// The training samples of one scan: for each beam in firing order, its free samples from the
 /// sensor outwards, then its return if it has one.
 pub fn scan_samples(scan: &PlanarScan, params: &SampleParams) -> Vec<OccupancySample> {
     let mut out = Vec::new();
-    let [ox, oy] = scan.sensor_m;
     for (b, beam) in scan.beams.iter().enumerate() {
+        let [ox, oy] = beam.start_m;
         let (dx, dy) = (beam.end_m[0] - ox, beam.end_m[1] - oy);
         let length = dx.hypot(dy);
         if length <= 0.0 {
@@ -135,10 +164,12 @@ mod tests {
             yaw_rad: 0.0,
             beams: vec![
                 Beam {
+                    start_m: [0.0, 0.0],
                     end_m: [10.0, 0.0],
                     hit: true,
                 },
                 Beam {
+                    start_m: [0.0, 0.0],
                     end_m: [0.0, 20.0],
                     hit: false,
                 },

@@ -48,10 +48,11 @@ pub fn print_table(report: &OccupancyReport) {
                 .map(|a| a.map_or("  –   ".into(), |v| format!("{v:.4}")))
                 .collect();
             println!(
-                "  {method:>9}  AUC {}  {:.3} s/map, {:.0} training points",
+                "  {method:>9}  AUC {}  {:.3} s/map, {:.0} training points ({:.0} drawn)",
                 aucs.join(" "),
                 m.mean_seconds_per_map(),
-                m.mean_training_points()
+                m.mean_training_points(),
+                m.mean_drawn_points()
             );
         }
     }
