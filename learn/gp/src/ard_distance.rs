@@ -5,7 +5,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::direct_gemm::{Layout, Lhs, Rhs, Structure, product};
+use super::direct_gemm::{Layout, Lhs, Rhs, Structure, product_consumed, product_then};
 use super::kernel::Points;
 use super::linalg::{mul, sum, transpose, transposed};
 use super::shape::Group;
@@ -58,6 +58,19 @@ pub(crate) fn sq_distances(
     inv_sq: &DVector<f64>,
     g: Group,
 ) -> DMatrix<f64> {
+    sq_distances_then(a, b, inv_sq, g, |_| {})
+}
+
+/// [`sq_distances`] with `then` applied to each group of finished columns of r² inside the
+/// product (e.g. the kernel's profile), while they are in the first-level cache. Pass an
+/// `#[inline(always)]` closure: it runs in the vectorised context.
+pub(crate) fn sq_distances_then<F: FnMut(&mut [f64])>(
+    a: Points<'_>,
+    b: Points<'_>,
+    inv_sq: &DVector<f64>,
+    g: Group,
+    mut then: F,
+) -> DMatrix<f64> {
     let w = &inv_sq.as_slice()[g.start..g.start + g.len];
     let d = a.dims();
     // A diag(ℓ⁻²) as P×D_g rows.
@@ -65,18 +78,21 @@ pub(crate) fn sq_distances(
     let scaled = DMatrix::from_fn(a.len(), g.len, |p, j| ac[p * d + g.start + j] * w[j]);
     let (a_norm, b_norm) = (scaled_norms(a, w, g), scaled_norms(b, w, g));
     let b_g = Rhs::new(columns_from(b, g), (g.len, b.len()), d, Layout::Columns);
-    let mut r2 = product(Lhs::of(&scaled), Structure::General, b_g);
-    vectorised(
+    let p_len = a.len();
+    product_then(
+        Lhs::of(&scaled),
+        Structure::General,
+        b_g,
         #[inline(always)]
-        || {
-            for (col, bn) in r2.as_mut_slice().chunks_exact_mut(a.len()).zip(&b_norm) {
+        |j0, columns| {
+            for (col, bn) in columns.chunks_exact_mut(p_len).zip(&b_norm[j0..]) {
                 for (v, an) in col.iter_mut().zip(&a_norm) {
                     *v = (an + bn - 2.0 * *v).max(0.0);
                 }
             }
+            then(columns);
         },
-    );
-    r2
+    )
 }
 
 /// The column sums c_q = Σ_p E_pq and row sums r_p = Σ_q E_pq of a P×Q matrix.
@@ -153,7 +169,7 @@ pub(crate) fn line_sums(e: &DMatrix<f64>) -> LineSums {
 
 /// Adds the length-scale and first-argument gradients of one group, given E = −2 G ∘ ∂K/∂r²_g
 /// and its line sums: ∂/∂log ℓ_d = ℓ_d⁻² Σ_pq E_pq (a_pd − b_qd)², ∂/∂a_pd = ℓ_d⁻² Σ_q E_pq
-/// (b_qd − a_pd).
+/// (b_qd − a_pd), the latter into `d_a` (P×D, one row per point).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn group_gradient(
     a: Points<'_>,
@@ -165,50 +181,127 @@ pub(crate) fn group_gradient(
     d_a: Option<&mut DMatrix<f64>>,
 ) {
     let d = a.dims();
-    // E B with B's rows read in place (B_g's points are contiguous rows of B), then transposed to
-    // D_g×P so that each point's row of it is a contiguous column below.
-    let ex_t = if b.len() <= DIRECT_MAX_DEPTH {
-        let b_g = Rhs::new(columns_from(b, g), (b.len(), g.len), d, Layout::Rows);
-        transpose(&product(Lhs::of(e), Structure::General, b_g))
-    } else {
-        // Deep products (a full GP's N×N adjoint) go through gemm's cache blocking.
-        let b_rows = transposed(b.coord_slice(), d, b.len());
-        mul(e, &b_rows.columns(g.start, g.len)).transpose()
-    };
     let mut acc = vec![0.0; g.len];
-    let r = &sums.rows;
     let w = &inv_sq.as_slice()[g.start..g.start + g.len];
-    let mut d_a = d_a;
+    // Σ_q c_q b_qd² with c_q = Σ_p E_pq.
     vectorised(
         #[inline(always)]
         || {
-            // Σ_q c_q b_qd² with c_q = Σ_p E_pq.
             for (&c, bq) in sums.cols.iter().zip(b.coord_slice().chunks_exact(d)) {
                 for (a, v) in acc.iter_mut().zip(&bq[g.start..g.start + g.len]) {
                     *a += c * v * v;
                 }
             }
-            // Σ_p r_p a_pd² − 2 a_pd (E B)_pd, with r_p = Σ_q E_pq; and ∂/∂a_pd.
-            for (p, (a_col, ex_col)) in a
-                .coord_slice()
-                .chunks_exact(d)
-                .zip(ex_t.as_slice().chunks_exact(g.len))
-                .enumerate()
-            {
-                let a_g = &a_col[g.start..g.start + g.len];
-                for ((a_acc, v), exv) in acc.iter_mut().zip(a_g).zip(ex_col) {
-                    *a_acc += r[p] * v * v - 2.0 * v * exv;
-                }
-                if let Some(d_a) = d_a.as_deref_mut() {
-                    let out = &mut d_a.as_mut_slice()[p * d + g.start..p * d + g.start + g.len];
-                    for (((o, wj), v), exv) in out.iter_mut().zip(w).zip(a_g).zip(ex_col) {
-                        *o += wj * (exv - r[p] * v);
-                    }
-                }
-            }
         },
     );
+    // A's coordinates one dimension per column, contiguous over its points.
+    let owned;
+    let (a_by_dim, lda) = match a.by_dim() {
+        Some(kept) => kept,
+        None => {
+            owned = transpose(&a.coords().into_owned());
+            (owned.as_slice(), a.len())
+        }
+    };
+    let mut terms = PointTerms {
+        a_by_dim,
+        lda,
+        lo: g.start,
+        rows: &sums.rows,
+        w,
+        acc: &mut acc,
+        d_a: d_a.map(|m| m.as_mut_slice()),
+    };
+    if b.len() <= DIRECT_MAX_DEPTH {
+        // E B with B read in place: one dimension per column when the points keep that copy (the
+        // training inputs), else its rows (B_g's points are contiguous rows of B). Each group of
+        // its columns is consumed while in cache: E B itself is never stored.
+        let b_g = match b.by_dim() {
+            Some((data, ld)) => {
+                Rhs::new(&data[g.start * ld..], (b.len(), g.len), ld, Layout::Columns)
+            }
+            None => Rhs::new(columns_from(b, g), (b.len(), g.len), d, Layout::Rows),
+        };
+        product_consumed(
+            Lhs::of(e),
+            Structure::General,
+            b_g,
+            #[inline(always)]
+            |j0, columns| terms.add(j0, columns),
+        );
+    } else {
+        // Deep products (a full GP's N×N adjoint) go through gemm's cache blocking.
+        let b_rows = transposed(b.coord_slice(), d, b.len());
+        let ex = mul(e, &b_rows.columns(g.start, g.len));
+        vectorised(
+            #[inline(always)]
+            || terms.add(0, ex.as_slice()),
+        );
+    }
     for (j, a_acc) in acc.iter().enumerate() {
         d_log_l[g.start + j] += w[j] * a_acc;
     }
+}
+
+/// The terms of one group's gradients that involve (E B)_pd, added a group of its columns at a
+/// time: Σ_p r_p a_pd² − 2 a_pd (E B)_pd into the length-scale sums, with r_p = Σ_q E_pq, and
+/// ℓ_d⁻² ((E B)_pd − r_p a_pd) into ∂/∂a_pd. Every loop runs along contiguous columns.
+struct PointTerms<'a> {
+    /// A's coordinate d of point p at p + d·lda.
+    a_by_dim: &'a [f64],
+    lda: usize,
+    /// The group's first column.
+    lo: usize,
+    /// r_p.
+    rows: &'a [f64],
+    /// ℓ⁻² of the group's columns.
+    w: &'a [f64],
+    /// The length-scale sums of the group's columns.
+    acc: &'a mut [f64],
+    /// ∂/∂A, P×D column-major.
+    d_a: Option<&'a mut [f64]>,
+}
+
+impl PointTerms<'_> {
+    /// Adds the terms of the group's columns j0 .. j0 + w given (E B)'s columns there (P×w,
+    /// column-major); each column's sum has a fixed order, whatever the grouping.
+    #[inline(always)]
+    fn add(&mut self, j0: usize, ex: &[f64]) {
+        let p_len = self.rows.len();
+        if p_len == 0 {
+            return;
+        }
+        for (j, ex_col) in (j0..).zip(ex.chunks_exact(p_len)) {
+            let col = self.lo + j;
+            let a_col = &self.a_by_dim[col * self.lda..][..p_len];
+            self.acc[j] += point_sum(a_col, self.rows, ex_col);
+            if let Some(d_a) = self.d_a.as_deref_mut() {
+                let wj = self.w[j];
+                let out = &mut d_a[col * p_len..][..p_len];
+                for (((o, v), r), x) in out.iter_mut().zip(a_col).zip(self.rows).zip(ex_col) {
+                    *o += wj * (x - r * v);
+                }
+            }
+        }
+    }
+}
+
+/// Σ_p r_p a_p² − 2 a_p x_p in four interleaved partial sums (vectorised, fixed order).
+#[inline(always)]
+fn point_sum(a: &[f64], r: &[f64], x: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let (ac, rc, xc) = (a.chunks_exact(4), r.chunks_exact(4), x.chunks_exact(4));
+    let tail: f64 = (ac
+        .remainder()
+        .iter()
+        .zip(rc.remainder())
+        .zip(xc.remainder()))
+    .map(|((a, r), x)| r * a * a - 2.0 * a * x)
+    .sum();
+    for ((a, r), x) in ac.zip(rc).zip(xc) {
+        for l in 0..4 {
+            acc[l] += r[l] * a[l] * a[l] - 2.0 * a[l] * x[l];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }

@@ -28,6 +28,7 @@ mod fit;
 mod fitc;
 mod full;
 mod gemm;
+mod gemm_operands;
 mod heap_warmup;
 mod hyper;
 mod init;

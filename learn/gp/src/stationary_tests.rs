@@ -76,7 +76,7 @@ fn hyperparameter_and_input_gradients_match_central_differences() {
     let h = 1e-6;
     for (name, k) in kernels() {
         let kab = k.cross(Points::new(&a, None), Points::new(&b, None));
-        let mut d_a = DMatrix::zeros(3, 5);
+        let mut d_a = DMatrix::zeros(5, 3);
         let grad = k.cross_gradient(
             Points::new(&a, None),
             Points::new(&b, None),
@@ -110,9 +110,9 @@ fn hyperparameter_and_input_gradients_match_central_differences() {
                 };
                 let fd = (at(h) - at(-h)) / (2.0 * h);
                 assert!(
-                    (fd - d_a[(d, p)]).abs() < 1e-7 * d_a[(d, p)].abs().max(1.0),
+                    (fd - d_a[(p, d)]).abs() < 1e-7 * d_a[(p, d)].abs().max(1.0),
                     "{name} ∂a[{d},{p}]: fd {fd} vs {}",
-                    d_a[(d, p)]
+                    d_a[(p, d)]
                 );
             }
         }
