@@ -294,11 +294,14 @@ fn panel_tiles<S: Simd, const MRV: usize, const NR: usize, F>(
         let rows = mr.min(src.rows - i0);
         for (j, acc_col) in acc.iter().enumerate() {
             let out = &mut panel[j * m + row..][..rows];
-            for (r, v) in acc_col.iter().enumerate() {
-                let lo = r * S::F64_LANES;
-                if lo < rows {
-                    simd.partial_store_f64s(&mut out[lo..rows.min(lo + S::F64_LANES)], *v);
-                }
+            // Whole vectors as plain stores (pulp's partial store is an out-of-line call), the
+            // ragged end as a partial one.
+            let (whole, rest) = S::as_mut_simd_f64s(out);
+            for (dst, v) in whole.iter_mut().zip(acc_col) {
+                *dst = *v;
+            }
+            if let (false, Some(v)) = (rest.is_empty(), acc_col.get(whole.len())) {
+                simd.partial_store_f64s(rest, *v);
             }
         }
     }
