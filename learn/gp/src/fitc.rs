@@ -143,7 +143,7 @@ fn pseudo_factor<K: Kernel>(
 
 /// Factors the model at `h` (gp.md §1 steps 1-8).
 pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> Result<Factors> {
-    let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+    let z = OwnedPoints::of_rows_kept(&h.pseudo_inputs, &h.kernel);
     let m = h.pseudo_inputs.nrows();
     let blocks = data.blocks();
     let (pseudo, covs) = rayon::join(

@@ -165,8 +165,8 @@ pub trait Kernel: Clone + fmt::Debug + Send + Sync {
 pub(crate) struct OwnedPoints {
     coords: DMatrix<f64>,
     extra: Option<DMatrix<f64>>,
-    /// The same points one per row (P×D), for [`Points::by_dim`].
-    rows: DMatrix<f64>,
+    /// The same points one per row (P×D), for [`Points::by_dim`], if kept.
+    rows: Option<DMatrix<f64>>,
 }
 
 impl OwnedPoints {
@@ -177,13 +177,27 @@ impl OwnedPoints {
         Self {
             coords,
             extra,
-            rows: x.clone(),
+            rows: None,
+        }
+    }
+
+    /// [`OwnedPoints::of_rows`] keeping a copy of `x` as the points' coordinates by dimension:
+    /// for points that are the first argument of covariances (and of their gradients), such as
+    /// pseudo-inputs, whose products then read them in place.
+    pub fn of_rows_kept<K: Kernel>(x: &DMatrix<f64>, kernel: &K) -> Self {
+        Self {
+            rows: Some(x.clone()),
+            ..Self::of_rows(x, kernel)
         }
     }
 
     /// A view for the kernel.
     pub fn points(&self) -> Points<'_> {
-        Points::new(&self.coords, self.extra.as_ref()).with_by_dim(&self.rows)
+        let p = Points::new(&self.coords, self.extra.as_ref());
+        match &self.rows {
+            Some(rows) => p.with_by_dim(rows),
+            None => p,
+        }
     }
 }
 
