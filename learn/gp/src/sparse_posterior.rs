@@ -8,10 +8,11 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::direct_gemm::{Lhs, Rhs, Structure, product_consumed};
 use super::fitc::factor;
 use super::hyper::Hyper;
 use super::kernel::{Kernel, OwnedPoints};
-use super::linalg::{colsum_product, mul, t_view};
+use super::linalg::{dot, mul, t_view};
 use super::train_data::TrainData;
 use crate::Result;
 
@@ -51,9 +52,29 @@ impl SparsePosterior {
         let z = OwnedPoints::of_rows_kept(&h.pseudo_inputs, &h.kernel);
         let test = OwnedPoints::of_rows(x, &h.kernel);
         let k_star = h.kernel.cross(z.points(), test.points());
-        let mean = k_star.tr_mul(&self.weights);
-        let wk = mul(&self.var_matrix, &k_star);
-        let quad = colsum_product(&k_star, &wk);
+        let m = k_star.nrows();
+        let (k_cols, w) = (k_star.as_slice(), self.weights.as_slice());
+        let t_len = k_star.ncols();
+        let (mut mean, mut quad) = (Vec::with_capacity(t_len), Vec::with_capacity(t_len));
+        if m == 0 {
+            (mean, quad) = (vec![0.0; t_len], vec![0.0; t_len]);
+        }
+        // W k_* a group of test points at a time, consumed in cache (never stored): mean k_*ᵀw and
+        // the quadratic form k_*ᵀ(W k_*) per point.
+        product_consumed(
+            Lhs::of(&self.var_matrix),
+            Structure::General,
+            Rhs::of(&k_star),
+            #[inline(always)]
+            |j0, columns| {
+                for (wk, t) in columns.chunks_exact(m).zip(j0..) {
+                    let k_t = &k_cols[t * m..(t + 1) * m];
+                    mean.push(dot(k_t, w));
+                    quad.push(dot(k_t, wk));
+                }
+            },
+        );
+        let mean = DVector::from_vec(mean);
         let prior = h.kernel.diag(test.points());
         let var = DVector::from_iterator(
             prior.len(),
