@@ -20,6 +20,7 @@
 //! ```
 
 mod ard_distance;
+mod ard_gradient;
 mod blocked;
 mod direct_gemm;
 mod error;

@@ -9,9 +9,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::ard_distance::{
-    group_gradient, line_sums, product_with_sums, sq_distances, sq_distances_then,
-};
+use super::ard_distance::{sq_distances, sq_distances_then};
+use super::ard_gradient::{group_gradient, line_sums, product_with_sums};
 use super::kernel::{Kernel, Points};
 use super::shape::{Factor, Group, Shape};
 use crate::{GpError, Result};
