@@ -1,38 +1,42 @@
-//! ARD-scaled squared distances and their adjoints through gemm: r² = ‖a‖²_ℓ + ‖b‖²_ℓ −
-//! 2 (A diag(ℓ⁻²)) Bᵀ over one group of columns, and the length-scale and first-argument gradients
-//! from E = −2 G ∘ ∂K/∂r² (gp.md §2.3, where for SE, E = G ∘ K). Apart from the two gemms every
-//! loop runs along contiguous point columns.
+//! ARD-scaled squared distances through one packing-free product: r² = ‖a‖²_ℓ + ‖b‖²_ℓ −
+//! 2 (A diag(ℓ⁻²)) Bᵀ over one group of columns, the norms (and the kernel's profile) applied in
+//! the product's epilogue. Their adjoints are in [`super::ard_gradient`].
 
 use nalgebra::{DMatrix, DVector};
 
-use super::direct_gemm::{Layout, Lhs, Rhs, Structure, product};
+use super::direct_gemm::{Layout, Lhs, Rhs, Structure, product_then};
 use super::kernel::Points;
-use super::linalg::{mul, sum, transpose, transposed};
 use super::shape::Group;
 use super::simd::vectorised;
 
-/// Largest inner dimension given to the packing-free products: beyond it the operands' tiles no
-/// longer fit the core's caches.
-const DIRECT_MAX_DEPTH: usize = 1024;
-
 /// The coordinates of `p` from column `g.start` of its first point on (empty for no points).
-fn columns_from(p: Points<'_>, g: Group) -> &[f64] {
+pub(crate) fn columns_from(p: Points<'_>, g: Group) -> &[f64] {
     p.coord_slice().get(g.start..).unwrap_or(&[])
 }
 
-/// Σ_j v_j² w_j with four partial sums, so the loop vectorises.
+/// Σ_j v_j² w_j in sixteen interleaved partial sums: two vectors of eight lanes (four of four
+/// with AVX2), so the loop is not held up by the latency of one chain of additions.
 #[inline(always)]
 fn weighted_sq_sum(v: &[f64], w: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let (vc, wc) = (v.chunks_exact(4), w.chunks_exact(4));
+    const LANES: usize = 16;
+    let mut acc = [0.0; LANES];
+    let (vc, wc) = (v.chunks_exact(LANES), w.chunks_exact(LANES));
     let (vr, wr) = (vc.remainder(), wc.remainder());
     for (a, b) in vc.zip(wc) {
-        for l in 0..4 {
+        for l in 0..LANES {
             acc[l] += a[l] * a[l] * b[l];
         }
     }
     let tail: f64 = vr.iter().zip(wr).map(|(a, b)| a * a * b).sum();
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+    // A fixed pairwise reduction: the same order on every instruction set.
+    let mut width = LANES;
+    while width > 1 {
+        width /= 2;
+        for l in 0..width {
+            acc[l] += acc[l + width];
+        }
+    }
+    acc[0] + tail
 }
 
 /// Σ_{d∈g} v_d² ℓ_d⁻² for each point.
@@ -51,6 +55,25 @@ fn scaled_norms(p: Points<'_>, inv_sq: &[f64], g: Group) -> Vec<f64> {
     out
 }
 
+/// A diag(ℓ⁻²) over the columns of `g` (P×D_g), column by column from the points' copy one
+/// dimension per column when they keep one.
+fn scaled_columns(a: Points<'_>, w: &[f64], g: Group) -> DMatrix<f64> {
+    let (p_len, d) = (a.len(), a.dims());
+    match a.by_dim() {
+        Some((data, ld)) => {
+            let mut out = Vec::with_capacity(p_len * g.len);
+            for (j, wj) in w.iter().enumerate() {
+                out.extend(data[(g.start + j) * ld..][..p_len].iter().map(|v| v * wj));
+            }
+            DMatrix::from_vec(p_len, g.len, out)
+        }
+        None => {
+            let ac = a.coord_slice();
+            DMatrix::from_fn(p_len, g.len, |p, j| ac[p * d + g.start + j] * w[j])
+        }
+    }
+}
+
 /// Squared scaled distances r² (P×Q) between `a` and `b` over the columns of `g`.
 pub(crate) fn sq_distances(
     a: Points<'_>,
@@ -58,157 +81,37 @@ pub(crate) fn sq_distances(
     inv_sq: &DVector<f64>,
     g: Group,
 ) -> DMatrix<f64> {
+    sq_distances_then(a, b, inv_sq, g, |_| {})
+}
+
+/// [`sq_distances`] with `then` applied to each group of finished columns of r² inside the
+/// product (e.g. the kernel's profile), while they are in the first-level cache. Pass an
+/// `#[inline(always)]` closure: it runs in the vectorised context.
+pub(crate) fn sq_distances_then<F: FnMut(&mut [f64])>(
+    a: Points<'_>,
+    b: Points<'_>,
+    inv_sq: &DVector<f64>,
+    g: Group,
+    mut then: F,
+) -> DMatrix<f64> {
     let w = &inv_sq.as_slice()[g.start..g.start + g.len];
     let d = a.dims();
-    // A diag(ℓ⁻²) as P×D_g rows.
-    let ac = a.coord_slice();
-    let scaled = DMatrix::from_fn(a.len(), g.len, |p, j| ac[p * d + g.start + j] * w[j]);
+    let scaled = scaled_columns(a, w, g);
     let (a_norm, b_norm) = (scaled_norms(a, w, g), scaled_norms(b, w, g));
     let b_g = Rhs::new(columns_from(b, g), (g.len, b.len()), d, Layout::Columns);
-    let mut r2 = product(Lhs::of(&scaled), Structure::General, b_g);
-    vectorised(
+    let p_len = a.len();
+    product_then(
+        Lhs::of(&scaled),
+        Structure::General,
+        b_g,
         #[inline(always)]
-        || {
-            for (col, bn) in r2.as_mut_slice().chunks_exact_mut(a.len()).zip(&b_norm) {
+        |j0, columns| {
+            for (col, bn) in columns.chunks_exact_mut(p_len).zip(&b_norm[j0..]) {
                 for (v, an) in col.iter_mut().zip(&a_norm) {
                     *v = (an + bn - 2.0 * *v).max(0.0);
                 }
             }
+            then(columns);
         },
-    );
-    r2
-}
-
-/// The column sums c_q = Σ_p E_pq and row sums r_p = Σ_q E_pq of a P×Q matrix.
-pub(crate) struct LineSums {
-    cols: Vec<f64>,
-    rows: Vec<f64>,
-}
-
-impl LineSums {
-    /// Σ_pq E_pq.
-    pub fn total(&self) -> f64 {
-        sum(&self.cols)
-    }
-}
-
-/// G ∘ K and its line sums, in one sweep over the columns.
-pub(crate) fn product_with_sums(gm: &DMatrix<f64>, k: &DMatrix<f64>) -> (DMatrix<f64>, LineSums) {
-    let p_len = k.nrows();
-    let mut e = DMatrix::zeros(p_len, k.ncols());
-    let mut sums = LineSums {
-        cols: Vec::with_capacity(k.ncols()),
-        rows: vec![0.0; p_len],
-    };
-    if p_len == 0 {
-        sums.cols.resize(k.ncols(), 0.0);
-        return (e, sums);
-    }
-    vectorised(
-        #[inline(always)]
-        || {
-            for ((e_col, g_col), k_col) in e
-                .as_mut_slice()
-                .chunks_exact_mut(p_len)
-                .zip(gm.as_slice().chunks_exact(p_len))
-                .zip(k.as_slice().chunks_exact(p_len))
-            {
-                for (((ev, gv), kv), r) in
-                    e_col.iter_mut().zip(g_col).zip(k_col).zip(&mut sums.rows)
-                {
-                    *ev = gv * kv;
-                    *r += *ev;
-                }
-                sums.cols.push(sum(e_col));
-            }
-        },
-    );
-    (e, sums)
-}
-
-/// The line sums of `e` (see [`LineSums`]).
-pub(crate) fn line_sums(e: &DMatrix<f64>) -> LineSums {
-    let p_len = e.nrows();
-    let mut sums = LineSums {
-        cols: Vec::with_capacity(e.ncols()),
-        rows: vec![0.0; p_len],
-    };
-    if p_len == 0 {
-        sums.cols.resize(e.ncols(), 0.0);
-        return sums;
-    }
-    vectorised(
-        #[inline(always)]
-        || {
-            for col in e.as_slice().chunks_exact(p_len) {
-                for (r, v) in sums.rows.iter_mut().zip(col) {
-                    *r += v;
-                }
-                sums.cols.push(sum(col));
-            }
-        },
-    );
-    sums
-}
-
-/// Adds the length-scale and first-argument gradients of one group, given E = −2 G ∘ ∂K/∂r²_g
-/// and its line sums: ∂/∂log ℓ_d = ℓ_d⁻² Σ_pq E_pq (a_pd − b_qd)², ∂/∂a_pd = ℓ_d⁻² Σ_q E_pq
-/// (b_qd − a_pd).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn group_gradient(
-    a: Points<'_>,
-    b: Points<'_>,
-    (e, sums): (&DMatrix<f64>, &LineSums),
-    inv_sq: &DVector<f64>,
-    g: Group,
-    d_log_l: &mut [f64],
-    d_a: Option<&mut DMatrix<f64>>,
-) {
-    let d = a.dims();
-    // E B with B's rows read in place (B_g's points are contiguous rows of B), then transposed to
-    // D_g×P so that each point's row of it is a contiguous column below.
-    let ex_t = if b.len() <= DIRECT_MAX_DEPTH {
-        let b_g = Rhs::new(columns_from(b, g), (b.len(), g.len), d, Layout::Rows);
-        transpose(&product(Lhs::of(e), Structure::General, b_g))
-    } else {
-        // Deep products (a full GP's N×N adjoint) go through gemm's cache blocking.
-        let b_rows = transposed(b.coord_slice(), d, b.len());
-        mul(e, &b_rows.columns(g.start, g.len)).transpose()
-    };
-    let mut acc = vec![0.0; g.len];
-    let r = &sums.rows;
-    let w = &inv_sq.as_slice()[g.start..g.start + g.len];
-    let mut d_a = d_a;
-    vectorised(
-        #[inline(always)]
-        || {
-            // Σ_q c_q b_qd² with c_q = Σ_p E_pq.
-            for (&c, bq) in sums.cols.iter().zip(b.coord_slice().chunks_exact(d)) {
-                for (a, v) in acc.iter_mut().zip(&bq[g.start..g.start + g.len]) {
-                    *a += c * v * v;
-                }
-            }
-            // Σ_p r_p a_pd² − 2 a_pd (E B)_pd, with r_p = Σ_q E_pq; and ∂/∂a_pd.
-            for (p, (a_col, ex_col)) in a
-                .coord_slice()
-                .chunks_exact(d)
-                .zip(ex_t.as_slice().chunks_exact(g.len))
-                .enumerate()
-            {
-                let a_g = &a_col[g.start..g.start + g.len];
-                for ((a_acc, v), exv) in acc.iter_mut().zip(a_g).zip(ex_col) {
-                    *a_acc += r[p] * v * v - 2.0 * v * exv;
-                }
-                if let Some(d_a) = d_a.as_deref_mut() {
-                    let out = &mut d_a.as_mut_slice()[p * d + g.start..p * d + g.start + g.len];
-                    for (((o, wj), v), exv) in out.iter_mut().zip(w).zip(a_g).zip(ex_col) {
-                        *o += wj * (exv - r[p] * v);
-                    }
-                }
-            }
-        },
-    );
-    for (j, a_acc) in acc.iter().enumerate() {
-        d_log_l[g.start + j] += w[j] * a_acc;
-    }
+    )
 }

@@ -12,107 +12,54 @@
 use nalgebra::DMatrix;
 use pulp::{Simd, WithSimd};
 
+pub(crate) use super::gemm_operands::{Layout, Lhs, Rhs, Structure};
 use super::tile_kernel::{RowSource, TileB, kernel_columns, kernel_rows};
-
-/// How the right operand B (k×n) lies in its slice.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Layout {
-    /// B[p, j] at p + j·ld: columns contiguous (e.g. points stored as columns).
-    Columns,
-    /// B[p, j] at j + p·ld: rows contiguous (e.g. the transpose of a column-major matrix).
-    Rows,
-}
-
-/// The right operand: a k×n matrix in a slice.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Rhs<'a> {
-    data: &'a [f64],
-    k: usize,
-    n: usize,
-    ld: usize,
-    layout: Layout,
-}
-
-impl<'a> Rhs<'a> {
-    /// The k×n matrix with B[p, j] at p + j·ld (Columns) or j + p·ld (Rows) of `data`.
-    pub fn new(data: &'a [f64], (k, n): (usize, usize), ld: usize, layout: Layout) -> Self {
-        let (inner, outer) = match layout {
-            Layout::Columns => (k, n),
-            Layout::Rows => (n, k),
-        };
-        debug_assert!(
-            inner <= ld && (outer == 0 || inner == 0 || (outer - 1) * ld + inner <= data.len()),
-            "operand {k}×{n} (ld {ld}) does not fit its {} values",
-            data.len()
-        );
-        Self {
-            data,
-            k,
-            n,
-            ld,
-            layout,
-        }
-    }
-
-    /// Bᵀ for the column-major matrix `b`: B[p, j] = b[j, p].
-    pub fn transpose_of(b: &'a DMatrix<f64>) -> Self {
-        Self::new(
-            b.as_slice(),
-            (b.ncols(), b.nrows()),
-            b.nrows(),
-            Layout::Rows,
-        )
-    }
-
-    /// The column-major matrix `b` itself.
-    pub fn of(b: &'a DMatrix<f64>) -> Self {
-        Self::new(b.as_slice(), b.shape(), b.nrows(), Layout::Columns)
-    }
-}
-
-/// The left operand: an m×k column-major matrix in a slice, columns `ld` apart.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Lhs<'a> {
-    data: &'a [f64],
-    m: usize,
-    k: usize,
-    ld: usize,
-}
-
-impl<'a> Lhs<'a> {
-    /// The m×k matrix with A[i, p] at i + p·ld of `data`.
-    pub fn new(data: &'a [f64], (m, k): (usize, usize), ld: usize) -> Self {
-        debug_assert!(m <= ld && (k == 0 || m == 0 || (k - 1) * ld + m <= data.len()));
-        Self { data, m, k, ld }
-    }
-
-    /// The column-major matrix `a` itself.
-    pub fn of(a: &'a DMatrix<f64>) -> Self {
-        Self::new(a.as_slice(), a.shape(), a.nrows())
-    }
-}
-
-/// Which entries of a square left operand may be non-zero.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Structure {
-    /// Any A.
-    General,
-    /// A lower-triangular: row i needs B's rows 0..=i only.
-    Lower,
-    /// A upper-triangular: row i needs B's rows i.. only.
-    Upper,
-}
 
 /// C = A·B, skipping A's zero half when `structure` says it is triangular.
 pub(crate) fn product(a: Lhs<'_>, structure: Structure, b: Rhs<'_>) -> DMatrix<f64> {
-    run(a, structure, b, false)
+    product_then(a, structure, b, |_, _| {})
+}
+
+/// C = A·B, with `epilogue(j0, columns)` applied to each group of C's columns j0 .. (all m rows,
+/// column-major) while it is still in the first-level cache, before it is stored: a sweep over
+/// the columns of C (an elementwise function, column norms and scalings) fused into the product.
+/// The epilogue runs in the vectorised context; pass an `#[inline(always)]` closure.
+pub(crate) fn product_then<F: FnMut(usize, &mut [f64])>(
+    a: Lhs<'_>,
+    structure: Structure,
+    b: Rhs<'_>,
+    epilogue: F,
+) -> DMatrix<f64> {
+    let (m, n) = (a.m, b.n);
+    DMatrix::from_vec(m, n, run(a, structure, b, false, Output::Keep(epilogue)))
+}
+
+/// Hands each group of C = A·B's columns to `consume(j0, columns)` (as in [`product_then`])
+/// without storing C, for a consumer that keeps only what it derives from it.
+pub(crate) fn product_consumed<F: FnMut(usize, &mut [f64])>(
+    a: Lhs<'_>,
+    structure: Structure,
+    b: Rhs<'_>,
+    consume: F,
+) {
+    run(a, structure, b, false, Output::Drop(consume));
 }
 
 /// C = A·B for a product known to be symmetric (e.g. Ṽ diag(w) Ṽᵀ): the lower tiles are computed
 /// and mirrored, so C is exactly symmetric.
 pub(crate) fn symmetric_product(a: Lhs<'_>, structure: Structure, b: Rhs<'_>) -> DMatrix<f64> {
-    let mut c = run(a, structure, b, true);
-    let m = c.nrows();
+    let m = a.m;
+    let mut c = DMatrix::from_vec(
+        m,
+        b.n,
+        run(
+            a,
+            structure,
+            b,
+            true,
+            Output::Keep(|_: usize, _: &mut [f64]| {}),
+        ),
+    );
     for j in 1..m {
         for i in 0..j {
             c[(i, j)] = c[(j, i)];
@@ -121,7 +68,21 @@ pub(crate) fn symmetric_product(a: Lhs<'_>, structure: Structure, b: Rhs<'_>) ->
     c
 }
 
-fn run(a: Lhs<'_>, structure: Structure, b: Rhs<'_>, symmetric: bool) -> DMatrix<f64> {
+/// What becomes of each group of C's columns once its tiles are done.
+enum Output<F> {
+    /// The epilogue runs on it, then it is stored.
+    Keep(F),
+    /// The consumer reads it; nothing is stored.
+    Drop(F),
+}
+
+fn run<F: FnMut(usize, &mut [f64])>(
+    a: Lhs<'_>,
+    structure: Structure,
+    b: Rhs<'_>,
+    symmetric: bool,
+    output: Output<F>,
+) -> Vec<f64> {
     let (m, k, n) = (a.m, a.k, b.n);
     debug_assert_eq!(k, b.k, "inner dimensions differ");
     debug_assert!(
@@ -130,15 +91,25 @@ fn run(a: Lhs<'_>, structure: Structure, b: Rhs<'_>, symmetric: bool) -> DMatrix
     );
     debug_assert!(!symmetric || m == n, "a symmetric product is square");
     if m == 0 || n == 0 || k == 0 {
-        return DMatrix::zeros(m, n);
+        // C is zero: the epilogue still sees every column.
+        let mut c = vec![0.0; m * n];
+        match output {
+            Output::Keep(mut f) | Output::Drop(mut f) => {
+                for (j0, col) in c.chunks_exact_mut(m.max(1)).enumerate() {
+                    f(j0, col);
+                }
+            }
+        }
+        return c;
     }
     let job = Job {
         a,
         structure,
         b,
         symmetric,
+        output,
     };
-    DMatrix::from_vec(m, n, pulp::Arch::new().dispatch(job))
+    pulp::Arch::new().dispatch(job)
 }
 
 /// C = A·B computed with the instruction set `simd` (the tests check each one the dispatch may pick).
@@ -154,29 +125,32 @@ pub(crate) fn product_with<S: Simd>(
         structure,
         b,
         symmetric: false,
+        output: Output::Keep(|_: usize, _: &mut [f64]| {}),
     };
     DMatrix::from_vec(a.m, b.n, simd.vectorize(job))
 }
 
-/// A product, as dispatched to the widest instruction set; it returns C's values column-major.
-struct Job<'a> {
+/// A product, as dispatched to the widest instruction set; it returns C's values column-major
+/// (nothing for [`Output::Drop`]).
+struct Job<'a, F> {
     a: Lhs<'a>,
     structure: Structure,
     b: Rhs<'a>,
     symmetric: bool,
+    output: Output<F>,
 }
 
-impl WithSimd for Job<'_> {
+impl<F: FnMut(usize, &mut [f64])> WithSimd for Job<'_, F> {
     type Output = Vec<f64>;
 
     #[inline(always)]
-    fn with_simd<S: Simd>(self, simd: S) -> Vec<f64> {
+    fn with_simd<S: Simd>(mut self, simd: S) -> Vec<f64> {
         // Register tiles: MRV vectors of rows × NR columns of accumulators, within the 32
         // (AVX-512) or 16 (AVX2, SSE2) vector registers.
         match S::F64_LANES {
-            8 => tiles::<S, 2, 12>(simd, &self),
-            4 => tiles::<S, 2, 6>(simd, &self),
-            _ => tiles::<S, 2, 4>(simd, &self),
+            8 => tiles::<S, 2, 12, F>(simd, &mut self),
+            4 => tiles::<S, 2, 6, F>(simd, &mut self),
+            _ => tiles::<S, 2, 4, F>(simd, &mut self),
         }
     }
 }
@@ -185,9 +159,13 @@ impl WithSimd for Job<'_> {
 const NARROW: usize = 4;
 
 /// C, one group of columns at a time (NR wide, the last few NARROW wide), each assembled in a
-/// scratch panel and appended, so the output is written once and never zero-filled.
+/// scratch panel, passed through the epilogue and appended, so the output is written once and
+/// never zero-filled.
 #[inline(always)]
-fn tiles<S: Simd, const MRV: usize, const NR: usize>(simd: S, job: &Job<'_>) -> Vec<f64> {
+fn tiles<S: Simd, const MRV: usize, const NR: usize, F: FnMut(usize, &mut [f64])>(
+    simd: S,
+    job: &mut Job<'_, F>,
+) -> Vec<f64> {
     let lanes = S::F64_LANES;
     let (m, k, n) = (job.a.m, job.a.k, job.b.n);
     let main_rows = m / (MRV * lanes) * (MRV * lanes);
@@ -197,7 +175,8 @@ fn tiles<S: Simd, const MRV: usize, const NR: usize>(simd: S, job: &Job<'_>) -> 
         rows: main_rows,
         first: 0,
     };
-    let mut c = Vec::with_capacity(m * n);
+    let keep = matches!(job.output, Output::Keep(_));
+    let mut c = Vec::with_capacity(if keep { m * n } else { 0 });
     // The last rows, padded with zeros to whole vectors, go in tiles of one vector.
     let tail = m - main_rows;
     let ld = tail.div_ceil(lanes) * lanes;
@@ -218,25 +197,42 @@ fn tiles<S: Simd, const MRV: usize, const NR: usize>(simd: S, job: &Job<'_>) -> 
     let mut edge = Vec::with_capacity(k * NR);
     let main_cols = n / NR * NR;
     for j0 in (0..main_cols).step_by(NR) {
-        let b = tile_b::<NR>(job, j0, NR, &zeros, &mut edge);
-        panel_tiles::<S, MRV, NR>(simd, job, whole, &b, j0, &mut panel);
-        panel_tiles::<S, 1, NR>(simd, job, rest, &b, j0, &mut panel);
-        c.extend_from_slice(&panel[..m * NR]);
+        let b = tile_b::<NR, F>(job, j0, NR, &zeros, &mut edge);
+        panel_tiles::<S, MRV, NR, F>(simd, job, whole, &b, j0, &mut panel);
+        panel_tiles::<S, 1, NR, F>(simd, job, rest, &b, j0, &mut panel);
+        finish(&mut job.output, j0, &mut panel[..m * NR], &mut c);
     }
     for j0 in (main_cols..n).step_by(NARROW) {
         let width = NARROW.min(n - j0);
-        let b = tile_b::<NARROW>(job, j0, width, &zeros, &mut edge);
-        panel_tiles::<S, MRV, NARROW>(simd, job, whole, &b, j0, &mut panel);
-        panel_tiles::<S, 1, NARROW>(simd, job, rest, &b, j0, &mut panel);
-        c.extend_from_slice(&panel[..m * width]);
+        let b = tile_b::<NARROW, F>(job, j0, width, &zeros, &mut edge);
+        panel_tiles::<S, MRV, NARROW, F>(simd, job, whole, &b, j0, &mut panel);
+        panel_tiles::<S, 1, NARROW, F>(simd, job, rest, &b, j0, &mut panel);
+        finish(&mut job.output, j0, &mut panel[..m * width], &mut c);
     }
     c
 }
 
+/// Runs the epilogue (or consumer) on one finished group of columns and stores it if kept.
+#[inline(always)]
+fn finish<F: FnMut(usize, &mut [f64])>(
+    output: &mut Output<F>,
+    j0: usize,
+    columns: &mut [f64],
+    c: &mut Vec<f64>,
+) {
+    match output {
+        Output::Keep(f) => {
+            f(j0, columns);
+            c.extend_from_slice(columns);
+        }
+        Output::Drop(f) => f(j0, columns),
+    }
+}
+
 /// B's columns j0 .. j0 + NR, of which the first `width` exist: in place, or padded with zero
 /// columns (`zeros` has k values; `edge` is scratch for a padded copy of rows).
-fn tile_b<'a, const NR: usize>(
-    job: &Job<'a>,
+fn tile_b<'a, const NR: usize, F>(
+    job: &Job<'a, F>,
     j0: usize,
     width: usize,
     zeros: &'a [f64],
@@ -271,9 +267,9 @@ fn tile_b<'a, const NR: usize>(
 /// The tiles of the rows of `src` against one group of B's columns, written into `panel` (C's
 /// columns j0 .. j0 + NR, leading dimension m).
 #[inline(always)]
-fn panel_tiles<S: Simd, const MRV: usize, const NR: usize>(
+fn panel_tiles<S: Simd, const MRV: usize, const NR: usize, F>(
     simd: S,
-    job: &Job<'_>,
+    job: &Job<'_, F>,
     src: RowSource<'_>,
     b: &TileB<'_, NR>,
     j0: usize,
@@ -298,11 +294,14 @@ fn panel_tiles<S: Simd, const MRV: usize, const NR: usize>(
         let rows = mr.min(src.rows - i0);
         for (j, acc_col) in acc.iter().enumerate() {
             let out = &mut panel[j * m + row..][..rows];
-            for (r, v) in acc_col.iter().enumerate() {
-                let lo = r * S::F64_LANES;
-                if lo < rows {
-                    simd.partial_store_f64s(&mut out[lo..rows.min(lo + S::F64_LANES)], *v);
-                }
+            // Whole vectors as plain stores (pulp's partial store is an out-of-line call), the
+            // ragged end as a partial one.
+            let (whole, rest) = S::as_mut_simd_f64s(out);
+            for (dst, v) in whole.iter_mut().zip(acc_col) {
+                *dst = *v;
+            }
+            if let (false, Some(v)) = (rest.is_empty(), acc_col.get(whole.len())) {
+                simd.partial_store_f64s(rest, *v);
             }
         }
     }

@@ -7,8 +7,6 @@
 //! adding 1.5·2⁵², which leaves n in the low mantissa bits, so no float-to-integer conversion is
 //! needed (SSE2 and AVX2 have no vector one).
 
-use super::simd::vectorised;
-
 /// Below this e^x is under the smallest normal f64; the result is flushed to 0.
 const MIN_ARG: f64 = -708.0;
 /// Above this e^x overflows; the result is +∞.
@@ -49,18 +47,6 @@ pub(crate) fn exp(x: f64) -> f64 {
     }
 }
 
-/// v ← s · e^{c·v} for every value, vectorised.
-pub(crate) fn scaled_exp_in_place(values: &mut [f64], c: f64, s: f64) {
-    vectorised(
-        #[inline(always)]
-        || {
-            for v in values {
-                *v = s * exp(c * *v);
-            }
-        },
-    );
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -92,18 +78,5 @@ mod tests {
         assert_eq!(LN2_HI + LN2_LO, std::f64::consts::LN_2);
         // 21 trailing zero bits: n · LN2_HI needs at most 32 + 11 significant bits, so is exact.
         assert_eq!(LN2_HI.to_bits() & 0x1f_ffff, 0);
-    }
-
-    #[test]
-    fn the_in_place_form_scales_every_value() {
-        let mut v = vec![0.0, 1.0, 2.0, 3.0, 4.0];
-        scaled_exp_in_place(&mut v, -0.5, 2.0);
-        for (i, got) in v.iter().enumerate() {
-            let want = 2.0 * (-0.5 * i as f64).exp();
-            assert!(
-                (got - want).abs() < 4.0 * f64::EPSILON * want,
-                "{i}: {got} vs {want}"
-            );
-        }
     }
 }

@@ -8,7 +8,7 @@
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
-use super::direct_gemm::{Lhs, Rhs, Structure, product, symmetric_product};
+use super::direct_gemm::{Lhs, Rhs, Structure, product, product_then, symmetric_product};
 use super::heap_warmup::keep_freed_memory_mapped;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, Points, self_covariance};
@@ -83,17 +83,20 @@ fn pass1<K: Kernel>(
     (start, len): (usize, usize),
     (k, k_diag): (DMatrix<f64>, DVector<f64>),
 ) -> Pass1 {
-    let mut vt = product(Lhs::of(l_inv), Structure::Lower, Rhs::of(&k)); // step 3: V = L⁻¹U
-    let m = vt.nrows();
+    let m = l_inv.nrows();
     let y = data.y.rows(start, len);
     let mut g = DVector::zeros(len);
     let mut vy = DVector::zeros(m);
     let (mut yy, mut log_g) = (0.0, 0.0);
-    // Steps 4-5 and the block's share of Ṽỹ in one sweep over the columns of V.
-    vectorised(
+    // Step 3, V = L⁻¹U, with steps 4-5 and the block's share of Ṽỹ in one sweep over each group
+    // of V's columns as the product finishes it.
+    let vt = product_then(
+        Lhs::of(l_inv),
+        Structure::Lower,
+        Rhs::of(&k),
         #[inline(always)]
-        || {
-            for (n, col) in vt.as_mut_slice().chunks_exact_mut(m).enumerate() {
+        |j0, columns| {
+            for (col, n) in columns.chunks_exact_mut(m).zip(j0..) {
                 // step 4: λ = diag K_NN − q clamped at 0, q = ‖V_{:,n}‖²
                 let g_n = (k_diag[n] - dot(col, col)).max(0.0) + h.noise_variance;
                 let g_isqrt = 1.0 / g_n.sqrt();
@@ -140,7 +143,7 @@ fn pseudo_factor<K: Kernel>(
 
 /// Factors the model at `h` (gp.md §1 steps 1-8).
 pub(crate) fn factor<K: Kernel>(data: &TrainData, h: &Hyper<K>, jitter: f64) -> Result<Factors> {
-    let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+    let z = OwnedPoints::of_rows_kept(&h.pseudo_inputs, &h.kernel);
     let m = h.pseudo_inputs.nrows();
     let blocks = data.blocks();
     let (pseudo, covs) = rayon::join(
@@ -213,19 +216,18 @@ fn pass2<K: Kernel>(
     let m = f.u.len();
     let u = f.u.as_slice();
     let y = data.y.rows(start, len);
-    let mut r_mat = product(Lhs::of(&f.b_inv), Structure::General, Rhs::of(&p.vt)); // B⁻¹Ṽ
     let mut d = DVector::zeros(len);
-    // One sweep over the columns: α = C⁻¹y, d = diag(G) and, in place of B⁻¹Ṽ,
-    // R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d), with V = ṼΓ^{1/2}.
-    vectorised(
+    let vt = p.vt.as_slice();
+    // B⁻¹Ṽ, swept as the product finishes each group of its columns: α = C⁻¹y, d = diag(G) and,
+    // in place of B⁻¹Ṽ, R = L_B⁻ᵀW1Γ^{-1/2} − uαᵀ − 2V diag(d), with V = ṼΓ^{1/2}.
+    let mut r_mat = product_then(
+        Lhs::of(&f.b_inv),
+        Structure::General,
+        Rhs::of(&p.vt),
         #[inline(always)]
-        || {
-            for (n, (col, vt_col)) in r_mat
-                .as_mut_slice()
-                .chunks_exact_mut(m)
-                .zip(p.vt.as_slice().chunks_exact(m))
-                .enumerate()
-            {
+        |j0, columns| {
+            for (col, n) in columns.chunks_exact_mut(m).zip(j0..) {
+                let vt_col = &vt[n * m..(n + 1) * m];
                 let g_n = p.g[n];
                 let g_sqrt = g_n.sqrt();
                 let w1_sq = dot(vt_col, col); // ‖W1_{:,n}‖²
@@ -287,7 +289,7 @@ fn pseudo_gradient<K: Kernel>(
     let half = product(l_inv_t, Structure::Upper, Rhs::of(&s_mat));
     let d_bu = product(l_inv_t, Structure::Upper, Rhs::transpose_of(&half));
     let d_bu = (&d_bu + d_bu.transpose()) * 0.5;
-    let mut d_z = DMatrix::zeros(z.dims(), m);
+    let mut d_z = DMatrix::zeros(m, z.dims());
     let grad = h.kernel.cross_gradient(z, z, &f.k_m, &d_bu, Some(&mut d_z));
     (d_bu, grad, d_z * 2.0)
 }
@@ -299,6 +301,16 @@ pub(crate) fn objective<K: Kernel>(
     jitter: f64,
 ) -> Result<Evaluation> {
     keep_freed_memory_mapped();
+    // The whole evaluation runs on a worker of the pool: its parallel passes then split among the
+    // workers directly, instead of each being sent in from outside while the caller sleeps.
+    rayon::scope(|_| objective_on_worker(data, h, jitter))
+}
+
+fn objective_on_worker<K: Kernel>(
+    data: &TrainData,
+    h: &Hyper<K>,
+    jitter: f64,
+) -> Result<Evaluation> {
     let f = factor(data, h, jitter)?;
     let blocks = data.blocks();
     let parts: Vec<Pass2> = blocks
@@ -316,7 +328,7 @@ pub(crate) fn objective<K: Kernel>(
                 .zip(parts.par_iter().zip(f.blocks.par_iter()))
                 .map(|(&(start, len), (p2, p1))| {
                     let x = data.points().range(start, len);
-                    let mut d_z = DMatrix::zeros(z.dims(), z.len());
+                    let mut d_z = DMatrix::zeros(z.len(), z.dims());
                     let g = h
                         .kernel
                         .cross_gradient(z, x, &p1.k, &p2.d_u, Some(&mut d_z));
@@ -334,7 +346,7 @@ pub(crate) fn objective<K: Kernel>(
     let grad = HyperGrad {
         kernel,
         log_noise_variance: h.noise_variance * sum_d,
-        pseudo_inputs: d_z.transpose(),
+        pseudo_inputs: d_z,
         log_pseudo_noise: h
             .pseudo_noise
             .as_ref()

@@ -213,7 +213,7 @@ fn every_het_gradient_including_h_matches_central_differences() {
 fn dense_nlml(data: &TrainData, h: &Hyper<Stationary>, jitter: f64) -> f64 {
     let x = data.x_rows();
     let m = h.pseudo_inputs.nrows();
-    let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+    let z = OwnedPoints::of_rows_kept(&h.pseudo_inputs, &h.kernel);
     let mut b_u = h.kernel.cross(z.points(), z.points());
     for i in 0..m {
         b_u[(i, i)] += jitter + h.pseudo_noise.as_ref().map_or(0.0, |p| p[i]);

@@ -103,7 +103,7 @@ impl FullPosterior {
         h: &Hyper<K>,
         x_test: &DMatrix<f64>,
     ) -> Result<(DVector<f64>, DVector<f64>)> {
-        let train = OwnedPoints::of_rows(&self.x, &h.kernel);
+        let train = OwnedPoints::of_rows_kept(&self.x, &h.kernel);
         let test = OwnedPoints::of_rows(x_test, &h.kernel);
         let k_star = h.kernel.cross(train.points(), test.points());
         let mean = k_star.tr_mul(&self.alpha);

@@ -23,6 +23,9 @@ pub struct Points<'a> {
     coords: &'a [f64],
     dims: usize,
     extra: Option<(&'a [f64], usize)>,
+    /// The same coordinates one dimension per column (P×D column-major, columns `ld` apart), if
+    /// the owner keeps that copy: products over the points then read them in place.
+    by_dim: Option<(&'a [f64], usize)>,
 }
 
 impl<'a> Points<'a> {
@@ -32,7 +35,24 @@ impl<'a> Points<'a> {
             coords: coords.as_slice(),
             dims: coords.nrows(),
             extra: extra.map(|e| (e.as_slice(), e.nrows())),
+            by_dim: None,
         }
+    }
+
+    /// These points with a copy of their coordinates one dimension per column: `by_dim` is the
+    /// P×D column-major matrix of the same values (e.g. the N×D inputs before transposing).
+    pub(crate) fn with_by_dim(self, by_dim: &'a DMatrix<f64>) -> Self {
+        debug_assert_eq!(by_dim.shape(), (self.len(), self.dims));
+        Self {
+            by_dim: Some((by_dim.as_slice(), by_dim.nrows())),
+            ..self
+        }
+    }
+
+    /// The coordinates one dimension per column, if kept: (values, distance between columns);
+    /// point p's coordinate d is at p + d·ld.
+    pub(crate) fn by_dim(&self) -> Option<(&'a [f64], usize)> {
+        self.by_dim
     }
 
     /// Number of points P.
@@ -76,6 +96,7 @@ impl<'a> Points<'a> {
             extra: self
                 .extra
                 .map(|(data, rows)| (&data[start * rows..(start + len) * rows], rows)),
+            by_dim: self.by_dim.map(|(data, ld)| (&data[start..], ld)),
         }
     }
 }
@@ -111,8 +132,8 @@ pub trait Kernel: Clone + fmt::Debug + Send + Sync {
     fn diag(&self, a: Points<'_>) -> DVector<f64>;
 
     /// Given K = [`Kernel::cross`]`(a, b)` and the adjoint G = ∂𝓛/∂K (P×Q), returns
-    /// Σ_ij G_ij ∂k(a_i, b_j)/∂θ and, if `d_a` (D×P) is given, adds Σ_j G_ij ∂k(a_i, b_j)/∂a_i to
-    /// its column i (the derivative in the first argument only).
+    /// Σ_ij G_ij ∂k(a_i, b_j)/∂θ and, if `d_a` (P×D) is given, adds Σ_j G_ij ∂k(a_i, b_j)/∂a_i to
+    /// its row i (the derivative in the first argument only).
     fn cross_gradient(
         &self,
         a: Points<'_>,
@@ -144,6 +165,8 @@ pub trait Kernel: Clone + fmt::Debug + Send + Sync {
 pub(crate) struct OwnedPoints {
     coords: DMatrix<f64>,
     extra: Option<DMatrix<f64>>,
+    /// The same points one per row (P×D), for [`Points::by_dim`], if kept.
+    rows: Option<DMatrix<f64>>,
 }
 
 impl OwnedPoints {
@@ -151,12 +174,30 @@ impl OwnedPoints {
     pub fn of_rows<K: Kernel>(x: &DMatrix<f64>, kernel: &K) -> Self {
         let coords = x.transpose();
         let extra = kernel.point_data(&coords);
-        Self { coords, extra }
+        Self {
+            coords,
+            extra,
+            rows: None,
+        }
+    }
+
+    /// [`OwnedPoints::of_rows`] keeping a copy of `x` as the points' coordinates by dimension:
+    /// for points that are the first argument of covariances (and of their gradients), such as
+    /// pseudo-inputs, whose products then read them in place.
+    pub fn of_rows_kept<K: Kernel>(x: &DMatrix<f64>, kernel: &K) -> Self {
+        Self {
+            rows: Some(x.clone()),
+            ..Self::of_rows(x, kernel)
+        }
     }
 
     /// A view for the kernel.
     pub fn points(&self) -> Points<'_> {
-        Points::new(&self.coords, self.extra.as_ref())
+        let p = Points::new(&self.coords, self.extra.as_ref());
+        match &self.rows {
+            Some(rows) => p.with_by_dim(rows),
+            None => p,
+        }
     }
 }
 

@@ -20,6 +20,7 @@
 //! ```
 
 mod ard_distance;
+mod ard_gradient;
 mod batch_prediction;
 mod blocked;
 mod direct_gemm;
@@ -29,6 +30,7 @@ mod fit;
 mod fitc;
 mod full;
 mod gemm;
+mod gemm_operands;
 mod heap_warmup;
 mod hyper;
 mod init;

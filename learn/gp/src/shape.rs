@@ -3,8 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::exp::{exp, scaled_exp_in_place};
-use super::simd::vectorised;
+use super::exp::exp;
 
 /// √3, the Matérn 3/2 rate.
 const SQRT_3: f64 = 1.732_050_807_568_877_2;
@@ -32,14 +31,13 @@ impl Shape {
         }
     }
 
-    /// v ← s · ρ(v) for every squared distance v, in a loop the compiler vectorises.
-    pub(crate) fn scaled_profile_in_place(self, r2: &mut [f64], s: f64) {
+    /// v ← s · ρ(v) for every squared distance v, in a loop the compiler vectorises when it runs
+    /// in a vectorised context (e.g. the epilogue of the distance product).
+    #[inline(always)]
+    pub(crate) fn apply_scaled_profile(self, r2: &mut [f64], s: f64) {
         match self {
-            Self::SquaredExponential => scaled_exp_in_place(r2, -0.5, s),
-            Self::Matern32 => vectorised(
-                #[inline(always)]
-                || r2.iter_mut().for_each(|v| *v = s * self.profile(*v)),
-            ),
+            Self::SquaredExponential => r2.iter_mut().for_each(|v| *v = s * exp(-0.5 * *v)),
+            Self::Matern32 => r2.iter_mut().for_each(|v| *v = s * self.profile(*v)),
         }
     }
 
@@ -71,4 +69,22 @@ pub(crate) struct Group {
     pub len: usize,
     /// The profile.
     pub shape: Shape,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scaled_profile_is_the_signal_variance_times_the_profile() {
+        for shape in [Shape::SquaredExponential, Shape::Matern32] {
+            let mut v = vec![0.0, 0.5, 1.0, 2.0, 9.0];
+            let want: Vec<f64> = v.iter().map(|r2| 2.5 * shape.profile(*r2)).collect();
+            shape.apply_scaled_profile(&mut v, 2.5);
+            assert_eq!(v, want, "{shape:?}");
+        }
+        let mut v = vec![2.0];
+        Shape::SquaredExponential.apply_scaled_profile(&mut v, 3.0);
+        assert!((v[0] - 3.0 * (-1.0f64).exp()).abs() < 1e-15);
+    }
 }

@@ -48,7 +48,7 @@ impl SparsePosterior {
         h: &Hyper<K>,
         x: &DMatrix<f64>,
     ) -> (DVector<f64>, DVector<f64>) {
-        let z = OwnedPoints::of_rows(&h.pseudo_inputs, &h.kernel);
+        let z = OwnedPoints::of_rows_kept(&h.pseudo_inputs, &h.kernel);
         let test = OwnedPoints::of_rows(x, &h.kernel);
         let k_star = h.kernel.cross(z.points(), test.points());
         let mean = k_star.tr_mul(&self.weights);

@@ -9,7 +9,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::ard_distance::{group_gradient, line_sums, product_with_sums, sq_distances};
+use super::ard_distance::{sq_distances, sq_distances_then};
+use super::ard_gradient::{group_gradient, line_sums, product_with_sums};
 use super::kernel::{Kernel, Points};
 use super::shape::{Factor, Group, Shape};
 use crate::{GpError, Result};
@@ -228,8 +229,15 @@ impl Kernel for Stationary {
         let Some((&first, rest)) = self.groups.split_first() else {
             return DMatrix::from_element(a.len(), b.len(), s); // no input columns
         };
-        let mut k = sq_distances(a, b, &inv_sq, first);
-        first.shape.scaled_profile_in_place(k.as_mut_slice(), s);
+        // The first profile is applied inside the distance product, on columns still in cache.
+        let mut k = sq_distances_then(
+            a,
+            b,
+            &inv_sq,
+            first,
+            #[inline(always)]
+            |r2| first.shape.apply_scaled_profile(r2, s),
+        );
         for &g in rest {
             let r2 = sq_distances(a, b, &inv_sq, g);
             k.zip_apply(&r2, |kv, r| *kv *= g.shape.profile(r));

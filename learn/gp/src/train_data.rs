@@ -14,6 +14,8 @@ pub(crate) const BLOCK_ROWS: usize = 200;
 pub(crate) struct TrainData {
     /// Inputs, one sample per column (D×N).
     pub xt: DMatrix<f64>,
+    /// The same inputs one sample per row (N×D), read in place by the gradient's E·X products.
+    x: DMatrix<f64>,
     /// The kernel's per-point data (E×N), if it has any.
     pub extra: Option<DMatrix<f64>>,
     /// Targets (N).
@@ -25,6 +27,7 @@ impl TrainData {
     pub fn new(x: &DMatrix<f64>, y: &DVector<f64>) -> Self {
         Self {
             xt: x.transpose(),
+            x: x.clone(),
             extra: None,
             y: y.clone(),
         }
@@ -53,7 +56,7 @@ impl TrainData {
 
     /// All samples as kernel points.
     pub fn points(&self) -> Points<'_> {
-        Points::new(&self.xt, self.extra.as_ref())
+        Points::new(&self.xt, self.extra.as_ref()).with_by_dim(&self.x)
     }
 
     /// `(start, len)` of each row block, in order.
