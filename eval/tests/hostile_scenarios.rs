@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{assert_clean_failure, patchflow};
+use common::{assert_clean_failure, generate_file};
 
 const LIDAR: &str = "sweeps = 2\n[lidar]\nchannels = 8\nazimuth_steps = 90\nblocks = 9\n";
 const EGO: &str = "[ego]\npath_m = [[0.0, 0.0], [50.0, 0.0]]\nspeed_mps = 5.0\n";
@@ -17,13 +17,7 @@ fn refused(text: &str, must_mention: &[&str]) {
     let scenario = dir.path().join("case.toml");
     std::fs::write(&scenario, text).unwrap();
     let out = dir.path().join("data");
-    let output = patchflow(&[
-        "generate",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_clean_failure(&output, must_mention);
+    assert_clean_failure(&generate_file(&scenario, &out), must_mention);
 }
 
 #[test]

@@ -10,8 +10,8 @@ mod common;
 use std::path::Path;
 
 use common::{
-    assert_clean_failure, assert_success, files, generate_tiny, patchflow, tiny_scenario,
-    train_small,
+    assert_clean_failure, assert_success, files, generate_file, generate_tiny, patchflow,
+    tiny_scenario, train_small,
 };
 
 #[test]
@@ -45,14 +45,7 @@ fn an_edited_scenario_into_a_finished_folder_is_refused() {
     let text = std::fs::read_to_string(tiny_scenario()).unwrap();
     std::fs::write(&scenario, &text).unwrap();
     let data = dir.path().join("data");
-    let run = || {
-        patchflow(&[
-            "generate",
-            scenario.to_str().unwrap(),
-            "--out",
-            data.to_str().unwrap(),
-        ])
-    };
+    let run = || generate_file(&scenario, &data);
     assert_success(&run());
     std::fs::write(
         &scenario,
@@ -81,14 +74,7 @@ fn an_edited_mesh_file_into_a_finished_folder_is_refused() {
     };
     std::fs::write(dir.path().join("car.obj"), cube(2.0)).unwrap();
     let data = dir.path().join("data");
-    let run = || {
-        patchflow(&[
-            "generate",
-            scenario.to_str().unwrap(),
-            "--out",
-            data.to_str().unwrap(),
-        ])
-    };
+    let run = || generate_file(&scenario, &data);
     assert_success(&run());
     assert_success(&run()); // the same request again: skipped, not refused
     std::fs::write(dir.path().join("car.obj"), cube(2.5)).unwrap();

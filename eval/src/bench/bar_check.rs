@@ -110,13 +110,11 @@ fn row(situation: &SituationResult, ideal: Option<Scores>) -> Option<BarRow> {
         .max_by(|&a, &b| by_range[a].total_cmp(&by_range[b]))
         .filter(|&b| by_range[b] > 0.0)
         .map(|b| (RANGE_BINS[b].0.to_owned(), share(by_range[b])));
-    let under = |v: Option<f64>, bar: f64| v.is_some_and(|v| v < bar);
     Some(BarRow {
         situation: situation.name.clone(),
         heading_rmse_deg: metrics.heading_rmse_deg,
         speed_rmse_mps: metrics.speed_rmse_mps,
-        met: under(metrics.heading_rmse_deg, BAR_HEADING_DEG)
-            && under(metrics.speed_rmse_mps, BAR_SPEED_MPS),
+        met: heading_under_bar(metrics.heading_rmse_deg) && speed_under_bar(metrics.speed_rmse_mps),
         scored_scans: scans.len(),
         worst_tenth_share: share(squared[..worst].iter().sum()),
         heading_rmse_without_worst_deg: rmse(&rest),
@@ -146,10 +144,19 @@ fn worst_count(n: usize) -> usize {
     ((n as f64 * WORST_SHARE).ceil() as usize).min(n)
 }
 
+/// Whether a heading RMSE (degrees) is under the bar.
+fn heading_under_bar(rmse_deg: Option<f64>) -> bool {
+    rmse_deg.is_some_and(|h| h < BAR_HEADING_DEG)
+}
+
+/// Whether a speed RMSE (m/s) is under the bar.
+fn speed_under_bar(rmse_mps: Option<f64>) -> bool {
+    rmse_mps.is_some_and(|s| s < BAR_SPEED_MPS)
+}
+
 /// Whether scores are under the bar.
 fn meets(scores: &Scores) -> bool {
-    scores.heading_rmse_deg.is_some_and(|h| h < BAR_HEADING_DEG)
-        && scores.speed_rmse_mps.is_some_and(|s| s < BAR_SPEED_MPS)
+    heading_under_bar(scores.heading_rmse_deg) && speed_under_bar(scores.speed_rmse_mps)
 }
 
 /// The report section: the table, then for every missed situation what the data says.
@@ -218,8 +225,8 @@ pub fn bar_markdown(rows: &[BarRow], rung: &str) -> String {
 /// One missed situation in words, from its row.
 fn reading(r: &BarRow) -> String {
     let f = |v: Option<f64>, d: usize| v.map_or("–".into(), |v| format!("{v:.d$}"));
-    let heading_missed = !r.heading_rmse_deg.is_some_and(|h| h < BAR_HEADING_DEG);
-    let speed_missed = !r.speed_rmse_mps.is_some_and(|s| s < BAR_SPEED_MPS);
+    let heading_missed = !heading_under_bar(r.heading_rmse_deg);
+    let speed_missed = !speed_under_bar(r.speed_rmse_mps);
     let mut missed = Vec::new();
     if heading_missed {
         missed.push(format!("heading ({}°)", f(r.heading_rmse_deg, 1)));

@@ -43,6 +43,16 @@ pub fn tiny_scenario() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/tiny.toml")
 }
 
+/// Generates the scenario file `scenario` into `out` with the default seed.
+pub fn generate_file(scenario: &Path, out: &Path) -> Output {
+    patchflow(&[
+        "generate",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
 /// Generates `scenarios/tiny.toml` with `seed` into `out`.
 pub fn generate_tiny(out: &Path, seed: u64) -> Output {
     let seed = seed.to_string();
