@@ -21,6 +21,8 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         training: vec![scenario("track")],
         situations: vec![scenario("e2e")],
         occupancy: Vec::new(),
+        occupancy_params: Default::default(),
+        ahead_params: Default::default(),
         gps: vec![GpKind::Spgp, GpKind::SpgpHet],
         samples: 200,
         pseudo_inputs: 10,

@@ -15,6 +15,21 @@ fn training_tracks(plan: &BenchPlan) -> String {
     }
 }
 
+/// What a quick run leaves out, in front of the training note; empty for a full run.
+fn quick_prefix(plan: &BenchPlan) -> String {
+    if !plan.quick {
+        return String::new();
+    }
+    let gps: Vec<String> = plan.gps.iter().map(|g| g.name().to_uppercase()).collect();
+    let list = |scans: &[usize]| scans.iter().map(usize::to_string).collect::<Vec<_>>();
+    format!(
+        "Quick run (`--quick`): GP kinds trained {} (the full run trains SPGP and SPGP-HET; cross-validation compares both either way); occupancy maps at query times t = {} and predictions ahead from scans {} (the full run: t = 3 … 9, scans 3 … 6). ",
+        gps.join(", "),
+        list(&plan.occupancy_params.query_scans).join(", "),
+        list(&plan.ahead_params.start_scans).join(", ")
+    )
+}
+
 /// The notes of a run; `load` is the machine's 1-minute load average at the start and the end of
 /// the evaluation, where the system reports it.
 pub(crate) fn notes(
@@ -24,11 +39,7 @@ pub(crate) fn notes(
 ) -> Vec<String> {
     let mut notes = vec![format!(
         "{}Training tracks: {}. {} importance-sampled samples and their mirror images across the line of sight ({} rows per GP), {} pseudo-inputs, at most {} optimiser iterations per GP, seed {}. Training speed patches are aligned to the true heading plus a Gaussian error of {}° (the error of an estimated heading; thesis: exact heading).",
-        if plan.quick {
-            "Quick run (`--quick`). "
-        } else {
-            ""
-        },
+        quick_prefix(plan),
         training_tracks(plan),
         plan.samples,
         2 * plan.samples,

@@ -2,6 +2,7 @@
 //! folds. The full plan follows the thesis (4.3); the quick one is smaller.
 
 use patchflow_learn::GpKind;
+use patchflow_occupancy::{AheadParams, OccupancyParams};
 use patchflow_sim::ScenarioSource;
 
 use crate::cv_params::CvParams;
@@ -15,6 +16,13 @@ pub const QUICK_SWEEP_SHARE: f64 = 1.0 / 3.0;
 /// The situations `--quick`'s realism study evaluates at every rung: the two in which the thesis
 /// found ICP failing on real data (heading in situation 1, speed in situation 5; issue #10).
 pub const QUICK_REALISM_SITUATIONS: [&str; 2] = ["situation1", "situation5"];
+
+/// The occupancy query times `--quick` maps (of the paper's t = 3 … 9): the two of its Figure 6
+/// and the last.
+pub const QUICK_OCCUPANCY_QUERY_SCANS: [usize; 3] = [3, 5, 9];
+
+/// The start scans `--quick` predicts ahead from (of the default 3 … 6).
+pub const QUICK_AHEAD_START_SCANS: [usize; 2] = [3, 5];
 
 /// The dense random-traffic scene the whole-scan perception is also measured on
 /// (`scenarios/dense_traffic.toml`; not a thesis situation, so it has no target).
@@ -30,6 +38,10 @@ pub struct BenchPlan {
     /// Occupancy-map scenarios (the DGPOM paper's T-junction and its training run), into
     /// `OUT/data/occupancy`; none skips the occupancy stage.
     pub occupancy: Vec<ScenarioSource>,
+    /// The occupancy maps' query times (the paper's protocol by default).
+    pub occupancy_params: OccupancyParams,
+    /// DGPOM's predictions ahead: their start scans.
+    pub ahead_params: AheadParams,
     /// GP kinds trained, one estimator each.
     pub gps: Vec<GpKind>,
     /// Importance-sampled training samples per estimator (thesis 4.3: 1,600).
@@ -81,6 +93,8 @@ impl BenchPlan {
                 .iter()
                 .map(|&(name, text)| ScenarioSource::Embedded(name, text))
                 .collect(),
+            occupancy_params: OccupancyParams::default(),
+            ahead_params: AheadParams::default(),
             gps: vec![GpKind::Spgp, GpKind::SpgpHet],
             samples: 1600,
             pseudo_inputs: 100,
@@ -100,11 +114,22 @@ impl BenchPlan {
         }
     }
 
-    /// `--quick`: every training track but a third of its sweeps, fewer samples, pseudo-inputs,
-    /// iterations and folds, one seed, and a realism study on two of the situations.
+    /// `--quick`: every training track but a third of its sweeps, SPGP-HET only (the thesis'
+    /// headline GP; cross-validation still compares it with SPGP), fewer samples, pseudo-inputs,
+    /// iterations and folds, one seed, a realism study on two of the situations, and occupancy
+    /// maps at three of the seven query times.
     pub fn quick() -> Self {
         let full = Self::full();
         Self {
+            gps: vec![GpKind::SpgpHet],
+            occupancy_params: OccupancyParams {
+                query_scans: QUICK_OCCUPANCY_QUERY_SCANS.to_vec(),
+                ..full.occupancy_params.clone()
+            },
+            ahead_params: AheadParams {
+                start_scans: QUICK_AHEAD_START_SCANS.to_vec(),
+                ..full.ahead_params.clone()
+            },
             training_sweep_share: QUICK_SWEEP_SHARE,
             seeds: 1,
             samples: 1200,
@@ -173,6 +198,24 @@ mod tests {
         assert!(full.realism_situations.is_empty());
         assert!(!quick.realism_situations.is_empty());
         assert!(quick.realism_situations.iter().all(|n| names.contains(n)));
+    }
+
+    #[test]
+    fn the_quick_plan_trains_spgp_het_only_and_maps_a_subset_of_the_query_times() {
+        let (full, quick) = (BenchPlan::full(), BenchPlan::quick());
+        assert_eq!(full.gps, [GpKind::Spgp, GpKind::SpgpHet]);
+        assert_eq!(quick.gps, [GpKind::SpgpHet]);
+        let subset = |small: &[usize], large: &[usize]| {
+            small.len() < large.len() && small.iter().all(|t| large.contains(t))
+        };
+        let (q, f) = (&quick.occupancy_params, &full.occupancy_params);
+        assert!(subset(&q.query_scans, &f.query_scans));
+        assert!(f.figure_scans.iter().all(|t| q.query_scans.contains(t)));
+        assert!(subset(
+            &quick.ahead_params.start_scans,
+            &full.ahead_params.start_scans
+        ));
+        assert!(q.validate().is_ok());
     }
 
     #[test]

@@ -123,14 +123,18 @@ pub fn run_bench(
     // 3. One estimator per GP kind and training seed, each on its seed's samples (thesis
     //    3.1.3); the further seeds' GPs give the spread over seeds. The fits are independent and
     //    run in parallel.
-    stage("train SPGP and SPGP-HET, every seed", &mut || {
-        let mut draws: Vec<(&SampleSet, u64)> = vec![(training_set, plan.seed)];
-        draws.extend(further_sets.iter().zip(further_seeds.iter().copied()));
-        let mut runs = train_seeds(&train, &draws, plan, out)?.into_iter();
-        estimators = runs.next().unwrap_or_default();
-        further = runs.collect();
-        Ok(())
-    })?;
+    let kinds: Vec<String> = plan.gps.iter().map(|g| g.name().to_uppercase()).collect();
+    stage(
+        &format!("train {}, every seed", kinds.join(" and ")),
+        &mut || {
+            let mut draws: Vec<(&SampleSet, u64)> = vec![(training_set, plan.seed)];
+            draws.extend(further_sets.iter().zip(further_seeds.iter().copied()));
+            let mut runs = train_seeds(&train, &draws, plan, out)?.into_iter();
+            estimators = runs.next().unwrap_or_default();
+            further = runs.collect();
+            Ok(())
+        },
+    )?;
     // 4. Simulate the evaluation sequences (SPEC §3). The training tracks are no longer needed:
     //    without `keep_data` they go first, so the two datasets are never on disk together.
     if !plan.keep_data {
@@ -198,7 +202,12 @@ pub fn run_bench(
         })?;
         let maps = maps.ok_or_else(|| missing("occupancy dataset"))?;
         stage("occupancy maps", &mut || {
-            occupancy = Some(occupancy_with_bar(&maps, plan.seed)?);
+            occupancy = Some(occupancy_with_bar(
+                &maps,
+                plan.seed,
+                &plan.occupancy_params,
+                &plan.ahead_params,
+            )?);
             Ok(())
         })?;
         if !plan.keep_data {

@@ -167,13 +167,17 @@ pub fn evaluate_with_bar(
     result
 }
 
-/// Maps every planar scanner's sequence of a dataset with every occupancy method (the DGPOM
-/// paper's protocol: DGPOM where the scenario has a training run, whose motion map is learned
-/// first), then DGPOM's predictions ahead (Figure 10), with a progress bar over the maps;
-/// `patchflow occupancy` runs it too.
-pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> Result<OccupancyReport, EvalError> {
-    let params = OccupancyParams::default();
-    let ahead = AheadParams::default();
+/// Maps every planar scanner's sequence of a dataset with every occupancy method at the query
+/// times of `params` (the DGPOM paper's protocol by default: DGPOM where the scenario has a
+/// training run, whose motion map is learned first), then DGPOM's predictions ahead from the
+/// start scans of `ahead` (Figure 10), with a progress bar over the maps; `patchflow occupancy`
+/// runs it with the defaults.
+pub fn occupancy_with_bar(
+    dataset: &Dataset,
+    seed: u64,
+    params: &OccupancyParams,
+    ahead: &AheadParams,
+) -> Result<OccupancyReport, EvalError> {
     let names = occupancy_sequences(dataset)?;
     let trained = names
         .iter()
@@ -227,16 +231,16 @@ pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> Result<OccupancyRepor
             *last = now;
         }
     };
-    let report = evaluate_occupancy(dataset, &methods_for, &params, seed, &on_map);
+    let report = evaluate_occupancy(dataset, &methods_for, params, seed, &on_map);
     let mut report = report?;
     if let Ok((_, by)) = cpu.into_inner() {
         report.cpu_seconds = by;
     }
     report.motion_maps = motion_maps.into_inner();
     bar.set_message("DGPOM predicting ahead");
-    predict_ahead(dataset, &mut report, &ahead, &|| bar.inc(1))?;
+    predict_ahead(dataset, &mut report, ahead, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    report.notes = occupancy_notes(&params);
+    report.notes = occupancy_notes(params);
     if report
         .kinds
         .values()
@@ -245,7 +249,7 @@ pub fn occupancy_with_bar(dataset: &Dataset, seed: u64) -> Result<OccupancyRepor
         report.notes.push(height_slice_note());
     }
     if !report.motion_maps.is_empty() {
-        report.notes.extend(dgpom_notes(&ahead));
+        report.notes.extend(dgpom_notes(ahead));
     }
     Ok(report)
 }

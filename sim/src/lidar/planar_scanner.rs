@@ -82,6 +82,14 @@ mod tests {
     }
 
     #[test]
+    fn a_planar_scanner_on_an_ego_with_a_car_body_still_sees_the_wall() {
+        // With vehicle shapes the ego has a car's body; the scanner at 0.5 m sits inside its
+        // box (a bumper scanner) and must not be blinded by it.
+        let sweep = wall_scene("[world]\nshapes = true\n").sweep(0);
+        assert!(sweep.len() > 100, "{} returns", sweep.len());
+    }
+
+    #[test]
     fn a_fixed_scanner_sees_static_structure_identically_in_every_scan() {
         let mut sim = wall_scene(
             "[[actors]]\nname = \"crossing\"\npath_m = [[5.0, -20.0], [5.0, 20.0]]\nspeed_mps = 2.0\n",

@@ -3,7 +3,9 @@
 //! azimuth: the returns every driver drops as self-returns, and the empty disc around the car in
 //! KITTI scans. On a world with vehicle shapes the ego car has the body of its class; every beam
 //! of the firing table is tested against it once, in the sensor frame, and a beam it stops is
-//! never cast (and never returns).
+//! never cast (and never returns). A sensor mounted below the body's top (a planar scanner at
+//! bumper height, 0.5 m by default) looks out of the body's front, not through it: its beams are
+//! never stopped by the body.
 
 use rapier3d::parry::query::Ray;
 use rapier3d::prelude::Vector;
@@ -18,6 +20,9 @@ const REACH_M: f32 = 10.0;
 /// is `mount_height_m` above the ground, over the centre of the ego's box.
 pub(super) fn occluded_beams(rays: &[Vector], ego: &ActorConfig, mount_height_m: f64) -> Vec<bool> {
     let size = ego.size_m.unwrap_or([4.7, 1.8, 1.45]);
+    if mount_height_m <= size[2] {
+        return vec![false; rays.len()];
+    }
     let drop_m = (mount_height_m - size[2] / 2.0) as f32;
     let body: Vec<GridPiece> = body_parts(ego.class, size, 0.5)
         .into_iter()
@@ -63,5 +68,16 @@ mod tests {
         ];
         let occluded = occluded_beams(&rays, &ego(), 1.73);
         assert_eq!(occluded, [true, true, true, false, false, false]);
+    }
+
+    #[test]
+    fn a_scanner_mounted_below_the_roof_looks_out_of_the_body_unstopped() {
+        let rays = [
+            beam(0.0, 0.0),
+            beam(90.0, 0.0),
+            beam(180.0, 0.0),
+            beam(0.0, -5.0),
+        ];
+        assert_eq!(occluded_beams(&rays, &ego(), 0.5), [false; 4]);
     }
 }

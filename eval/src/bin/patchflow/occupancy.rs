@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use patchflow_dataset::Dataset;
 use patchflow_eval::stages::occupancy_with_bar;
 use patchflow_eval::{OccupancyReport, write_occupancy_report};
+use patchflow_occupancy::{AheadParams, OccupancyParams};
 
 /// Arguments of `patchflow occupancy`.
 #[derive(Debug, clap::Args)]
@@ -26,7 +27,12 @@ pub struct Args {
 /// Runs `patchflow occupancy`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let dataset = Dataset::open(&args.data)?;
-    let report = occupancy_with_bar(&dataset, args.seed)?;
+    let report = occupancy_with_bar(
+        &dataset,
+        args.seed,
+        &OccupancyParams::default(),
+        &AheadParams::default(),
+    )?;
     let files = write_occupancy_report(&report, &args.out)?;
     print_table(&report);
     println!(
