@@ -9,7 +9,8 @@ use crate::cv_params::CvParams;
 /// The seed of every stage of the default benchmark, recorded in its outputs.
 pub const BENCH_SEED: u64 = 7;
 
-/// Share of each training track's sweeps that `--quick` simulates.
+/// Share of each training track's sweeps that `--quick` simulates: the track's last sweeps
+/// (`short_tracks.rs` says why).
 pub const QUICK_SWEEP_SHARE: f64 = 1.0 / 3.0;
 
 /// The situations `--quick`'s realism study evaluates at every rung: the two in which the thesis
@@ -100,7 +101,7 @@ impl BenchPlan {
         }
     }
 
-    /// `--quick`: every training track but a third of its sweeps, fewer samples, pseudo-inputs,
+    /// `--quick`: every training track but only the last third of its sweeps, fewer samples, pseudo-inputs,
     /// iterations and folds, one seed, and a realism study on two of the situations.
     pub fn quick() -> Self {
         let full = Self::full();
