@@ -6,7 +6,7 @@
 //!
 //! Why the last share (ARCHITECTURE.md, "Quick training tracks"): the tracks' actors start
 //! far from the ego and converge on its route, so the full tracks' importance-weighted draw
-//! (thesis 3.1.2) takes 74 % of its samples, 77 % of its crossing cars and 80 % of its cars at
+//! (thesis 3.1.2) takes 66 % of its samples, 77 % of its crossing cars and 75 % of its actors at
 //! 8 m/s or more from the last third of the sweeps and 12 % (mostly pedestrians) from the first.
 //! A model trained on the first third underestimated every fast target's speed (by 2.7 m/s in
 //! situation 1 and 4.5 m/s in situation 4); on the last third it comes close to the full set's.
