@@ -7,14 +7,14 @@
 //!
 //! `cargo run --release -p patchflow-eval --example train_and_score -- situations=DIR
 //! (train=DIR [samples=1600] [pseudo=100] [iters=300] [seed=7] [mirror=1] [jitter=25]
-//! [save=MODEL.json] | model=MODEL.json) [label=TEXT] [json=PATH]`
+//! [min_speed=V] [save=MODEL.json] | model=MODEL.json) [label=TEXT] [json=PATH] [scans=SITUATION]`
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use patchflow_dataset::Dataset;
 use patchflow_eval::{Method, score_method, stages::evaluate_targets};
-use patchflow_learn::{EstimatorParams, FeatureParams, GpKind, MotionEstimator};
+use patchflow_learn::{EstimatorParams, FeatureParams, GpKind, MotionEstimator, SampleSet};
 
 type Failure = Box<dyn std::error::Error>;
 
@@ -43,7 +43,25 @@ fn main() -> Result<(), Failure> {
                 },
                 ..defaults
             };
-            let estimator = MotionEstimator::train(&Dataset::open(Path::new(train))?, &params)?;
+            let dataset = Dataset::open(Path::new(train))?;
+            // `min_speed=V` fits on the drawn samples of actors at V m/s or more only (a probe
+            // of what the slow actors, mostly pedestrians, do to the GPs).
+            let estimator = match get("min_speed") {
+                None => MotionEstimator::train(&dataset, &params)?,
+                Some(v) => {
+                    let v: f64 = v.parse()?;
+                    let mut set = SampleSet::collect(
+                        &dataset,
+                        &params.features,
+                        params.feature,
+                        params.samples,
+                        params.seed,
+                    )?;
+                    set.samples.retain(|s| s.speed_mps >= v);
+                    eprintln!("{} samples at {v} m/s or more", set.samples.len());
+                    MotionEstimator::fit_samples(&set, &params)?.with_sequences(&dataset)
+                }
+            };
             if let Some(path) = get("save") {
                 estimator.save(&PathBuf::from(path))?;
             }
