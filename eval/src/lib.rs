@@ -65,7 +65,7 @@ pub use error::EvalError;
 pub mod stages {
     pub use crate::bench::{
         collect_draws_with_bar, collect_samples_with_bar, cross_validate_with_bar,
-        evaluate_with_bar, generate_with_progress, occupancy_with_bar,
+        evaluate_targets, evaluate_with_bar, generate_with_progress, occupancy_with_bar,
     };
 }
 

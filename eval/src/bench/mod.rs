@@ -25,4 +25,5 @@ pub use stages::{
     collect_draws_with_bar, collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar,
     generate_with_progress, occupancy_with_bar,
 };
+pub use target_runs::evaluate_targets;
 pub(crate) use target_runs::evaluate_targets_with_baselines;

@@ -9,7 +9,7 @@ fn training_tracks(plan: &BenchPlan) -> String {
     let names = plan.training_names().join(", ");
     if plan.training_sweep_share < 1.0 {
         let percent = (100.0 * plan.training_sweep_share).round();
-        format!("{names} (the first {percent:.0} % of each track's sweeps)")
+        format!("{names} (the last {percent:.0} % of each track's sweeps)")
     } else {
         names
     }

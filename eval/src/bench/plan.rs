@@ -10,7 +10,8 @@ use crate::cv_params::CvParams;
 /// The seed of every stage of the default benchmark, recorded in its outputs.
 pub const BENCH_SEED: u64 = 7;
 
-/// Share of each training track's sweeps that `--quick` simulates.
+/// Share of each training track's sweeps that `--quick` simulates: the track's last sweeps
+/// (`short_tracks.rs` says why).
 pub const QUICK_SWEEP_SHARE: f64 = 1.0 / 3.0;
 
 /// The situations `--quick`'s realism study evaluates at every rung: the two in which the thesis
@@ -114,10 +115,10 @@ impl BenchPlan {
         }
     }
 
-    /// `--quick`: every training track but a third of its sweeps, SPGP-HET only (the thesis'
-    /// headline GP; cross-validation still compares it with SPGP), fewer samples, pseudo-inputs,
-    /// iterations and folds, one seed, a realism study on two of the situations, and occupancy
-    /// maps at three of the seven query times.
+    /// `--quick`: every training track but only the last third of its sweeps, SPGP-HET only (the
+    /// thesis' headline GP; cross-validation still compares it with SPGP), fewer samples,
+    /// pseudo-inputs, iterations and folds, one seed, a realism study on two of the situations,
+    /// and occupancy maps at three of the seven query times.
     pub fn quick() -> Self {
         let full = Self::full();
         Self {

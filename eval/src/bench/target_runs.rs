@@ -27,7 +27,7 @@ use crate::scene_evaluation::to_estimate;
 /// target) of `dataset`, in dataset order, for each of several trained runs (`runs[k]` holds one
 /// run's estimators, one per GP kind); the runs share each scan's maps. The estimates equal
 /// those of the whole evaluation ([`crate::evaluate_dataset`]) for the same estimators.
-pub(crate) fn evaluate_targets(
+pub fn evaluate_targets(
     dataset: &Dataset,
     runs: &[Vec<MotionEstimator>],
 ) -> Result<Vec<Vec<SituationResult>>, EvalError> {

@@ -12,7 +12,7 @@ pub struct Args {
     /// Output folder.
     #[arg(long, default_value = "results/bench")]
     pub out: PathBuf,
-    /// A smaller run (a third of every training track's sweeps, fewer samples, pseudo-inputs
+    /// A smaller run (the last third of every training track's sweeps, fewer samples, pseudo-inputs
     /// and folds, one training seed) for a quick look.
     #[arg(long)]
     pub quick: bool,

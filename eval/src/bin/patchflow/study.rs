@@ -27,7 +27,7 @@ pub struct Args {
     /// Join the points the shards wrote into `study.json`, `study.md` and plots (runs nothing).
     #[arg(long)]
     pub merge: bool,
-    /// The smaller plan of `bench --quick` (a third of each training track's sweeps, fewer
+    /// The smaller plan of `bench --quick` (the last third of each training track's sweeps, fewer
     /// samples, pseudo-inputs and iterations) at every point.
     #[arg(long)]
     pub quick: bool,
