@@ -10,7 +10,7 @@
 //!
 //! Each scan yields, per method and cluster, how the cluster's points move ([`ClusterFlow`]).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use rayon::prelude::*;
 
@@ -147,24 +147,6 @@ impl BaselineTrackers {
                 kf.insert(actor, ClusterFlow::Uniform(estimate));
             }
         }
-        // ICP: the actor's cluster at t−1 against its cluster at t.
-        let mut icp = BTreeMap::new();
-        if let (Some(previous), Some(dt)) = (&self.previous, dt) {
-            for (&actor, seen) in &scan.actors {
-                let Some(before) = previous.actor_cluster(actor) else {
-                    continue;
-                };
-                let motion = icp_rigid_motion(
-                    &thinned(&previous.clusters[before].points_xy_world),
-                    &thinned(&scan.clusters[seen.cluster].points_xy_world),
-                    dt,
-                    &self.params.icp,
-                );
-                if let Some(motion) = motion {
-                    icp.insert(actor, ClusterFlow::Rigid(motion));
-                }
-            }
-        }
         // KF-AUTO: the confirmed track that took each cluster.
         let centroids: Vec<[f64; 2]> = scan.clusters.iter().map(|c| c.centroid_xy).collect();
         let track_of_cluster = self
@@ -181,23 +163,49 @@ impl BaselineTrackers {
                     .map(ClusterFlow::Uniform)
             })
             .collect();
-        // ICP-AUTO: ICP between each wanted cluster and the cluster it was linked to, the
-        // clusters in parallel (each alignment is independent of the others).
+        // ICP: the actor's cluster at t−1 against its cluster at t. ICP-AUTO: each wanted
+        // cluster against the cluster it was linked to. Both often ask for the same pair of
+        // clusters, so every distinct pair is aligned once, all pairs in parallel (each alignment
+        // is independent of the others).
         let links = self.associator.step(&scan).map_err(label)?;
-        let previous = self.previous.as_ref();
-        let icp_params = self.params.icp;
-        let icp_auto = (0..n)
-            .into_par_iter()
+        let previous = self.previous.as_ref().filter(|_| dt.is_some());
+        let icp_pairs: Vec<(u16, (usize, usize))> = previous.map_or_else(Vec::new, |previous| {
+            scan.actors
+                .iter()
+                .filter_map(|(&actor, seen)| {
+                    Some((actor, (previous.actor_cluster(actor)?, seen.cluster)))
+                })
+                .collect()
+        });
+        let auto_pairs: Vec<Option<(usize, usize)>> = (0..n)
             .map(|c| {
-                let (previous, dt) = (previous?, dt?);
-                if !icp_wanted.get(c).copied().unwrap_or(false) {
-                    return None;
-                }
-                let before = &previous.clusters.get((*links.get(c)?)?)?.points_xy_world;
-                let current = &scan.clusters[c].points_xy_world;
-                icp_rigid_motion(&thinned(before), &thinned(current), dt, &icp_params)
-                    .map(ClusterFlow::Rigid)
+                previous?;
+                let wanted = icp_wanted.get(c).copied().unwrap_or(false);
+                wanted.then(|| links.get(c).copied().flatten().map(|before| (before, c)))?
             })
+            .collect();
+        let aligned = match (previous, dt) {
+            (Some(previous), Some(dt)) => align_pairs(
+                previous,
+                &scan,
+                icp_pairs
+                    .iter()
+                    .map(|(_, pair)| *pair)
+                    .chain(auto_pairs.iter().flatten().copied()),
+                dt,
+                &self.params,
+            ),
+            _ => BTreeMap::new(),
+        };
+        let flow_of =
+            |pair: &(usize, usize)| aligned.get(pair).copied().flatten().map(ClusterFlow::Rigid);
+        let icp: BTreeMap<u16, ClusterFlow> = icp_pairs
+            .iter()
+            .filter_map(|(actor, pair)| Some((*actor, flow_of(pair)?)))
+            .collect();
+        let icp_auto: Vec<Option<ClusterFlow>> = auto_pairs
+            .iter()
+            .map(|pair| flow_of(pair.as_ref()?))
             .collect();
         out.clusters.insert(Method::Kf, oracle_clusters(&kf, &scan));
         out.clusters
@@ -229,6 +237,27 @@ impl BaselineTrackers {
             })
         }
     }
+}
+
+/// ICP between cluster `before` of `previous` and cluster `current` of `scan` for every distinct
+/// pair asked for, in parallel; a pair whose alignment fails (or names no cluster) maps to `None`.
+fn align_pairs(
+    previous: &ScanObservation,
+    scan: &ScanObservation,
+    pairs: impl Iterator<Item = (usize, usize)>,
+    dt: f64,
+    params: &BaselineParams,
+) -> BTreeMap<(usize, usize), Option<RigidMotion>> {
+    let distinct: Vec<(usize, usize)> = pairs.collect::<BTreeSet<_>>().into_iter().collect();
+    let motions: Vec<Option<RigidMotion>> = distinct
+        .par_iter()
+        .map(|&(before, current)| {
+            let before = &previous.clusters.get(before)?.points_xy_world;
+            let current = &scan.clusters.get(current)?.points_xy_world;
+            icp_rigid_motion(&thinned(before), &thinned(current), dt, &params.icp)
+        })
+        .collect();
+    distinct.into_iter().zip(motions).collect()
 }
 
 /// Per cluster, the oracle flow of the actor with most points in it (ties to the lower id).
