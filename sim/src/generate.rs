@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use patchflow_dataset::{FolderLock, Manifest, SequenceWriter};
+use patchflow_dataset::{FolderLock, Manifest, SequenceWriter, Sweep};
 
 use crate::error::{Result, SimError};
 use crate::provenance::{Provenance, provenance};
@@ -267,25 +267,42 @@ pub fn generate_sequence(
     let mut sim = Simulation::new(scenario, seed)?;
     writer.write_static_obstacles(&sim.scene().static_obstacles())?;
     writer.write_sensor(&crate::lidar::sensor_info(&scenario.lidar))?;
-    for index in 0..scenario.sweeps {
-        let mut points = 0;
-        if !writer.has_sweep(index) {
-            let sweep = sim.sweep(index);
-            if sweep.is_empty() {
-                return Err(SimError::Options(format!(
-                    "{}: sweep {index} has no points: the lidar hit nothing (is the ego off the ground, or the sensor inside a structure?)",
-                    dir.display()
-                )));
+    // Sweep k is written on a thread of its own while sweep k + 1 is cast: the files go out in
+    // the same order with the same bytes, and the cast no longer waits for the disk.
+    std::thread::scope(|scope| -> Result<()> {
+        let (to_writer, sweeps) = std::sync::mpsc::sync_channel::<Sweep>(1);
+        let writing = scope.spawn(|| -> Result<()> {
+            for sweep in sweeps {
+                writer.write_sweep(&sweep)?;
             }
-            points = sweep.len();
-            writer.write_sweep(&sweep)?;
-        }
-        progress(Progress::SweepDone {
-            name: name.clone(),
-            index,
-            points,
+            Ok(())
         });
-    }
+        for index in 0..scenario.sweeps {
+            let mut points = 0;
+            if !writer.has_sweep(index) {
+                let sweep = sim.sweep(index);
+                if sweep.is_empty() {
+                    return Err(SimError::Options(format!(
+                        "{}: sweep {index} has no points: the lidar hit nothing (is the ego off the ground, or the sensor inside a structure?)",
+                        dir.display()
+                    )));
+                }
+                points = sweep.len();
+                if to_writer.send(sweep).is_err() {
+                    break; // the writer stopped on an error, which its join returns
+                }
+            }
+            progress(Progress::SweepDone {
+                name: name.clone(),
+                index,
+                points,
+            });
+        }
+        drop(to_writer);
+        writing.join().map_err(|_| {
+            SimError::Options(format!("{}: the sweep writer panicked", dir.display()))
+        })?
+    })?;
     let poses: Vec<_> = (0..scenario.sweeps)
         .map(|i| sim.world_from_sensor(i))
         .collect();
