@@ -41,6 +41,7 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         keep_data: false,
         quick: true,
         realism_situations: Vec::new(),
+        realism_rungs: Vec::new(),
     };
     let out = dir.path().join("bench");
     let stages = std::sync::Mutex::new(Vec::new());

@@ -23,7 +23,7 @@ fn quick_prefix(plan: &BenchPlan) -> String {
     let gps: Vec<String> = plan.gps.iter().map(|g| g.name().to_uppercase()).collect();
     let list = |scans: &[usize]| scans.iter().map(usize::to_string).collect::<Vec<_>>();
     format!(
-        "Quick run (`--quick`): GP kinds trained {} (the full run trains SPGP and SPGP-HET; cross-validation compares both either way); occupancy maps at query times t = {} and predictions ahead from scans {} (the full run: t = 3 … 9, scans 3 … 6). ",
+        "Quick run (`--quick`): the five situations without the dense traffic scene; GP kinds trained {} (the full run trains SPGP and SPGP-HET; cross-validation compares both either way); the realism study at the `ideal` rung only beside `urban`; occupancy maps at query times t = {} and predictions ahead from scan(s) {} (the full run: t = 3 … 9, scans 3 … 6). ",
         gps.join(", "),
         list(&plan.occupancy_params.query_scans).join(", "),
         list(&plan.ahead_params.start_scans).join(", ")

@@ -3,7 +3,7 @@
 
 use patchflow_learn::GpKind;
 use patchflow_occupancy::{AheadParams, OccupancyParams};
-use patchflow_sim::ScenarioSource;
+use patchflow_sim::{Realism, ScenarioSource};
 
 use crate::cv_params::CvParams;
 
@@ -18,12 +18,16 @@ pub const QUICK_SWEEP_SHARE: f64 = 1.0 / 3.0;
 /// found ICP failing on real data (heading in situation 1, speed in situation 5; issue #10).
 pub const QUICK_REALISM_SITUATIONS: [&str; 2] = ["situation1", "situation5"];
 
+/// The rungs `--quick`'s realism study evaluates: `ideal` beside the `urban` evaluation (the
+/// report's "Against the bar" section reads the same models on `ideal`); `harsh` is left out.
+pub const QUICK_REALISM_RUNGS: [Realism; 2] = [Realism::Ideal, Realism::Urban];
+
 /// The occupancy query times `--quick` maps (of the paper's t = 3 … 9): the two of its Figure 6
 /// and the last.
 pub const QUICK_OCCUPANCY_QUERY_SCANS: [usize; 3] = [3, 5, 9];
 
-/// The start scans `--quick` predicts ahead from (of the default 3 … 6).
-pub const QUICK_AHEAD_START_SCANS: [usize; 2] = [3, 5];
+/// The start scan `--quick` predicts ahead from (of the default 3 … 6).
+pub const QUICK_AHEAD_START_SCANS: [usize; 1] = [3];
 
 /// The dense random-traffic scene the whole-scan perception is also measured on
 /// (`scenarios/dense_traffic.toml`; not a thesis situation, so it has no target).
@@ -68,6 +72,9 @@ pub struct BenchPlan {
     /// The situations the realism study evaluates at every rung, by name; empty for all of them
     /// (`--quick` keeps [`QUICK_REALISM_SITUATIONS`], and its report says so).
     pub realism_situations: Vec<String>,
+    /// The rungs the realism study evaluates; empty for all of them (`--quick` keeps
+    /// [`QUICK_REALISM_RUNGS`]).
+    pub realism_rungs: Vec<Realism>,
 }
 
 fn embedded(prefix: &str) -> Vec<ScenarioSource> {
@@ -112,16 +119,21 @@ impl BenchPlan {
             keep_data: false,
             quick: false,
             realism_situations: Vec::new(),
+            realism_rungs: Vec::new(),
         }
     }
 
-    /// `--quick`: every training track but only the last third of its sweeps, SPGP-HET only (the
+    /// `--quick`: the five situations without the dense scene; every training track but only
+    /// the last third of its sweeps, SPGP-HET only (the
     /// thesis' headline GP; cross-validation still compares it with SPGP), fewer samples,
     /// pseudo-inputs, iterations and folds, one seed, a realism study on two of the situations,
     /// and occupancy maps at three of the seven query times.
+    /// The realism study covers situations 1 and 5 at the `ideal` rung beside `urban`.
     pub fn quick() -> Self {
         let full = Self::full();
+        let five = embedded("situation");
         Self {
+            situations: five,
             gps: vec![GpKind::SpgpHet],
             occupancy_params: OccupancyParams {
                 query_scans: QUICK_OCCUPANCY_QUERY_SCANS.to_vec(),
@@ -146,6 +158,7 @@ impl BenchPlan {
             },
             quick: true,
             realism_situations: QUICK_REALISM_SITUATIONS.map(str::to_owned).to_vec(),
+            realism_rungs: QUICK_REALISM_RUNGS.to_vec(),
             ..full
         }
     }
@@ -199,6 +212,11 @@ mod tests {
         assert!(full.realism_situations.is_empty());
         assert!(!quick.realism_situations.is_empty());
         assert!(quick.realism_situations.iter().all(|n| names.contains(n)));
+        assert!(full.realism_rungs.is_empty());
+        assert!(quick.realism_rungs.contains(&Realism::Ideal));
+        let quick_names: Vec<String> = quick.situations.iter().map(source_name).collect();
+        assert_eq!(quick_names.len(), 5);
+        assert!(quick_names.iter().all(|n| n.starts_with("situation")));
     }
 
     #[test]

@@ -37,6 +37,12 @@ pub fn realism_in_bench(
         plan.realism_situations.is_empty() || plan.realism_situations.iter().any(|n| n == name)
     };
     study.situations.retain(|s| kept(&source_name(s)));
+    study.points.retain(|p| {
+        plan.realism_rungs.is_empty()
+            || p.evaluate
+                .realism
+                .is_some_and(|r| plan.realism_rungs.contains(&r))
+    });
     let urban = BenchmarkReport {
         situations: urban
             .situations
@@ -79,15 +85,26 @@ pub fn realism_in_bench(
 /// The bench report's sections of the realism study: its tables (plots in `realism/plots/`) and
 /// the synthetic-to-real discussion; `plan` says whether it covered every situation.
 pub fn realism_sections(study: &StudyReport, cv: &CvReport, plan: &BenchPlan) -> String {
-    let mut md = if plan.realism_situations.is_empty() {
+    let rungs = match plan.realism_rungs.as_slice() {
+        [] => "every rung".to_owned(),
+        some => {
+            let names: Vec<String> = some.iter().map(|r| format!("`{}`", r.name())).collect();
+            format!("the {} rungs", names.join(" and "))
+        }
+    };
+    let which = match plan.realism_situations.as_slice() {
+        [] => vec!["the five situations".to_owned()],
+        some => some.to_vec(),
+    };
+    let mut md = if plan.realism_situations.is_empty() && plan.realism_rungs.is_empty() {
         String::from(
             "## Realism study: the five situations at every rung, models trained on `urban`\n\n",
         )
     } else {
         format!(
-            "## Realism study: {} at every rung, models trained on `urban`\n\nA shorter study than the default `bench` runs (`--quick`): only {} are simulated and evaluated at every rung, and the pooled figures are over them alone.\n\n",
-            plan.realism_situations.join(" and "),
-            plan.realism_situations.join(", ")
+            "## Realism study: {} at {rungs}, models trained on `urban`\n\nA shorter study than the default `bench` runs (`--quick`): only {} are simulated and evaluated, at {rungs}, and the pooled figures are over them alone.\n\n",
+            which.join(" and "),
+            which.join(", ")
         )
     };
     md.push_str("Files: `realism/study.json`, `realism/study.md`, `realism/plots/`.\n\n");

@@ -53,25 +53,29 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 /// the GPs' as mean ± std over the training seeds when there are several, from the scores the
 /// report files were written with.
 fn print_headline(situations: &[(String, BTreeMap<Method, MethodMetrics>)], spread: &SeedSpread) {
-    let methods = [Method::SpgpHetAll, Method::SpgpAll, Method::Kf, Method::Icp];
-    println!(
-        "\n{:<12} {}",
-        "situation",
-        methods.map(|m| format!("{m:>40}")).join("")
-    );
+    // The headline methods the run has (`--quick` trains SPGP-HET only).
+    let methods: Vec<Method> = [Method::SpgpHetAll, Method::SpgpAll, Method::Kf, Method::Icp]
+        .into_iter()
+        .filter(|m| {
+            situations
+                .iter()
+                .any(|(_, metrics)| metrics.contains_key(m))
+        })
+        .collect();
+    let row =
+        |cell: &dyn Fn(Method) -> String| methods.iter().map(|&m| cell(m)).collect::<String>();
+    println!("\n{:<12} {}", "situation", row(&|m| format!("{m:>40}")));
     println!(
         "{:<12} {}",
         "",
-        methods
-            .map(|_| format!("{:>40}", "heading° / speed m/s / cov"))
-            .join("")
+        row(&|_| format!("{:>40}", "heading° / speed m/s / cov"))
     );
     for (name, metrics) in situations {
         let spread_of = |m: &Method| {
             let (_, methods) = spread.situations.iter().find(|(n, _)| n == name)?;
             methods.get(m).filter(|s| s.heading_rmse_deg.std.is_some())
         };
-        let cells = methods.map(|m| match (spread_of(&m), metrics.get(&m)) {
+        let cells = row(&|m| match (spread_of(&m), metrics.get(&m)) {
             (Some(s), _) => format!(
                 "{:>40}",
                 format!(
@@ -92,6 +96,6 @@ fn print_headline(situations: &[(String, BTreeMap<Method, MethodMetrics>)], spre
             ),
             (None, None) => format!("{:>40}", "-"),
         });
-        println!("{:<12} {}", name, cells.join(""));
+        println!("{:<12} {}", name, cells);
     }
 }
