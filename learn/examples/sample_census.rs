@@ -29,6 +29,23 @@ fn sliced_points_per_actor(
     Ok(counts)
 }
 
+/// Speed bins, m/s: upper edge and label.
+const SPEED_BINS_MPS: &[(f64, &str)] = &[
+    (0.5, "<0.5"),
+    (2.0, "0.5-2"),
+    (5.0, "2-5"),
+    (8.0, "5-8"),
+    (f64::INFINITY, "8+"),
+];
+
+/// Range bins, metres: upper edge and label.
+const RANGE_BINS_M: &[(f64, &str)] = &[
+    (10.0, "<10"),
+    (20.0, "10-20"),
+    (30.0, "20-30"),
+    (f64::INFINITY, "30+"),
+];
+
 fn bin(value: f64, edges: &[(f64, &'static str)]) -> &'static str {
     edges
         .iter()
@@ -132,19 +149,7 @@ fn main() -> Result<(), Failure> {
             );
             let p = curr.points_in_sensor[s.point];
             let range = f64::from(p[0]).hypot(f64::from(p[1]));
-            add(
-                "range m",
-                bin(
-                    range,
-                    &[
-                        (10.0, "<10"),
-                        (20.0, "10-20"),
-                        (30.0, "20-30"),
-                        (f64::INFINITY, "30+"),
-                    ],
-                ),
-                w,
-            );
+            add("range m", bin(range, RANGE_BINS_M), w);
             let rel = s.sin_rel.atan2(s.cos_rel).to_degrees().abs();
             add(
                 "|heading-bearing| deg",
@@ -161,33 +166,8 @@ fn main() -> Result<(), Failure> {
                 w,
             );
             if (60.0..120.0).contains(&rel) {
-                add(
-                    "crossing: speed m/s",
-                    bin(
-                        s.speed_mps,
-                        &[
-                            (0.5, "<0.5"),
-                            (2.0, "0.5-2"),
-                            (5.0, "2-5"),
-                            (8.0, "5-8"),
-                            (f64::INFINITY, "8+"),
-                        ],
-                    ),
-                    w,
-                );
-                add(
-                    "crossing: range m",
-                    bin(
-                        range,
-                        &[
-                            (10.0, "<10"),
-                            (20.0, "10-20"),
-                            (30.0, "20-30"),
-                            (f64::INFINITY, "30+"),
-                        ],
-                    ),
-                    w,
-                );
+                add("crossing: speed m/s", bin(s.speed_mps, SPEED_BINS_MPS), w);
+                add("crossing: range m", bin(range, RANGE_BINS_M), w);
                 add(
                     "crossing: class",
                     if s.speed_mps > 2.0 {
@@ -203,31 +183,10 @@ fn main() -> Result<(), Failure> {
                         bin(*now.get(&s.actor).unwrap_or(&0) as f64, &pts),
                         w,
                     );
-                    add(
-                        "crossing vehicle: range m",
-                        bin(
-                            range,
-                            &[
-                                (10.0, "<10"),
-                                (20.0, "10-20"),
-                                (30.0, "20-30"),
-                                (f64::INFINITY, "30+"),
-                            ],
-                        ),
-                        w,
-                    );
+                    add("crossing vehicle: range m", bin(range, RANGE_BINS_M), w);
                 }
             }
-            let speed_bin = bin(
-                s.speed_mps,
-                &[
-                    (0.5, "<0.5"),
-                    (2.0, "0.5-2"),
-                    (5.0, "2-5"),
-                    (8.0, "5-8"),
-                    (f64::INFINITY, "8+"),
-                ],
-            );
+            let speed_bin = bin(s.speed_mps, SPEED_BINS_MPS);
             add(
                 [
                     "track third 1: speed m/s",
@@ -244,20 +203,7 @@ fn main() -> Result<(), Failure> {
                     w,
                 );
             }
-            add(
-                "speed m/s",
-                bin(
-                    s.speed_mps,
-                    &[
-                        (0.5, "<0.5"),
-                        (2.0, "0.5-2"),
-                        (5.0, "2-5"),
-                        (8.0, "5-8"),
-                        (f64::INFINITY, "8+"),
-                    ],
-                ),
-                w,
-            );
+            add("speed m/s", bin(s.speed_mps, SPEED_BINS_MPS), w);
             add(
                 "weight",
                 bin(
