@@ -12,8 +12,10 @@ pub struct Args {
     /// Output folder.
     #[arg(long, default_value = "results/bench")]
     pub out: PathBuf,
-    /// A smaller run (the last third of every training track's sweeps, fewer samples, pseudo-inputs
-    /// and folds, one training seed) for a quick look.
+    /// A smaller run for a quick look, under 2 minutes on 2 cores: the five situations without
+    /// the dense scene, the last third of every training track's sweeps, SPGP-HET only, fewer
+    /// samples, pseudo-inputs and folds, one training seed, a shorter realism study and fewer
+    /// occupancy query times.
     #[arg(long)]
     pub quick: bool,
     /// Training seeds (7, 8, …): the report gives each headline figure's mean ± std over them

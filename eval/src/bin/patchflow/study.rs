@@ -27,8 +27,8 @@ pub struct Args {
     /// Join the points the shards wrote into `study.json`, `study.md` and plots (runs nothing).
     #[arg(long)]
     pub merge: bool,
-    /// The smaller plan of `bench --quick` (the last third of each training track's sweeps, fewer
-    /// samples, pseudo-inputs and iterations) at every point.
+    /// The smaller plan of `bench --quick` (SPGP-HET only, the last third of each training
+    /// track's sweeps, fewer samples, pseudo-inputs and iterations) at every point.
     #[arg(long)]
     pub quick: bool,
 }
