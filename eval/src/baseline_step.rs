@@ -168,8 +168,9 @@ impl BaselineTrackers {
         // clusters, so every distinct pair is aligned once, all pairs in parallel (each alignment
         // is independent of the others).
         let links = self.associator.step(&scan).map_err(label)?;
-        let previous = self.previous.as_ref().filter(|_| dt.is_some());
-        let icp_pairs: Vec<(u16, (usize, usize))> = previous.map_or_else(Vec::new, |previous| {
+        // The scan before and the interval to it; neither ICP runs without both.
+        let prior = self.previous.as_ref().zip(dt);
+        let icp_pairs: Vec<(u16, (usize, usize))> = prior.map_or_else(Vec::new, |(previous, _)| {
             scan.actors
                 .iter()
                 .filter_map(|(&actor, seen)| {
@@ -179,13 +180,13 @@ impl BaselineTrackers {
         });
         let auto_pairs: Vec<Option<(usize, usize)>> = (0..n)
             .map(|c| {
-                previous?;
+                prior?;
                 let wanted = icp_wanted.get(c).copied().unwrap_or(false);
                 wanted.then(|| links.get(c).copied().flatten().map(|before| (before, c)))?
             })
             .collect();
-        let aligned = match (previous, dt) {
-            (Some(previous), Some(dt)) => align_pairs(
+        let aligned = prior.map_or_else(BTreeMap::new, |(previous, dt)| {
+            align_pairs(
                 previous,
                 &scan,
                 icp_pairs
@@ -194,9 +195,8 @@ impl BaselineTrackers {
                     .chain(auto_pairs.iter().flatten().copied()),
                 dt,
                 &self.params,
-            ),
-            _ => BTreeMap::new(),
-        };
+            )
+        });
         let flow_of =
             |pair: &(usize, usize)| aligned.get(pair).copied().flatten().map(ClusterFlow::Rigid);
         let icp: BTreeMap<u16, ClusterFlow> = icp_pairs

@@ -15,18 +15,34 @@ fn training_tracks(plan: &BenchPlan) -> String {
     }
 }
 
-/// What a quick run leaves out, in front of the training note; empty for a full run.
+/// What a quick run leaves out, in front of the training note; empty for a full run. Every part
+/// is read from the plan, beside the full plan's value.
 fn quick_prefix(plan: &BenchPlan) -> String {
     if !plan.quick {
         return String::new();
     }
-    let gps: Vec<String> = plan.gps.iter().map(|g| g.name().to_uppercase()).collect();
-    let list = |scans: &[usize]| scans.iter().map(usize::to_string).collect::<Vec<_>>();
+    let full = BenchPlan::full();
+    let list = |scans: &[usize]| {
+        let items: Vec<String> = scans.iter().map(usize::to_string).collect();
+        items.join(", ")
+    };
+    let rungs = match plan.realism_rungs.as_slice() {
+        [] => "every rung".to_owned(),
+        some => {
+            let names: Vec<&str> = some.iter().map(|r| r.name()).collect();
+            names.join(" and ")
+        }
+    };
     format!(
-        "Quick run (`--quick`): the five situations without the dense traffic scene; GP kinds trained {} (the full run trains SPGP and SPGP-HET; cross-validation compares both either way); the realism study at the `ideal` rung only beside `urban`; occupancy maps at query times t = {} and predictions ahead from scan(s) {} (the full run: t = 3 … 9, scans 3 … 6). ",
-        gps.join(", "),
-        list(&plan.occupancy_params.query_scans).join(", "),
-        list(&plan.ahead_params.start_scans).join(", ")
+        "Quick run (`--quick`): sequences {} (the full run: {}); GP kinds trained {} (the full run: {}; cross-validation compares SPGP and SPGP-HET either way); the realism study at {rungs}; occupancy maps at query times t = {} and predictions ahead from scans {} (the full run: t = {}, scans {}). ",
+        plan.situation_names().join(", "),
+        full.situation_names().join(", "),
+        plan.gp_names().join(", "),
+        full.gp_names().join(", "),
+        list(&plan.occupancy_params.query_scans),
+        list(&plan.ahead_params.start_scans),
+        list(&full.occupancy_params.query_scans),
+        list(&full.ahead_params.start_scans),
     )
 }
 

@@ -170,9 +170,19 @@ impl BenchPlan {
             .collect()
     }
 
+    /// Names of the GP kinds trained (`SPGP`, `SPGP-HET`), for the report and the stage lines.
+    pub fn gp_names(&self) -> Vec<String> {
+        self.gps.iter().map(|g| g.name().to_uppercase()).collect()
+    }
+
     /// Names of the training tracks, for the report.
     pub fn training_names(&self) -> Vec<String> {
         self.training.iter().map(source_name).collect()
+    }
+
+    /// Names of the evaluated sequences, for the report.
+    pub fn situation_names(&self) -> Vec<String> {
+        self.situations.iter().map(source_name).collect()
     }
 }
 
@@ -207,14 +217,14 @@ mod tests {
     #[test]
     fn the_quick_realism_study_keeps_situations_the_full_plan_has_and_the_full_one_keeps_all() {
         let full = BenchPlan::full();
-        let names: Vec<String> = full.situations.iter().map(source_name).collect();
+        let names = full.situation_names();
         let quick = BenchPlan::quick();
         assert!(full.realism_situations.is_empty());
         assert!(!quick.realism_situations.is_empty());
         assert!(quick.realism_situations.iter().all(|n| names.contains(n)));
         assert!(full.realism_rungs.is_empty());
         assert!(quick.realism_rungs.contains(&Realism::Ideal));
-        let quick_names: Vec<String> = quick.situations.iter().map(source_name).collect();
+        let quick_names = quick.situation_names();
         assert_eq!(quick_names.len(), 5);
         assert!(quick_names.iter().all(|n| n.starts_with("situation")));
     }

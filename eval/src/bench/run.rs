@@ -123,9 +123,8 @@ pub fn run_bench(
     // 3. One estimator per GP kind and training seed, each on its seed's samples (thesis
     //    3.1.3); the further seeds' GPs give the spread over seeds. The fits are independent and
     //    run in parallel.
-    let kinds: Vec<String> = plan.gps.iter().map(|g| g.name().to_uppercase()).collect();
     stage(
-        &format!("train {}, every seed", kinds.join(" and ")),
+        &format!("train {}, every seed", plan.gp_names().join(" and ")),
         &mut || {
             let mut draws: Vec<(&SampleSet, u64)> = vec![(training_set, plan.seed)];
             draws.extend(further_sets.iter().zip(further_seeds.iter().copied()));
