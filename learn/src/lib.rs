@@ -31,8 +31,8 @@ pub use features::{FeatureParams, FeatureValidParams, GaborParams, GroundMode};
 // ── One sweep's features (thesis Chapter 2) ─────────────────────────────────────────────────
 pub use features::{
     ClusterShape, Clusters, FeatureKind, FeatureTiming, GaborBank, GridMap, GridWindow, GroundGrid,
-    HeightSlice, PATCH_LEN, Patch, Scan, ScanStream, SlicedPoint, SweepFeatures, synthetic,
-    write_png,
+    HeightSlice, MIN_OBJECT_POINTS, PATCH_LEN, Patch, Scan, ScanStream, SlicedPoint, SweepFeatures,
+    synthetic, write_png,
 };
 
 // ── Training samples (thesis 3.1.1-3.1.2) ───────────────────────────────────────────────────

@@ -6,7 +6,7 @@ use std::time::Instant;
 use patchflow_dataset::Sweep;
 
 use super::cluster_estimate::{ClusterEstimate, ScanEstimate, ScanMotion};
-use crate::features::CellSamples;
+use crate::features::{CellSamples, MIN_OBJECT_POINTS};
 use crate::{MotionEstimator, Result, SweepFeatures};
 
 impl MotionEstimator {
@@ -81,12 +81,14 @@ impl MotionEstimator {
 
     /// Steps 3 and 4 for one cluster under both merge rules, predicted at every one of its
     /// points as thesis 4.4 does for its hand-labelled target. `members` index `features.points()`.
+    /// A cluster of fewer than [`MIN_OBJECT_POINTS`] points gets no estimate, as it would not be
+    /// an object hypothesis (too few cells of the difference map to show its motion).
     pub fn estimate_cluster(
         &self,
         features: &SweepFeatures,
         members: &[usize],
     ) -> Result<ClusterEstimate> {
-        if members.is_empty() {
+        if members.len() < MIN_OBJECT_POINTS {
             return Ok(ClusterEstimate::default());
         }
         let positions: Vec<[f64; 2]> = members

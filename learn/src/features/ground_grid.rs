@@ -2,7 +2,9 @@
 //! 1 m cells over the map window, queried as [`GroundGrid::ground_z_m`]. The thesis measures its
 //! height slice from a flat road (2.1.1) and names ground extraction as future work (6); roads
 //! with camber, grade changes and curbs, terrain beyond them and a drifting pose estimate move the
-//! local ground tens of centimetres to metres away from z = 0.
+//! local ground tens of centimetres to metres away from z = 0. Beyond 20 m, where the road returns
+//! little at grazing incidence, the estimate is held near the near ground extended, so the tops
+//! of parked cars cannot pass for ground there.
 
 use patchflow_dataset::Sweep;
 
@@ -122,7 +124,9 @@ impl GroundGrid {
         let moments = band_moments(points_in_world, &window, &lows, &ground);
         // A plane at every cell centre through the nearest ground that pins one down: smooths,
         // and fills the holes under objects and between rings. Without any ground, z = 0.
-        let heights_m = MomentTable::new(&moments, &window).fit_heights(&window, 0.0);
+        let mut heights_m = MomentTable::new(&moments, &window).fit_heights(&window, 0.0);
+        // Far from the sensor, where the road returns little, object tops must not pass for ground.
+        hold_far_ground_to_near_ground(&mut heights_m, &window, centre_xy);
         let max_gradient = max_gradient(&heights_m, &window);
         let centres = CentreLattice::new(&heights_m, &window);
         Self {
@@ -179,6 +183,55 @@ pub(crate) fn points_in_world(sweep: &Sweep) -> Result<Vec<[f64; 3]>> {
             Ok([end.x, end.y, end.z])
         })
         .collect()
+}
+
+/// Radius of the near ground, metres: where the road still returns densely (beyond about 20 m a
+/// real HDL-64E, and the `urban` rung, lose most road returns at grazing incidence).
+const NEAR_M: f64 = 20.0;
+/// How far above the near ground, extended, a far cell's estimate may stand before it is taken
+/// for object tops rather than ground: a curb and the camber across the street.
+const ABOVE_NEAR_GROUND_M: f64 = 0.15;
+/// Length over which the near ground's slope outward is read, metres: from 8 m out, where the
+/// rings lie close, to the rim.
+const SLOPE_BASE_M: f64 = 12.0;
+
+/// Beyond [`NEAR_M`] from `centre_xy`, replaces every height standing more than
+/// [`ABOVE_NEAR_GROUND_M`] above the near ground extended by that extension, which follows
+/// the line from the sensor outward with the estimate's height at the near zone's rim and its
+/// slope over the last [`SLOPE_BASE_M`] before it.
+///
+/// Where the far road returns nothing, the slope filter's cones reach from ground metres away,
+/// and the roofs, hoods and sills of parked cars seen over nearer traffic (one ring per cell, no
+/// face below it) pass as ground; on `urban` the estimate under targets 30-45 m away stood
+/// 0.2-1.5 m high, the height slice with it, and the targets' motion was misread there (README,
+/// "Results of the default run"). With no far ground to go by, the near road extended is the
+/// best guess; a far estimate within a curb of it is kept, so seen ground that rises gently
+/// (grade changes, terrain) keeps its own.
+fn hold_far_ground_to_near_ground(heights_m: &mut [f64], window: &GridWindow, centre_xy: [f64; 2]) {
+    let estimate = CentreLattice::new(heights_m, window);
+    let along = |[dx, dy]: [f64; 2], range: f64, at_m: f64| {
+        estimate.at(
+            centre_xy[0] + dx * at_m / range,
+            centre_xy[1] + dy * at_m / range,
+        )
+    };
+    for (k, h) in heights_m.iter_mut().enumerate() {
+        let centre = [
+            ((window.origin_col + (k % window.cols) as i64) as f64 + 0.5) * window.cell_m,
+            ((window.origin_row + (k / window.cols) as i64) as f64 + 0.5) * window.cell_m,
+        ];
+        let d = [centre[0] - centre_xy[0], centre[1] - centre_xy[1]];
+        let range = d[0].hypot(d[1]);
+        if range <= NEAR_M {
+            continue;
+        }
+        let rim = along(d, range, NEAR_M);
+        let slope = (rim - along(d, range, NEAR_M - SLOPE_BASE_M)) / SLOPE_BASE_M;
+        let extended = rim + slope * (range - NEAR_M);
+        if *h > extended + ABOVE_NEAR_GROUND_M {
+            *h = extended;
+        }
+    }
 }
 
 /// The largest |∇| of the bilinear field: per axis the steepest step between neighbouring

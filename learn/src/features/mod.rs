@@ -40,7 +40,7 @@ mod valid_params;
 
 pub(crate) use cell_samples::CellSamples;
 pub use cluster::Clusters;
-pub use cluster_shape::ClusterShape;
+pub use cluster_shape::{ClusterShape, MIN_OBJECT_POINTS};
 pub use csv::Alignment;
 pub use feature_kind::FeatureKind;
 pub use gabor::GaborBank;

@@ -179,11 +179,12 @@ impl SweepFeatures {
     }
 
     /// Ids of the clusters that can be one object (thesis 3.1, step 1: "each cluster is taken as
-    /// a dynamic object hypothesis"), leaving out those longer than any road user
-    /// ([`ClusterShape::is_object_sized`]): building fronts, walls and fences.
+    /// a dynamic object hypothesis"), leaving out those longer than any road user (building
+    /// fronts, walls and fences) and those of a handful of points
+    /// ([`ClusterShape::is_object_hypothesis`]).
     pub fn object_hypotheses(&self) -> Vec<usize> {
         (0..self.clusters.len())
-            .filter(|&c| self.cluster_shape(c).is_object_sized())
+            .filter(|&c| self.cluster_shape(c).is_object_hypothesis())
             .collect()
     }
 
