@@ -215,8 +215,9 @@ pub fn bar_markdown(rows: &[BarRow], rung: &str) -> String {
             md,
             "\nThe causes behind these patterns were found by ablation (one realism knob at a \
              time; README, \"Why the GPs lost accuracy on `urban`\"): street clutter and parked \
-             cars next to far targets, and a crossing target learned worse from urban training \
-             tracks.\n"
+             cars next to far targets (much of it through the ground estimate under them, fixed: \
+             item 7 there), a crossing target learned worse from urban training tracks, and the \
+             long side of a car passing close by, which slides along itself.\n"
         );
     }
     md

@@ -3,7 +3,9 @@
 use super::*;
 use crate::estimator::merge::{HeadingVote, merge_heading, merge_scalar};
 use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
-use crate::{ClusterEstimate, ClusterMotion, Gaussian, MergeRule, SweepFeatures};
+use crate::{
+    ClusterEstimate, ClusterMotion, Gaussian, MIN_OBJECT_POINTS, MergeRule, SweepFeatures,
+};
 use nalgebra::DMatrix;
 use patchflow_dataset::{Pose, SequenceWriter, Sweep};
 
@@ -384,4 +386,30 @@ fn features_computed_with_other_parameters_than_the_models_are_refused() {
     assert!(err.to_string().contains("trained with"), "{err}");
     let same = SweepFeatures::compute(&sweeps[2], &sweeps[3], estimator.feature_params()).unwrap();
     estimator.estimate_features(&same).unwrap();
+}
+
+#[test]
+fn a_cluster_of_fewer_than_the_minimum_points_gets_no_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let estimator = quick_estimator(dir.path());
+    let scene = SyntheticScene {
+        boxes: vec![SceneBox::car(1, [6.0, 2.5], 0.3, 6.0)],
+    };
+    let lidar = SyntheticLidar::with_resolution(64, 1800);
+    let previous = scene.scan(&lidar, [0.0, 0.0], 0.0, 0);
+    let current = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
+    let features = estimator
+        .estimate_scan(&previous, &current)
+        .unwrap()
+        .features;
+    let car = features.clusters().members(0);
+    assert!(car.len() > MIN_OBJECT_POINTS, "{} points", car.len());
+    let few = estimator
+        .estimate_cluster(&features, &car[..MIN_OBJECT_POINTS - 1])
+        .unwrap();
+    assert_eq!(few, ClusterEstimate::default());
+    let enough = estimator
+        .estimate_cluster(&features, &car[..MIN_OBJECT_POINTS])
+        .unwrap();
+    assert!(enough.all.is_some() && enough.best.is_some());
 }
