@@ -154,8 +154,8 @@ fn the_estimate_does_not_depend_on_the_sensor_heading() {
     );
     let (a, b) = (a.unwrap(), b.unwrap());
     // Within the near zone to a few centimetres; beyond it the far hold decides cell by cell
-    // whether an estimate is kept, and at (-30, 3) it corrects one heading's estimate (0.07 m
-    // high) and not the other's, both within 7 cm of the road.
+    // whether an estimate is kept: at (-30, 3) one heading's is replaced by the extension
+    // (0.01 m off the road) and the other's kept (0.065 m high).
     for (x, y, tolerance) in [
         (5.0, 1.0, 0.03),
         (-14.0, -2.0, 0.03),
