@@ -124,11 +124,10 @@ impl BenchPlan {
     }
 
     /// `--quick`: the five situations without the dense scene; every training track but only
-    /// the last third of its sweeps, SPGP-HET only (the
-    /// thesis' headline GP; cross-validation still compares it with SPGP), fewer samples,
-    /// pseudo-inputs, iterations and folds, one seed, a realism study on two of the situations,
-    /// and occupancy maps at three of the seven query times.
-    /// The realism study covers situations 1 and 5 at the `ideal` rung beside `urban`.
+    /// the last third of its sweeps; SPGP-HET only (the thesis' headline GP; cross-validation
+    /// still compares it with SPGP); fewer samples, pseudo-inputs, iterations and folds; one
+    /// seed; a realism study on situations 1 and 5 at the `ideal` rung beside `urban`; and
+    /// occupancy maps at three of the seven query times.
     pub fn quick() -> Self {
         let full = Self::full();
         let five = embedded("situation");
