@@ -15,6 +15,22 @@
 //! | 4.3 cross-validation (Tables 4.1-4.4) | `cross_validation.rs` |
 //! | 4.4 the five situations, scan by scan | `scene_evaluation.rs`, `baseline_step.rs` |
 //! | DGPOM Table 1, Figure 6 | `occupancy/` |
+//!
+//! The Kalman baseline on a cluster centroid moving at 3 m/s along +y, measured every 0.1 s:
+//!
+//! ```
+//! use patchflow_eval::{ConstantVelocityKalman, KalmanParams};
+//!
+//! let mut filter = ConstantVelocityKalman::new([10.0, 0.0], KalmanParams::default())?;
+//! for k in 1..=20 {
+//!     filter.predict(0.1);
+//!     filter.update([10.0, 0.3 * f64::from(k)])?;
+//! }
+//! let estimate = filter.estimate().expect("twenty updates give an estimate");
+//! assert!((estimate.speed_mps - 3.0).abs() < 0.1);
+//! assert!((estimate.heading_rad - std::f64::consts::FRAC_PI_2).abs() < 0.05);
+//! # Ok::<(), patchflow_eval::EvalError>(())
+//! ```
 
 mod baseline_params;
 mod baseline_step;

@@ -39,7 +39,7 @@ pub struct PerceptionSummary {
     pub scans: usize,
     /// Estimators run per scan.
     pub estimators: usize,
-    /// Each stage of [`STAGES`], in order.
+    /// Each stage of `STAGES`, in order.
     pub stages: Vec<(String, Spread)>,
     /// The whole scan for one estimator (features plus the mean estimator's step).
     pub one_estimator: Spread,

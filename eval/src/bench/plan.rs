@@ -73,7 +73,7 @@ pub struct BenchPlan {
     /// (`--quick` keeps [`QUICK_REALISM_SITUATIONS`], and its report says so).
     pub realism_situations: Vec<String>,
     /// The rungs the realism study evaluates; empty for all of them (`--quick` keeps
-    /// [`QUICK_REALISM_RUNGS`]).
+    /// `QUICK_REALISM_RUNGS`).
     pub realism_rungs: Vec<Realism>,
 }
 

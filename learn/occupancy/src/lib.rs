@@ -5,10 +5,39 @@
 //! query times. Depends on the dataset vocabulary and the GP crate, never on the motion-estimation
 //! code.
 //!
+//! Map one planar scan of a wall 8 m ahead with GPOM and score it against the truth:
+//!
 //! ```
-//! use patchflow_occupancy::roc_auc;
-//! let auc = roc_auc(&[0.9, 0.4, 0.4, 0.1], &[true, true, false, false]).unwrap();
-//! assert!((auc - 0.875).abs() < 1e-12);
+//! use patchflow_occupancy::{
+//!     Beam, GpomMethod, MapMethod, PlanarScan, SampleParams, ScanWindow, roc_auc,
+//! };
+//! // 41 beams fanned over 90 degrees; those that reach y = 8 m within |x| <= 4 m hit the wall.
+//! let beams = (0..41)
+//!     .map(|j| {
+//!         let a = (45.0 + 90.0 * f64::from(j) / 40.0_f64).to_radians();
+//!         let range_m = 8.0 / a.sin();
+//!         let hit = (a.cos() * range_m).abs() <= 4.0;
+//!         let r = if hit { range_m } else { 12.0 };
+//!         Beam { start_m: [0.0, 0.0], end_m: [a.cos() * r, a.sin() * r], hit }
+//!     })
+//!     .collect();
+//! let scan = PlanarScan {
+//!     index: 0,
+//!     stamp_secs: 0.0,
+//!     sensor_m: [0.0, 0.0],
+//!     yaw_rad: std::f64::consts::FRAC_PI_2,
+//!     beams,
+//! };
+//! let scans = [scan];
+//! let window = ScanWindow { scans: &scans, query_secs: 0.0 };
+//! // Query on the wall (occupied) and in the free space before it.
+//! let points_m: Vec<[f64; 2]> =
+//!     (-3..=3).flat_map(|x| [[f64::from(x), 8.0], [f64::from(x), 3.0]]).collect();
+//! let occupied: Vec<bool> = points_m.iter().map(|p| p[1] == 8.0).collect();
+//! let gpom = GpomMethod::space(SampleParams { free_spacing_m: 1.0, ..SampleParams::default() });
+//! let map = gpom.map(&window, &points_m)?;
+//! assert!(roc_auc(&map.probability, &occupied).is_some_and(|auc| auc > 0.95));
+//! # Ok::<(), patchflow_occupancy::OccupancyError>(())
 //! ```
 
 mod auc;

@@ -86,7 +86,7 @@ impl ClusterShape {
         }
     }
 
-    /// Whether a cluster this long can be one road user ([`MAX_OBJECT_LENGTH_M`]).
+    /// Whether a cluster this long can be one road user (`MAX_OBJECT_LENGTH_M`).
     pub fn is_object_sized(&self) -> bool {
         self.length_m <= MAX_OBJECT_LENGTH_M
     }

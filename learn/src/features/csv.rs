@@ -23,7 +23,7 @@ pub const META_COLUMNS: [&str; 9] = [
 ];
 
 impl SampleSet {
-    /// The CSV text: a header (`d_r_c`/`m_r_c` or `g00`…`g15`, then [`META_COLUMNS`]) and one
+    /// The CSV text: a header (`d_r_c`/`m_r_c` or `g00`…`g15`, then `META_COLUMNS`) and one
     /// row per sample; angles in radians, speed in m/s, numbers in shortest round-trip form.
     pub fn to_csv(&self, align: Alignment) -> String {
         let mut out = self.feature_names().join(",");

@@ -7,7 +7,7 @@ use crate::features::patch::{PATCH_CELLS, PATCH_SIDE, Patch};
 /// Number of filters in the bank.
 pub const GABOR_FILTERS: usize = 16;
 
-/// A bank of [`GABOR_FILTERS`] Gabor filters sampled on the patch grid.
+/// A bank of `GABOR_FILTERS` Gabor filters sampled on the patch grid.
 ///
 /// Filter `k` has orientation `θ_k = 2πk/16` (the full circle: with phase π/2 the filters at θ
 /// and θ + π are each other's negatives, so the sign of a response tells loss-then-gain from

@@ -96,7 +96,7 @@ pub fn render_png(features: &SweepFeatures, sweep: &Sweep) -> Result<Vec<u8>> {
     encode(&canvas)
 }
 
-/// Writes [`render_png`] to `path`.
+/// Writes `render_png` to `path`.
 pub fn write_png(features: &SweepFeatures, sweep: &Sweep, path: &Path) -> Result<()> {
     let bytes = render_png(features, sweep)?;
     Ok(patchflow_dataset::write_atomic(path, &bytes)?)

@@ -251,7 +251,7 @@ impl SweepFeatures {
     }
 
     /// The members of a cluster grouped by map cell, one sample at the mean of each cell's points
-    /// (see [`CellSamples`]).
+    /// (see `CellSamples`).
     pub fn cell_samples(&self, members: &[usize]) -> CellSamples {
         CellSamples::group(&self.points, members, self.maps.reflection.window())
     }

@@ -44,7 +44,7 @@ pub struct Scene {
 impl Scene {
     /// Builds the scene of a validated scenario; `actors` are its actors plus any random traffic.
     /// The `ideal` world is the ground slab, boxes for structures and actors; otherwise the
-    /// street world drawn from `seed` ([`StreetWorld`]).
+    /// street world drawn from `seed` (`StreetWorld`).
     pub fn build(scenario: &Scenario, actors: &[ActorConfig]) -> Result<Self> {
         Self::build_seeded(scenario, actors, 0)
     }
