@@ -110,3 +110,24 @@ fn merging_before_every_shard_has_run_names_the_missing_point() {
     let err = merge_study(&plan, &dir.path().join("empty")).unwrap_err();
     assert!(err.to_string().contains("points/000.json"), "{err}");
 }
+
+#[test]
+fn merging_points_run_with_another_plan_is_refused_naming_the_difference() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut plan = tiny_plan(dir.path(), StudyFactor::Rate);
+    plan.points.truncate(1);
+    let out = dir.path().join("quick");
+    run_study(&plan, &out, Shard { index: 0, count: 2 }, &|_| {}).unwrap();
+    // The merge's own flags say more samples than the shard ran with (a quick study merged
+    // without `--quick`): refused, naming the file and both values.
+    let mut other = plan.clone();
+    other.samples += 1;
+    let err = merge_study(&other, &out).unwrap_err().to_string();
+    assert!(err.contains("points/000.json"), "{err}");
+    assert!(
+        err.contains("samples: points have 120, this plan 121"),
+        "{err}"
+    );
+    // Merged with the plan it ran with, it is accepted.
+    merge_study(&plan, &out).unwrap();
+}

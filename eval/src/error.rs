@@ -47,6 +47,14 @@ pub enum EvalError {
         /// What is wrong.
         reason: String,
     },
+    /// A file read back (a study point, a prediction) does not fit what reads it.
+    #[error("{}: {reason}", path.display())]
+    BadFile {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What is wrong, in a user's words.
+        reason: String,
+    },
     /// A parameter is out of its valid range.
     #[error("invalid parameter {name}: {reason}")]
     BadParameter {

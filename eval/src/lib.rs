@@ -64,6 +64,7 @@ mod scan_scoring;
 mod scene_evaluation;
 mod scene_flow;
 mod scene_point;
+mod score;
 mod study;
 pub mod thesis_tables;
 mod tracker;
@@ -86,18 +87,23 @@ pub mod stages {
 }
 
 // ── Methods, their estimates and scores (thesis 4.1, 4.4) ──────────────────────────────────
-pub use dataset_evaluation::evaluate_dataset;
+pub use dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 pub use estimate::MotionEstimate;
 pub use flow_export::export_flow;
 pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
 pub use perception_summary::PerceptionSummary;
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
+pub use score::{
+    ExternalTally, MAX_PREDICTED_SPEED_MPS, MethodScores, MethodSource, MethodTally, MovingCounts,
+    PredictionFolder, ScoreFiles, ScoreReport, SequenceScores, score_predictions,
+};
 pub use study::{
     CELL_SIZES_M as STUDY_CELL_SIZES_M, FlowScores as StudyFlowScores,
-    POINT_BINS as STUDY_POINT_BINS, PointResult, Scores, SensorSetting, StudyFactor, StudyFiles,
-    StudyPlan, StudyPoint, StudyReport, discussion_section, merge_study, point_file,
-    realism_in_bench, realism_sections, run_study, study_markdown, study_section, write_study,
+    POINT_BINS as STUDY_POINT_BINS, PlanStamp, PointFile, PointResult, Scores, SensorSetting,
+    StudyFactor, StudyFiles, StudyPlan, StudyPoint, StudyReport, discussion_section, merge_study,
+    point_file, realism_in_bench, realism_sections, run_study, study_markdown, study_section,
+    write_study,
 };
 pub use truth_at_scan::TruthAtScan;
 

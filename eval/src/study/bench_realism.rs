@@ -74,7 +74,7 @@ pub fn realism_in_bench(
             }
             PointResult::from_report(point, &report)?
         };
-        write_point(&dir, &result)?;
+        write_point(&dir, &study, &result)?;
     }
     merge_study(&study, &dir)?;
     let path = dir.join("study.json");

@@ -8,9 +8,10 @@ use crate::error::EvalError;
 use crate::report::{create_dir, write_atomic};
 use crate::study::markdown::study_markdown;
 use crate::study::plan::StudyPlan;
+use crate::study::plan_stamp::PlanStamp;
 use crate::study::plot::plot_study;
 use crate::study::point_result::{POINT_BINS, PointResult};
-use crate::study::study_report::{StudyReport, point_file};
+use crate::study::study_report::{PointFile, StudyReport, point_file};
 
 /// The files a merged study wrote.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,12 +25,14 @@ pub struct StudyFiles {
 }
 
 /// Reads every point of `plan` from `out/points/` and writes the study's files into `out`; a
-/// missing point is an error naming its file (a shard not yet run).
+/// missing point is an error naming its file (a shard not yet run), and so is a point run with
+/// another plan (another seed, `--quick` or not), naming what differs.
 pub fn merge_study(plan: &StudyPlan, out: &Path) -> Result<StudyFiles, EvalError> {
+    let stamp = PlanStamp::of(plan);
     let points = plan
         .points
         .iter()
-        .map(|p| read_point(&point_file(out, p.index), p.index))
+        .map(|p| read_point(&point_file(out, p.index), p.index, &stamp))
         .collect::<Result<Vec<_>, _>>()?;
     let report = StudyReport {
         study: plan.factor.name().to_owned(),
@@ -64,15 +67,27 @@ pub fn write_study(report: &StudyReport, out: &Path) -> Result<StudyFiles, EvalE
     })
 }
 
-fn read_point(path: &Path, index: usize) -> Result<PointResult, EvalError> {
+fn read_point(path: &Path, index: usize, stamp: &PlanStamp) -> Result<PointResult, EvalError> {
     let bytes = std::fs::read(path).map_err(|e| EvalError::io(path, e))?;
-    let point: PointResult = serde_json::from_slice(&bytes).map_err(|source| EvalError::Json {
+    let file: PointFile = serde_json::from_slice(&bytes).map_err(|source| EvalError::Json {
         path: path.to_owned(),
         source,
     })?;
+    let differences = stamp.differences(&file.plan);
+    if !differences.is_empty() {
+        return Err(EvalError::BadFile {
+            path: path.to_owned(),
+            reason: format!(
+                "was run with another plan than this merge's ({}); merge with the flags the \
+                 shards ran with (`--quick`, `--seed`)",
+                differences.join("; ")
+            ),
+        });
+    }
+    let point = file.result;
     if point.index != index {
-        return Err(EvalError::BadResult {
-            situation: path.display().to_string(),
+        return Err(EvalError::BadFile {
+            path: path.to_owned(),
             reason: format!("holds point {} where point {index} belongs", point.index),
         });
     }

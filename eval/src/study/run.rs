@@ -18,10 +18,11 @@ use crate::progress::spinner;
 use crate::report::{create_dir, write_atomic};
 use crate::study::merge::{StudyFiles, merge_study};
 use crate::study::plan::{StudyPlan, StudyPoint};
+use crate::study::plan_stamp::PlanStamp;
 use crate::study::point_result::PointResult;
 use crate::study::scenario_setting::apply_setting;
 use crate::study::sensor_setting::SensorSetting;
-use crate::study::study_report::point_file;
+use crate::study::study_report::{PointFile, point_file};
 
 /// Runs this shard's points of a study into `out` (datasets under `out/data`); with the whole
 /// study (`Shard::ALL`) also merges them into `study.json`, `study.md` and plots.
@@ -53,7 +54,7 @@ pub fn run_study(
         }
         let estimators = trained.get(&key).map_or(&[][..], Vec::as_slice);
         let result = evaluate_point(plan, point, estimators, out)?;
-        write_point(out, &result)?;
+        write_point(out, plan, &result)?;
         on_point(&result);
     }
     if shard == Shard::ALL {
@@ -62,11 +63,19 @@ pub fn run_study(
     Ok(None)
 }
 
-/// Writes a point's result to its file.
-pub(crate) fn write_point(out: &Path, result: &PointResult) -> Result<(), EvalError> {
+/// Writes a point's result to its file, stamped with the plan it was run with.
+pub(crate) fn write_point(
+    out: &Path,
+    plan: &StudyPlan,
+    result: &PointResult,
+) -> Result<(), EvalError> {
     let path = point_file(out, result.index);
     create_dir(&out.join("points"))?;
-    let mut bytes = serde_json::to_vec_pretty(result).map_err(|source| EvalError::Json {
+    let file = PointFile {
+        plan: PlanStamp::of(plan),
+        result: result.clone(),
+    };
+    let mut bytes = serde_json::to_vec_pretty(&file).map_err(|source| EvalError::Json {
         path: path.clone(),
         source,
     })?;

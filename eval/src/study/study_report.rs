@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use crate::study::plan_stamp::PlanStamp;
 use crate::study::point_result::PointResult;
 
 /// A whole study: what was held fixed and every point's results, in sorted order.
@@ -27,6 +28,17 @@ pub struct StudyReport {
     pub point_bins: Vec<String>,
     /// The points.
     pub points: Vec<PointResult>,
+}
+
+/// One point's file before the merge: its result and the plan it was run with (the merge refuses
+/// points of another plan).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointFile {
+    /// The plan the point was run with.
+    pub plan: PlanStamp,
+    /// The point's result.
+    pub result: PointResult,
 }
 
 /// The file a point's result is written to.

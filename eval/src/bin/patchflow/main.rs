@@ -11,6 +11,7 @@ mod flow;
 mod generate;
 mod gp;
 mod occupancy;
+mod score;
 mod show;
 mod study;
 mod train;
@@ -41,6 +42,8 @@ enum Command {
     Cv(cv::Args),
     /// Export a trained estimator's per-point scene flow beside a dataset's layout.
     Flow(flow::Args),
+    /// Score prediction folders of any method (the layout `flow` writes) beside the built-in methods.
+    Score(score::Args),
     /// The main job: generate, train, cross-validate and evaluate on embedded defaults.
     Bench(bench::Args),
     /// A study: one factor (realism rung, lidar rate, channels, map cell size) varied, every method scored at each point.
@@ -61,6 +64,7 @@ fn main() -> std::process::ExitCode {
         Command::Evaluate(args) => evaluate::run(args),
         Command::Cv(args) => cv::run(args),
         Command::Flow(args) => flow::run(args),
+        Command::Score(args) => score::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Study(args) => study::run(args),
         Command::Occupancy(args) => occupancy::run(args),

@@ -1,0 +1,98 @@
+//! `patchflow score`: prediction folders of any method (the layout `patchflow flow` writes) scored
+//! against a dataset by the code that scores the built-in methods
+//! ([`patchflow_eval::score_predictions`]), with the built-in methods beside them when models are
+//! given.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use patchflow_dataset::Dataset;
+use patchflow_eval::progress::progress_bar;
+use patchflow_eval::{PredictionFolder, scans_to_evaluate, score_predictions};
+use patchflow_learn::MotionEstimator;
+
+/// Arguments of `patchflow score`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Dataset folder the predictions were made on.
+    #[arg(long)]
+    pub data: PathBuf,
+    /// A prediction folder, `PATH` or `PATH=NAME` (`sequences/<name>/flow/NNNNNN.bin`: float32
+    /// vx, vy, vz per point, world frame, m/s, NaN where no prediction; optional
+    /// `sequences/<name>/moving/NNNNNN.bin`, one uint8 per point). Repeat for several methods.
+    #[arg(long, required = true)]
+    pub predictions: Vec<String>,
+    /// Report folder to write (`metrics.json`, `tables.csv`, `report.md`).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Trained model file: its built-in methods are evaluated and reported beside, and its
+    /// features decide the scored points. Repeat for several GP kinds.
+    #[arg(long)]
+    pub model: Vec<PathBuf>,
+}
+
+/// Runs `patchflow score`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let folders = args
+        .predictions
+        .iter()
+        .map(|a| PredictionFolder::parse(a))
+        .collect::<Result<Vec<_>, _>>()?;
+    let inputs: Vec<&Path> = std::iter::once(args.data.as_path())
+        .chain(folders.iter().map(|f| f.root.as_path()))
+        .chain(args.model.iter().map(PathBuf::as_path))
+        .collect();
+    refuse_overlap(&args.out, &inputs)?;
+    let estimators = args
+        .model
+        .iter()
+        .map(|path| {
+            MotionEstimator::load(path).with_context(|| format!("loading model {}", path.display()))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let dataset = Dataset::open(&args.data)?;
+    let passes = 1 + u64::from(!estimators.is_empty());
+    let bar = progress_bar(scans_to_evaluate(&dataset)? * passes, "scoring scans");
+    let report = score_predictions(&dataset, &folders, &estimators, &|| bar.inc(1));
+    bar.finish_and_clear();
+    let files = report?.write(&args.out)?;
+    println!("wrote {}", files.report_md.display());
+    Ok(())
+}
+
+/// The report folder must be neither one of the inputs, nor inside one, nor hold one.
+fn refuse_overlap(out: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
+    let resolve = |p: &Path| -> PathBuf {
+        // The output may not exist yet: resolve its nearest existing ancestor.
+        let mut existing = p.to_path_buf();
+        let mut rest = Vec::new();
+        while !existing.exists() {
+            match (existing.parent(), existing.file_name()) {
+                (Some(parent), Some(name)) => {
+                    rest.push(name.to_owned());
+                    existing = parent.to_path_buf();
+                }
+                _ => break,
+            }
+        }
+        let mut resolved = std::fs::canonicalize(&existing).unwrap_or(existing);
+        resolved.extend(rest.iter().rev());
+        resolved
+    };
+    let out_resolved = resolve(if out.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        out
+    });
+    for input in inputs {
+        let input_resolved = resolve(input);
+        if out_resolved.starts_with(&input_resolved) || input_resolved.starts_with(&out_resolved) {
+            anyhow::bail!(
+                "--out {} overlaps the input {}: write the report to a folder of its own",
+                out.display(),
+                input.display()
+            );
+        }
+    }
+    Ok(())
+}
