@@ -20,7 +20,7 @@ import sys
 
 import numpy as np
 
-CELL_M = 0.5          # hash grid cell for the neighbour search (x, y)
+CELL_M = 1.5          # hash grid cell for the neighbour search (x, y): one match radius
 MAX_MATCH_M = 1.5     # a farther nearest neighbour is no match (a car at 15 m/s moves 1.5 m)
 MIN_MOTION_M = 0.12   # shorter displacements are sampling noise: the point stands still
 GROUND_Z_M = -1.45    # sensor-frame height below which a point is ground (sensor at 1.73 m)
