@@ -2,9 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use patchflow_dataset::{FolderLock, Manifest, SequenceWriter, Sweep};
+use patchflow_dataset::{FolderLock, Manifest, SequenceWriter, Sweep, remove_written_files};
 
 use crate::error::{Result, SimError};
+use crate::output_folder::{check_manifest_is_ours, check_sequence_folder};
 use crate::provenance::{Provenance, provenance};
 use crate::scenario::{
     EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes,
@@ -180,6 +181,10 @@ pub fn generate_dataset(
     for scenario in &scenarios {
         check_memory(scenario)?;
     }
+    check_manifest_is_ours(&options.out, options.overwrite)?;
+    for scenario in &scenarios {
+        check_sequence_folder(&options.out, &scenario.name)?;
+    }
     std::fs::create_dir_all(&options.out).map_err(|source| SimError::Io {
         path: options.out.clone(),
         source,
@@ -233,6 +238,7 @@ pub fn generate_sequence(
     progress: &dyn Fn(Progress),
 ) -> Result<()> {
     let name = scenario.name.clone();
+    check_sequence_folder(root, &name)?;
     let dir = root.join("sequences").join(&name);
     let on_wait = || progress(Progress::Waiting { name: name.clone() });
     let lock = FolderLock::acquire(&dir, &on_wait)?;
@@ -242,7 +248,16 @@ pub fn generate_sequence(
         mesh_digests(scenario)
     );
     match (provenance(&dir, &text, seed, GENERATOR), overwrite) {
-        (_, true) => lock.clear()?,
+        (Provenance::Foreign(reason), _) => {
+            return Err(SimError::Options(format!(
+                "{}: refusing to touch sequence {name:?}: {reason}; move those files away or write to another folder",
+                dir.display()
+            )));
+        }
+        (_, true) => {
+            // Only what a generate run wrote goes; a user's own files stay.
+            remove_written_files(&dir)?;
+        }
         (Provenance::Same { finished: true }, false) => {
             progress(Progress::SequenceDone {
                 name,

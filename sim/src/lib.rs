@@ -15,6 +15,7 @@ mod ground_contact_tests;
 mod kitti_names;
 mod lidar;
 mod motion;
+mod output_folder;
 mod pose_error;
 mod provenance;
 mod scenario;

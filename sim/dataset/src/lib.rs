@@ -28,6 +28,7 @@ mod static_obstacle;
 mod sweep;
 mod sweep_checks;
 mod writer;
+mod written_files;
 
 pub use angle::{wrap_angle_rad, wrap_angle_upper_rad};
 pub use atomic_file::write_atomic;
@@ -43,6 +44,7 @@ pub use sensor_info::{SensorInfo, SensorKind};
 pub use static_obstacle::StaticObstacle;
 pub use sweep::Sweep;
 pub use writer::{SequenceWriter, sha256_hex};
+pub use written_files::remove_written_files;
 
 /// Rigid transform type used for every pose (`world_from_sensor` and friends), f64 in the world frame.
 pub type Pose = nalgebra::Isometry3<f64>;

@@ -11,6 +11,7 @@ mod flow;
 mod generate;
 mod gp;
 mod occupancy;
+mod output_guard;
 mod show;
 mod study;
 mod train;
