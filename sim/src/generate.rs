@@ -2,7 +2,9 @@
 
 use std::path::{Path, PathBuf};
 
-use patchflow_dataset::{FolderLock, Manifest, SequenceWriter, Sweep, remove_written_files};
+use patchflow_dataset::{
+    FolderLock, Manifest, SequenceReader, SequenceWriter, Sweep, remove_written_files,
+};
 
 use crate::error::{Result, SimError};
 use crate::output_folder::{check_manifest_is_ours, check_sequence_folder};
@@ -11,6 +13,7 @@ use crate::scenario::{
     EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes,
     sweep_memory_bytes,
 };
+pub use crate::shard::Shard;
 use crate::simulation::Simulation;
 
 /// Program and version recorded in every marker; a sequence written by another is not resumed.
@@ -71,43 +74,6 @@ impl ScenarioSource {
     }
 }
 
-/// Take every `count`-th unit of work starting at `index` (0-based).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Shard {
-    /// This worker's index, `0..count`.
-    pub index: usize,
-    /// Number of workers.
-    pub count: usize,
-}
-
-impl Shard {
-    /// The whole job.
-    pub const ALL: Self = Self { index: 0, count: 1 };
-
-    /// Parses `I/N`.
-    pub fn parse(text: &str) -> Result<Self> {
-        let bad = || {
-            SimError::Options(format!(
-                "--shard {text:?}: expected I/N with 0 ≤ I < N, e.g. 0/4"
-            ))
-        };
-        let (i, n) = text.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (
-            i.trim().parse::<usize>().map_err(|_| bad())?,
-            n.trim().parse::<usize>().map_err(|_| bad())?,
-        );
-        if count == 0 || index >= count {
-            return Err(bad());
-        }
-        Ok(Self { index, count })
-    }
-
-    /// True if unit `i` (in sorted order) belongs to this shard.
-    pub fn takes(&self, i: usize) -> bool {
-        i % self.count == self.index
-    }
-}
-
 /// Options of a generation run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GenerateOptions {
@@ -147,6 +113,15 @@ pub enum Progress {
         index: u32,
         /// Points in it (0 if it was skipped as already written).
         points: usize,
+    },
+    /// A sweep an earlier run left is damaged: its files were removed and it is written again.
+    SweepDamaged {
+        /// Sequence name.
+        name: String,
+        /// Sweep index.
+        index: u32,
+        /// What is wrong, naming the file.
+        reason: String,
     },
     /// A sequence is complete (or was already).
     SequenceDone {
@@ -259,6 +234,7 @@ pub fn generate_sequence(
             remove_written_files(&dir)?;
         }
         (Provenance::Same { finished: true }, false) => {
+            verify_finished(&dir, &name)?;
             progress(Progress::SequenceDone {
                 name,
                 skipped: true,
@@ -294,7 +270,15 @@ pub fn generate_sequence(
         });
         for index in 0..scenario.sweeps {
             let mut points = 0;
-            if !writer.has_sweep(index) {
+            let (sound, damage) = writer.has_sound_sweep(index)?;
+            if let Some(damage) = damage {
+                progress(Progress::SweepDamaged {
+                    name: name.clone(),
+                    index,
+                    reason: damage.to_string(),
+                });
+            }
+            if !sound {
                 let sweep = sim.sweep(index);
                 if sweep.is_empty() {
                     return Err(SimError::Options(format!(
@@ -344,6 +328,18 @@ pub fn generate_sequence(
     Ok(())
 }
 
+/// Checks a sequence an earlier run finished before calling it complete: every sweep file
+/// against the digests its marker records (or read whole, for markers without them).
+fn verify_finished(dir: &Path, name: &str) -> Result<()> {
+    SequenceReader::open(dir)
+        .and_then(|reader| reader.verify_files())
+        .map_err(|damage| {
+            SimError::Options(format!(
+                "sequence {name:?} is marked complete but its data is damaged: {damage}; pass --overwrite to regenerate it"
+            ))
+        })
+}
+
 /// One comment line per actor with a mesh: its file and the SHA-256 of its geometry, so that the
 /// sequence's recorded request changes when the file's contents do.
 fn mesh_digests(scenario: &Scenario) -> String {
@@ -374,17 +370,5 @@ mod tests {
         assert!(matches!(source, ScenarioSource::Embedded("situation2", _)));
         let err = ScenarioSource::from_argument(Path::new("no/such/scene.toml")).unwrap_err();
         assert!(err.to_string().contains("no/such/scene.toml"), "{err}");
-    }
-
-    #[test]
-    fn shards_parse_and_partition_the_work() {
-        let shard = Shard::parse("1/3").unwrap();
-        assert_eq!(
-            (0..7).filter(|&i| shard.takes(i)).collect::<Vec<_>>(),
-            vec![1, 4]
-        );
-        assert!(Shard::parse("3/3").is_err());
-        assert!(Shard::parse("x").is_err());
-        assert!(Shard::parse("0/0").is_err());
     }
 }

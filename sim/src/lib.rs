@@ -18,9 +18,12 @@ mod motion;
 mod output_folder;
 mod pose_error;
 mod provenance;
+#[cfg(test)]
+mod resume_tests;
 mod scenario;
 mod scene;
 mod seed;
+mod shard;
 mod simulation;
 mod world;
 

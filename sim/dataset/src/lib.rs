@@ -27,6 +27,7 @@ mod sequence_files;
 mod static_obstacle;
 mod sweep;
 mod sweep_checks;
+mod sweep_integrity;
 mod writer;
 mod written_files;
 

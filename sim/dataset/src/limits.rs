@@ -17,6 +17,9 @@ pub const MAX_SWEEPS: usize = 100_000;
 /// objects of about 400 bytes each.
 pub(crate) const MAX_JSON_BYTES: u64 = 64 << 20;
 
+/// Largest per-sweep file (a `velodyne` file of [`MAX_POINTS_PER_SWEEP`] points, 16 bytes each).
+pub(crate) const MAX_SWEEP_FILE_BYTES: u64 = 16 * MAX_POINTS_PER_SWEEP as u64;
+
 /// Largest text file (`poses.txt`, `times.txt`, `scenario.toml`) a reader accepts: 64 MiB, far
 /// above [`MAX_SWEEPS`] pose lines of about 200 bytes.
 pub(crate) const MAX_TEXT_BYTES: u64 = 64 << 20;
