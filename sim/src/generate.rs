@@ -41,7 +41,9 @@ impl ScenarioSource {
     /// otherwise the embedded scenario of that name (with or without `.toml`), e.g.
     /// `dgpom_tjunction`; an error names the argument when it is neither.
     pub fn from_argument(argument: &Path) -> Result<Self> {
-        if argument.exists() {
+        // A path that is there as a link (even a dangling or looping one) is a file argument:
+        // reading it then says what is wrong with it, instead of "no such scenario".
+        if argument.exists() || std::fs::symlink_metadata(argument).is_ok() {
             return Ok(Self::File(argument.to_owned()));
         }
         let text = argument.to_string_lossy();
@@ -370,5 +372,18 @@ mod tests {
         assert!(matches!(source, ScenarioSource::Embedded("situation2", _)));
         let err = ScenarioSource::from_argument(Path::new("no/such/scene.toml")).unwrap_err();
         assert!(err.to_string().contains("no/such/scene.toml"), "{err}");
+    }
+
+    #[test]
+    fn a_symlink_loop_given_as_a_scenario_is_named_as_a_loop() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.toml"), dir.path().join("b.toml"));
+        std::os::unix::fs::symlink(&b, &a).unwrap();
+        std::os::unix::fs::symlink(&a, &b).unwrap();
+        let err = ScenarioSource::from_argument(&a)
+            .unwrap()
+            .load()
+            .unwrap_err();
+        assert!(err.to_string().contains("loop of symbolic links"), "{err}");
     }
 }
