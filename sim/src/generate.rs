@@ -2,14 +2,18 @@
 
 use std::path::{Path, PathBuf};
 
-use patchflow_dataset::{FolderLock, Manifest, SequenceWriter, Sweep};
+use patchflow_dataset::{
+    FolderLock, Manifest, SequenceReader, SequenceWriter, Sweep, remove_written_files,
+};
 
 use crate::error::{Result, SimError};
+use crate::output_folder::{check_manifest_is_ours, check_sequence_folder};
 use crate::provenance::{Provenance, provenance};
 use crate::scenario::{
     EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes,
     sweep_memory_bytes,
 };
+pub use crate::shard::Shard;
 use crate::simulation::Simulation;
 
 /// Program and version recorded in every marker; a sequence written by another is not resumed.
@@ -37,7 +41,9 @@ impl ScenarioSource {
     /// otherwise the embedded scenario of that name (with or without `.toml`), e.g.
     /// `dgpom_tjunction`; an error names the argument when it is neither.
     pub fn from_argument(argument: &Path) -> Result<Self> {
-        if argument.exists() {
+        // A path that is there as a link (even a dangling or looping one) is a file argument:
+        // reading it then says what is wrong with it, instead of "no such scenario".
+        if argument.exists() || std::fs::symlink_metadata(argument).is_ok() {
             return Ok(Self::File(argument.to_owned()));
         }
         let text = argument.to_string_lossy();
@@ -67,43 +73,6 @@ impl ScenarioSource {
                 Scenario::from_toml_at_rung(text, &format!("<embedded {name}.toml>"), name, rung)
             }
         }
-    }
-}
-
-/// Take every `count`-th unit of work starting at `index` (0-based).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Shard {
-    /// This worker's index, `0..count`.
-    pub index: usize,
-    /// Number of workers.
-    pub count: usize,
-}
-
-impl Shard {
-    /// The whole job.
-    pub const ALL: Self = Self { index: 0, count: 1 };
-
-    /// Parses `I/N`.
-    pub fn parse(text: &str) -> Result<Self> {
-        let bad = || {
-            SimError::Options(format!(
-                "--shard {text:?}: expected I/N with 0 ≤ I < N, e.g. 0/4"
-            ))
-        };
-        let (i, n) = text.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (
-            i.trim().parse::<usize>().map_err(|_| bad())?,
-            n.trim().parse::<usize>().map_err(|_| bad())?,
-        );
-        if count == 0 || index >= count {
-            return Err(bad());
-        }
-        Ok(Self { index, count })
-    }
-
-    /// True if unit `i` (in sorted order) belongs to this shard.
-    pub fn takes(&self, i: usize) -> bool {
-        i % self.count == self.index
     }
 }
 
@@ -147,6 +116,15 @@ pub enum Progress {
         /// Points in it (0 if it was skipped as already written).
         points: usize,
     },
+    /// A sweep an earlier run left is damaged: its files were removed and it is written again.
+    SweepDamaged {
+        /// Sequence name.
+        name: String,
+        /// Sweep index.
+        index: u32,
+        /// What is wrong, naming the file.
+        reason: String,
+    },
     /// A sequence is complete (or was already).
     SequenceDone {
         /// Sequence name.
@@ -179,6 +157,10 @@ pub fn generate_dataset(
     }
     for scenario in &scenarios {
         check_memory(scenario)?;
+    }
+    check_manifest_is_ours(&options.out, options.overwrite)?;
+    for scenario in &scenarios {
+        check_sequence_folder(&options.out, &scenario.name)?;
     }
     std::fs::create_dir_all(&options.out).map_err(|source| SimError::Io {
         path: options.out.clone(),
@@ -233,6 +215,7 @@ pub fn generate_sequence(
     progress: &dyn Fn(Progress),
 ) -> Result<()> {
     let name = scenario.name.clone();
+    check_sequence_folder(root, &name)?;
     let dir = root.join("sequences").join(&name);
     let on_wait = || progress(Progress::Waiting { name: name.clone() });
     let lock = FolderLock::acquire(&dir, &on_wait)?;
@@ -242,8 +225,18 @@ pub fn generate_sequence(
         mesh_digests(scenario)
     );
     match (provenance(&dir, &text, seed, GENERATOR), overwrite) {
-        (_, true) => lock.clear()?,
+        (Provenance::Foreign(reason), _) => {
+            return Err(SimError::Options(format!(
+                "{}: refusing to touch sequence {name:?}: {reason}; move those files away or write to another folder",
+                dir.display()
+            )));
+        }
+        (_, true) => {
+            // Only what a generate run wrote goes; a user's own files stay.
+            remove_written_files(&dir)?;
+        }
         (Provenance::Same { finished: true }, false) => {
+            verify_finished(&dir, &name)?;
             progress(Progress::SequenceDone {
                 name,
                 skipped: true,
@@ -279,7 +272,15 @@ pub fn generate_sequence(
         });
         for index in 0..scenario.sweeps {
             let mut points = 0;
-            if !writer.has_sweep(index) {
+            let (sound, damage) = writer.has_sound_sweep(index)?;
+            if let Some(damage) = damage {
+                progress(Progress::SweepDamaged {
+                    name: name.clone(),
+                    index,
+                    reason: damage.to_string(),
+                });
+            }
+            if !sound {
                 let sweep = sim.sweep(index);
                 if sweep.is_empty() {
                     return Err(SimError::Options(format!(
@@ -329,6 +330,18 @@ pub fn generate_sequence(
     Ok(())
 }
 
+/// Checks a sequence an earlier run finished before calling it complete: every sweep file
+/// against the digests its marker records (or read whole, for markers without them).
+fn verify_finished(dir: &Path, name: &str) -> Result<()> {
+    SequenceReader::open(dir)
+        .and_then(|reader| reader.verify_files())
+        .map_err(|damage| {
+            SimError::Options(format!(
+                "sequence {name:?} is marked complete but its data is damaged: {damage}; pass --overwrite to regenerate it"
+            ))
+        })
+}
+
 /// One comment line per actor with a mesh: its file and the SHA-256 of its geometry, so that the
 /// sequence's recorded request changes when the file's contents do.
 fn mesh_digests(scenario: &Scenario) -> String {
@@ -362,14 +375,15 @@ mod tests {
     }
 
     #[test]
-    fn shards_parse_and_partition_the_work() {
-        let shard = Shard::parse("1/3").unwrap();
-        assert_eq!(
-            (0..7).filter(|&i| shard.takes(i)).collect::<Vec<_>>(),
-            vec![1, 4]
-        );
-        assert!(Shard::parse("3/3").is_err());
-        assert!(Shard::parse("x").is_err());
-        assert!(Shard::parse("0/0").is_err());
+    fn a_symlink_loop_given_as_a_scenario_is_named_as_a_loop() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.toml"), dir.path().join("b.toml"));
+        std::os::unix::fs::symlink(&b, &a).unwrap();
+        std::os::unix::fs::symlink(&a, &b).unwrap();
+        let err = ScenarioSource::from_argument(&a)
+            .unwrap()
+            .load()
+            .unwrap_err();
+        assert!(err.to_string().contains("loop of symbolic links"), "{err}");
     }
 }

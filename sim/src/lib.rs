@@ -15,11 +15,15 @@ mod ground_contact_tests;
 mod kitti_names;
 mod lidar;
 mod motion;
+mod output_folder;
 mod pose_error;
 mod provenance;
+#[cfg(test)]
+mod resume_tests;
 mod scenario;
 mod scene;
 mod seed;
+mod shard;
 mod simulation;
 mod world;
 

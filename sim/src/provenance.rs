@@ -18,6 +18,9 @@ pub(crate) enum Provenance {
     },
     /// Written by another request (or unreadable); the reason says how it differs.
     Different(String),
+    /// Holds files no generate run wrote (no `scenario.toml` of ours): never removed, even to
+    /// regenerate.
+    Foreign(String),
 }
 
 /// Compares what `dir` holds with a request whose `scenario.toml` text is `scenario_text`,
@@ -69,7 +72,7 @@ pub(crate) fn provenance(
             "an unfinished run of another request (another scenario text or seed) left sweeps there".to_owned(),
         ),
         None if holds_files(dir) => {
-            Provenance::Different("it holds files of an unknown run (no scenario.toml)".to_owned())
+            Provenance::Foreign("it holds files no patchflow run wrote (no scenario.toml)".to_owned())
         }
         None => Provenance::Fresh,
     }
@@ -121,7 +124,7 @@ mod tests {
         std::fs::write(dir.path().join("labels/000000.label"), b"x").unwrap();
         assert!(matches!(
             provenance(dir.path(), "a", 1, "g"),
-            Provenance::Different(_)
+            Provenance::Foreign(_)
         ));
     }
 }

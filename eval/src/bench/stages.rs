@@ -71,6 +71,15 @@ pub fn generate_with_progress(
                     }
                 }
             }
+            Progress::SweepDamaged {
+                name,
+                index,
+                reason,
+            } => {
+                let _ = bars.println(format!(
+                    "{name:>12} sweep {index} left by an earlier run is damaged ({reason}); writing it again"
+                ));
+            }
             Progress::SequenceDone { name, skipped } => match open.remove(&name) {
                 Some(bar) => bar.finish_with_message("done"),
                 None if skipped => {

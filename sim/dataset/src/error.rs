@@ -22,6 +22,25 @@ pub enum DatasetError {
         /// What is wrong, in plain words.
         reason: String,
     },
+    /// A file is larger than its kind may be: refused before it is read.
+    #[error("{path}: too large ({len} bytes, limit {limit})")]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its size.
+        len: u64,
+        /// The most such a file may hold.
+        limit: u64,
+    },
+    /// A path given as input does not lead to a regular file (a folder, pipe, device, socket,
+    /// or a loop of symbolic links).
+    #[error("{path}: {what}")]
+    NotRegular {
+        /// The path.
+        path: PathBuf,
+        /// What it is instead, in words.
+        what: String,
+    },
     /// The dataset was written by an incompatible version of the format.
     #[error(
         "{path}: dataset format version {found} is not supported (this build reads version {expected})"

@@ -15,6 +15,7 @@ mod angle;
 mod atomic_file;
 mod error;
 mod folder_lock;
+mod input_file;
 mod limits;
 mod manifest;
 mod object;
@@ -27,12 +28,15 @@ mod sequence_files;
 mod static_obstacle;
 mod sweep;
 mod sweep_checks;
+mod sweep_integrity;
 mod writer;
+mod written_files;
 
 pub use angle::{wrap_angle_rad, wrap_angle_upper_rad};
 pub use atomic_file::write_atomic;
 pub use error::{DatasetError, Result};
 pub use folder_lock::{FolderLock, LOCK_FILE};
+pub use input_file::check_input_file;
 pub use limits::{MAX_POINTS_PER_SWEEP, MAX_SWEEPS, read_limited};
 pub use manifest::{FORMAT_NAME, FORMAT_VERSION, Manifest, SequenceInfo};
 pub use object::{ActorClass, ObjectTruth};
@@ -43,6 +47,7 @@ pub use sensor_info::{SensorInfo, SensorKind};
 pub use static_obstacle::StaticObstacle;
 pub use sweep::Sweep;
 pub use writer::{SequenceWriter, sha256_hex};
+pub use written_files::remove_written_files;
 
 /// Rigid transform type used for every pose (`world_from_sensor` and friends), f64 in the world frame.
 pub type Pose = nalgebra::Isometry3<f64>;

@@ -4,7 +4,7 @@
 use std::io::Read;
 use std::path::Path;
 
-use crate::{DatasetError, Result};
+use crate::{DatasetError, Result, check_input_file};
 
 /// Most points one sweep may hold (the simulator's rays per turn are bounded by the same number):
 /// 4,000,000 points are 64 MB of `velodyne` data, 35 times an HDL-64E sweep.
@@ -16,6 +16,9 @@ pub const MAX_SWEEPS: usize = 100_000;
 /// Largest JSON file (objects, markers, manifest) a reader accepts: 64 MiB, far above 65,535
 /// objects of about 400 bytes each.
 pub(crate) const MAX_JSON_BYTES: u64 = 64 << 20;
+
+/// Largest per-sweep file (a `velodyne` file of [`MAX_POINTS_PER_SWEEP`] points, 16 bytes each).
+pub(crate) const MAX_SWEEP_FILE_BYTES: u64 = 16 * MAX_POINTS_PER_SWEEP as u64;
 
 /// Largest text file (`poses.txt`, `times.txt`, `scenario.toml`) a reader accepts: 64 MiB, far
 /// above [`MAX_SWEEPS`] pose lines of about 200 bytes.
@@ -31,13 +34,17 @@ pub(crate) const MAX_TEXT_BYTES: u64 = 64 << 20;
 /// assert_eq!(patchflow_dataset::read_limited(&path, 100).unwrap().len(), 100);
 /// ```
 pub fn read_limited(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
-    let file = std::fs::File::open(path).map_err(|e| DatasetError::io(path, e))?;
-    let too_big = |len: u64| {
-        DatasetError::corrupt(
-            path,
-            format!("{len} bytes is more than the {max_bytes} bytes such a file may hold"),
-        )
+    let too_big = |len: u64| DatasetError::TooLarge {
+        path: path.to_owned(),
+        len,
+        limit: max_bytes,
     };
+    // Checked before opening: opening a FIFO for reading blocks until a writer comes.
+    let len = check_input_file(path)?;
+    if len > max_bytes {
+        return Err(too_big(len));
+    }
+    let file = std::fs::File::open(path).map_err(|e| DatasetError::io(path, e))?;
     let len = file
         .metadata()
         .map_err(|e| DatasetError::io(path, e))?
@@ -73,7 +80,7 @@ mod tests {
         std::fs::write(&path, vec![b' '; 2000]).unwrap();
         let err = read_limited(&path, 1000).unwrap_err().to_string();
         assert!(
-            err.contains("objects.json") && err.contains("2000 bytes"),
+            err.contains("objects.json") && err.contains("too large (2000 bytes, limit 1000)"),
             "{err}"
         );
     }

@@ -4,6 +4,7 @@
 //! manifest is rebuilt from the markers, so shards that wrote into one folder merge by listing it
 //! again (`Manifest::scan`), whatever order they finished in.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
@@ -42,6 +43,12 @@ pub struct SequenceInfo {
     pub rate_hz: f64,
     /// Program and version that wrote it, e.g. `patchflow 0.1.0`.
     pub generator: String,
+    /// Per sweep, the SHA-256 of each of its files by folder (`velodyne`, `labels`, `flow`,
+    /// `time`, `ring` if present, `objects`), recorded when the sequence was finished; what
+    /// `generate` checks before it calls a sequence complete. Only in `sequence.json` (the
+    /// manifest leaves it out); absent in markers of older builds.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sweep_sha256: Vec<BTreeMap<String, String>>,
 }
 
 /// The dataset's table of contents, `DIR/manifest.json`.
@@ -72,7 +79,10 @@ impl Manifest {
                         let reason = format!("names sequence {:?}, not its folder", info.name);
                         return Err(DatasetError::corrupt(&marker, reason));
                     }
-                    sequences.push(info);
+                    sequences.push(SequenceInfo {
+                        sweep_sha256: Vec::new(),
+                        ..info
+                    });
                 }
             }
         }

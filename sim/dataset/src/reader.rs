@@ -2,15 +2,12 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::limits::{MAX_JSON_BYTES, read_limited};
 use crate::manifest::read_marker;
 use crate::pose::parse_kitti_pose;
-use crate::record_files::{read_f32s, read_lines, read_u16s, read_words};
-use crate::sweep_checks::check_objects;
+use crate::record_files::read_lines;
+use crate::sweep_integrity::{SweepFiles, check_sweep_digests, read_sweep_files};
 use crate::writer::{ESTIMATED_POSES, sweep_path};
-use crate::{
-    DatasetError, MAX_SWEEPS, Manifest, ObjectTruth, PointLabel, Pose, Result, SequenceInfo, Sweep,
-};
+use crate::{DatasetError, MAX_SWEEPS, Manifest, Pose, Result, SequenceInfo, Sweep};
 
 /// An opened dataset folder.
 #[derive(Debug, Clone)]
@@ -171,6 +168,21 @@ impl SequenceReader {
         Ok(())
     }
 
+    /// Checks every sweep's files: against the SHA-256 digests the marker records (markers of
+    /// older builds record none; then each sweep is read with every check of [`Self::read_sweep`]).
+    /// The first damaged file is a [`DatasetError::Corrupt`] naming it.
+    pub fn verify_files(&self) -> Result<()> {
+        for i in 0..self.len() as u32 {
+            match self.info.sweep_sha256.get(i as usize) {
+                Some(recorded) => check_sweep_digests(&self.dir, i, recorded)?,
+                None => {
+                    read_sweep_files(&self.dir, i)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// What the marker says about this sequence.
     pub fn info(&self) -> &SequenceInfo {
         &self.info
@@ -229,27 +241,14 @@ impl SequenceReader {
             });
         }
         let i = index as u32;
-        let velodyne_path = sweep_path(&self.dir, "velodyne", i, "bin");
-        let velodyne = read_f32s(&velodyne_path, 4, None)?;
-        let n = velodyne.len() / 4;
-        let labels_path = sweep_path(&self.dir, "labels", i, "label");
-        let labels: Vec<PointLabel> = read_words(&labels_path, 1, Some(n))?
-            .into_iter()
-            .map(PointLabel)
-            .collect();
-        let flow = read_f32s(&sweep_path(&self.dir, "flow", i, "bin"), 3, Some(n))?;
-        let time = read_f32s(&sweep_path(&self.dir, "time", i, "bin"), 1, Some(n))?;
-        let ring_path = sweep_path(&self.dir, "ring", i, "bin");
-        let rings = match ring_path.is_file() {
-            true => read_u16s(&ring_path, n)?,
-            false => Vec::new(),
-        };
-        let objects_path = sweep_path(&self.dir, "objects", i, "json");
-        let objects: Vec<ObjectTruth> =
-            serde_json::from_slice(&read_limited(&objects_path, MAX_JSON_BYTES)?)
-                .map_err(|e| DatasetError::corrupt(&objects_path, e.to_string()))?;
-        check_objects(&objects, &labels, &labels_path)
-            .map_err(|reason| DatasetError::corrupt(&objects_path, reason))?;
+        let SweepFiles {
+            velodyne,
+            labels,
+            flow,
+            time,
+            rings,
+            objects,
+        } = read_sweep_files(&self.dir, i)?;
         Ok(Sweep {
             index: i,
             stamp_secs: self.stamps_secs[index],

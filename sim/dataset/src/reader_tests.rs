@@ -2,7 +2,7 @@
 //! refused with an error naming it.
 
 use super::*;
-use crate::{ActorClass, SemanticClass, SequenceWriter};
+use crate::{ActorClass, ObjectTruth, PointLabel, SemanticClass, SequenceWriter};
 use nalgebra::Vector3;
 
 pub(crate) fn sample_sweep(index: u32) -> Sweep {

@@ -23,10 +23,10 @@ pub(crate) fn read_words(path: &Path, per_record: usize, n: Option<usize>) -> Re
     let record = 4 * per_record as u64;
     let max_records = n.unwrap_or(MAX_POINTS_PER_SWEEP) as u64;
     let bytes = read_limited(path, record * max_records).map_err(|e| match (e, n) {
-        (DatasetError::Corrupt { .. }, Some(n)) => {
+        (DatasetError::TooLarge { .. }, Some(n)) => {
             DatasetError::corrupt(path, format!("more than {n} records for {n} points"))
         }
-        (DatasetError::Corrupt { .. }, None) => DatasetError::corrupt(
+        (DatasetError::TooLarge { .. }, None) => DatasetError::corrupt(
             path,
             format!("more than {MAX_POINTS_PER_SWEEP} points, the most a sweep holds"),
         ),
@@ -71,7 +71,7 @@ pub(crate) fn read_f32s(path: &Path, per_record: usize, n: Option<usize>) -> Res
 pub(crate) fn read_u16s(path: &Path, n: usize) -> Result<Vec<u16>> {
     let expected = 2 * n as u64;
     let bytes = read_limited(path, expected).map_err(|e| match e {
-        DatasetError::Corrupt { .. } => DatasetError::corrupt(
+        DatasetError::TooLarge { .. } => DatasetError::corrupt(
             path,
             format!("more than {expected} bytes for {n} points (2 bytes each)"),
         ),

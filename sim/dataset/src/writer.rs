@@ -10,6 +10,7 @@ use crate::atomic_file::write_atomic;
 use crate::limits::{MAX_TEXT_BYTES, read_limited};
 use crate::manifest::{read_marker, write_json};
 use crate::pose::format_kitti_pose;
+use crate::sweep_integrity::{SWEEP_FILE_KINDS, read_sweep_files, sweep_digests};
 use crate::{
     DatasetError, FORMAT_NAME, FORMAT_VERSION, Pose, Result, SensorInfo, SequenceInfo,
     StaticObstacle, Sweep,
@@ -67,6 +68,33 @@ impl SequenceWriter {
     /// True if sweep `index` was fully written by this or an earlier run.
     pub fn has_sweep(&self, index: u32) -> bool {
         self.sweep_path("objects", index, "json").is_file()
+    }
+
+    /// True if sweep `index` was written and its files read back whole (sizes agree, values
+    /// finite, labels agree with the object truth). A damaged sweep's files are removed so that
+    /// it is written again; the error that condemned it is returned beside `false`.
+    pub fn has_sound_sweep(&self, index: u32) -> Result<(bool, Option<DatasetError>)> {
+        if !self.has_sweep(index) {
+            return Ok((false, None));
+        }
+        match read_sweep_files(&self.dir, index) {
+            Ok(_) => Ok((true, None)),
+            Err(DatasetError::Io { path, source })
+                if source.kind() != std::io::ErrorKind::NotFound =>
+            {
+                Err(DatasetError::Io { path, source })
+            }
+            Err(damage) => {
+                // The object file goes first: without it the sweep counts as unwritten.
+                for (folder, ext) in SWEEP_FILE_KINDS.iter().rev() {
+                    let path = self.sweep_path(folder, index, ext);
+                    if path.is_file() {
+                        std::fs::remove_file(&path).map_err(|e| DatasetError::io(&path, e))?;
+                    }
+                }
+                Ok((false, Some(damage)))
+            }
+        }
     }
 
     /// Writes the resolved scenario beside the data.
@@ -162,6 +190,7 @@ impl SequenceWriter {
             });
         }
         let mut points = 0u64;
+        let mut sweep_sha256 = Vec::with_capacity(poses.len());
         for index in 0..poses.len() as u32 {
             if !self.has_sweep(index) {
                 return Err(DatasetError::Invalid {
@@ -174,6 +203,7 @@ impl SequenceWriter {
                 .map_err(|e| DatasetError::io(&velodyne, e))?
                 .len();
             points += bytes / 16;
+            sweep_sha256.push(sweep_digests(&self.dir, index)?);
         }
         let poses_txt: String = poses.iter().map(|p| format_kitti_pose(p) + "\n").collect();
         let times_txt: String = stamps_secs.iter().map(|t| format!("{t:.6e}\n")).collect();
@@ -202,6 +232,7 @@ impl SequenceWriter {
             points,
             rate_hz,
             generator: generator.to_owned(),
+            sweep_sha256,
         };
         write_json(&marker, &info)?;
         Ok(info)

@@ -59,7 +59,7 @@ pub(super) struct BlockCaster<'a> {
     pub(super) actor_labels: Vec<PointLabel>,
     pub(super) max_range_m: f32,
     pub(super) noise_std_m: f32,
-    dropout: f32,
+    pub(super) dropout: f32,
     pub(super) attenuation_per_m: f32,
     noise_key: u64,
 }

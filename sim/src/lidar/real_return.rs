@@ -115,6 +115,11 @@ impl BlockCaster<'_> {
             if !self.sensor.detects(reflectivity * visible, cos, range, u) {
                 return None;
             }
+            // `[lidar] dropout_probability` on top of the rung's physical ray drop (drawn only
+            // when set, so a rung's sweeps without it are unchanged).
+            if self.dropout > 0.0 && rng.random::<f32>() < self.dropout {
+                return None;
+            }
             let std = self.noise_std_m + self.sensor.extra_noise_std_m(range);
             let noisy = (range + std * rng.sample::<f32, _>(StandardNormal)).max(0.0);
             let point = self.origin_in_reference

@@ -225,6 +225,29 @@ mod tests {
     }
 
     #[test]
+    fn dropout_probability_takes_effect_on_every_rung() {
+        for rung in ["ideal", "urban", "harsh"] {
+            let points = |dropout: f64| {
+                let text = format!(
+                    "realism = \"{rung}\"\n{}",
+                    TINY.replace(
+                        "blocks = 36",
+                        &format!("blocks = 36\ndropout_probability = {dropout}")
+                    )
+                );
+                let scenario = Scenario::from_toml(&text, "tiny.toml", "tiny").unwrap();
+                Simulation::new(&scenario, 3).unwrap().sweep(1).len() as f64
+            };
+            let (kept, dropped) = (points(0.0), points(0.9));
+            // 90 % dropped: about a tenth is left; a third is far outside any chance variation.
+            assert!(
+                dropped < kept / 3.0,
+                "{rung}: {dropped} of {kept} points kept"
+            );
+        }
+    }
+
+    #[test]
     fn a_sweep_is_byte_identical_on_one_and_on_three_threads() {
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()

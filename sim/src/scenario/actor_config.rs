@@ -158,6 +158,18 @@ impl ActorConfig {
     pub(crate) fn problems(&self) -> Vec<(&'static str, String)> {
         let limits = class_limits(self.class);
         let mut out = Vec::new();
+        if let Some(model) = self.model
+            && self.class != ActorClass::Car
+        {
+            out.push((
+                "model",
+                format!(
+                    "model = \"{}\" is a car body style; a {} has none (remove it, or set class = \"car\")",
+                    format!("{model:?}").to_lowercase(),
+                    format!("{:?}", self.class).to_lowercase()
+                ),
+            ));
+        }
         let finite = |v: f64| v.is_finite();
         if self.path_m.len() < 2 {
             out.push((

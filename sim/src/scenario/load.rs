@@ -69,6 +69,9 @@ impl Scenario {
         rung: Option<super::Realism>,
         base: &Path,
     ) -> Result<Self> {
+        if let Some((offset, reason)) = super::array_lengths::array_length_problem(text) {
+            return Err(SimError::at_offset(file, text, offset, reason));
+        }
         let mut scenario: Scenario = toml::from_str(text).map_err(|e| {
             let offset = e.span().map(|s| s.start).unwrap_or(0);
             SimError::at_offset(file, text, offset, e.message().trim().to_owned())

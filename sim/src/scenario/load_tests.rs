@@ -225,3 +225,24 @@ fn a_resolved_planar_scenario_reads_back_equal() {
     let back = Scenario::from_toml(&s.to_toml(), "resolved.toml", "x").unwrap();
     assert_eq!(back, s);
 }
+
+#[test]
+fn a_path_point_of_three_values_is_rejected_with_its_line() {
+    let (line, reason) = error_of(&with_actor(
+        "path_m = [[0.0, 5.0, 5.0], [50.0, 5.0, 5.0]]\nspeed_mps = 3.0",
+    ));
+    assert_eq!(line, 8);
+    assert!(reason.contains("path_m entry 0 has 3 values"), "{reason}");
+}
+
+#[test]
+fn a_car_model_on_a_pedestrian_is_rejected_with_its_line() {
+    let (line, reason) = error_of(&with_actor(
+        "class = \"pedestrian\"\nmodel = \"van\"\npath_m = [[0.0, 5.0], [50.0, 5.0]]\nspeed_mps = 1.0",
+    ));
+    assert_eq!(line, 9);
+    assert!(
+        reason.contains("car body style") && reason.contains("pedestrian"),
+        "{reason}"
+    );
+}

@@ -2,6 +2,7 @@
 //! scenario set, and seeded random traffic.
 
 mod actor_config;
+mod array_lengths;
 mod bounds;
 mod derived_limits;
 mod embedded;

@@ -41,18 +41,23 @@ impl VehicleMesh {
     /// ```
     pub fn load(path: &Path) -> Result<Self, String> {
         let bytes = patchflow_dataset::read_limited(path, MAX_MESH_BYTES).map_err(|e| {
-            match std::fs::metadata(path) {
-                Err(io) if io.kind() == std::io::ErrorKind::NotFound => "no such file".to_owned(),
-                _ => format!("cannot be read ({e})"),
+            match (std::fs::metadata(path), e) {
+                (Err(io), _) if io.kind() == std::io::ErrorKind::NotFound => {
+                    "no such file".to_owned()
+                }
+                (_, patchflow_dataset::DatasetError::NotRegular { what, .. }) => what,
+                (_, e) => format!("cannot be read ({e})"),
             }
         })?;
+        // Editors on Windows start UTF-8 files with a byte-order mark; it is no OBJ statement.
+        let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
         let options = tobj::LoadOptions {
             triangulate: true,
             single_index: false,
             ignore_points: true,
             ignore_lines: true,
         };
-        let (models, _) = tobj::load_obj_buf(&mut bytes.as_slice(), &options, |_| {
+        let (models, _) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
             Err(tobj::LoadError::OpenFileFailed)
         })
         .map_err(|e| format!("is not a readable OBJ file ({e})"))?;

@@ -166,3 +166,24 @@ fn a_broken_mesh_names_the_mesh_file_and_the_scenario_line() {
         "{err}"
     );
 }
+
+#[test]
+fn a_mesh_starting_with_a_utf8_byte_order_mark_loads() {
+    // Without the mark stripped, the first vertex line is not read and face 8 is out of bounds.
+    let text = format!("\u{feff}{}", BOX_OBJ.trim_start_matches("o box\n"));
+    let (_dir, path) = write("bom.obj", &text);
+    let mesh = VehicleMesh::load(&path).unwrap();
+    assert_eq!((mesh.vertices.len(), mesh.triangles.len()), (8, 12));
+}
+
+#[test]
+fn a_fifo_given_as_a_mesh_is_refused_without_blocking() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("van.obj");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        return; // no mkfifo here: nothing to test
+    }
+    let err = VehicleMesh::load(&fifo).unwrap_err();
+    assert!(err.contains("not a regular file"), "{err}");
+}

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use crate::output_guard::{OutputKind, check_output};
 use patchflow_eval::{BenchPlan, Method, MethodMetrics, SeedSpread, run_bench};
 
 /// Arguments of `patchflow bench`.
@@ -29,6 +30,7 @@ pub struct Args {
 
 /// Runs `patchflow bench`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    check_output(&args.out, OutputKind::Folder, &[])?;
     let mut plan = if args.quick {
         BenchPlan::quick()
     } else {

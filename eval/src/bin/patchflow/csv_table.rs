@@ -43,6 +43,7 @@ pub struct Table {
 impl Table {
     /// Reads the selected columns of `path`.
     pub fn read(path: &Path, select: Columns<'_>) -> Result<Self> {
+        patchflow_dataset::check_input_file(path)?;
         let text = std::fs::read_to_string(path)
             .map_err(|e| anyhow!("{}: cannot read: {e}", path.display()))?;
         let err =

@@ -6,6 +6,8 @@ use patchflow_dataset::Dataset;
 use patchflow_eval::stages::{collect_samples_with_bar, cross_validate_with_bar};
 use patchflow_eval::{CvParams, write_cv_report};
 
+use crate::output_guard::{Input, OutputKind, check_output};
+
 /// Arguments of `patchflow cv`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -22,6 +24,11 @@ pub struct Args {
 
 /// Runs `patchflow cv`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    check_output(
+        &args.out,
+        OutputKind::Folder,
+        &[Input::new("--data", &args.data)],
+    )?;
     let dataset = Dataset::open(&args.data)?;
     let params = CvParams {
         folds: args.folds,

@@ -10,6 +10,8 @@ use patchflow_eval::{
 };
 use patchflow_learn::MotionEstimator;
 
+use crate::output_guard::{Input, OutputKind, check_output};
+
 /// Arguments of `patchflow evaluate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -26,6 +28,9 @@ pub struct Args {
 
 /// Runs `patchflow evaluate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    let mut inputs = vec![Input::new("--data", &args.data)];
+    inputs.extend(args.model.iter().map(|m| Input::new("--model", m)));
+    check_output(&args.out, OutputKind::Folder, &inputs)?;
     let estimators = args
         .model
         .iter()

@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::output_guard::{Input, OutputKind, check_output};
 use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_learn::{Alignment, FeatureKind, FeatureParams, SampleSet};
@@ -44,6 +45,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "heading" => Alignment::Heading,
         other => anyhow::bail!("--align must be bearing or heading, not {other:?}"),
     };
+    check_output(
+        &args.out,
+        OutputKind::File,
+        &[Input::new("--data", &args.data)],
+    )?;
     let params = FeatureParams::with_prior(args.prior);
     let dataset = Dataset::open(&args.data)?;
     let bar = indicatif::ProgressBar::new(0).with_message("sweep pairs");

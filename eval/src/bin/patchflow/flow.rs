@@ -9,6 +9,8 @@ use patchflow_eval::progress::progress_bar;
 use patchflow_eval::{GpReadout, export_flow};
 use patchflow_learn::{MergeRule, MotionEstimator};
 
+use crate::output_guard::{Input, OutputKind, check_output};
+
 /// Arguments of `patchflow flow`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -30,6 +32,14 @@ pub struct Args {
 
 /// Runs `patchflow flow`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    check_output(
+        &args.out,
+        OutputKind::Folder,
+        &[
+            Input::new("--data", &args.data),
+            Input::new("--model", &args.model),
+        ],
+    )?;
     let readout = match args.readout.as_str() {
         "all" => GpReadout::Merged(MergeRule::All),
         "best" => GpReadout::Merged(MergeRule::Best),

@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::output_guard::{Input, OutputKind, check_output};
 use patchflow_eval::stages::generate_with_progress;
 use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard, write_kitti_names};
 
@@ -51,6 +52,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .map(|path| ScenarioSource::from_argument(path))
             .collect::<Result<Vec<_>, _>>()?
     };
+    let files: Vec<&std::path::PathBuf> = args.scenarios.iter().filter(|p| p.exists()).collect();
+    let inputs: Vec<Input<'_>> = files.iter().map(|p| Input::new("scenario", p)).collect();
+    check_output(&args.out, OutputKind::Folder, &[])?;
+    // What generate writes inside --out; a scenario kept beside them is never touched.
+    for (written, kind) in [
+        ("sequences", OutputKind::Folder),
+        ("manifest.json", OutputKind::File),
+        ("kitti", OutputKind::Folder),
+    ] {
+        check_output(&args.out.join(written), kind, &inputs)?;
+    }
     let shard = match &args.shard {
         Some(text) => Shard::parse(text)?,
         None => Shard::ALL,

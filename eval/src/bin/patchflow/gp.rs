@@ -6,6 +6,7 @@ use anyhow::Context;
 use patchflow_learn::{GpKind, GpModel, GpParams};
 
 use crate::csv_table::{Columns, Table};
+use crate::output_guard::{Input, OutputKind, check_output};
 
 /// Arguments of `patchflow gp`.
 #[derive(Debug, clap::Args)]
@@ -74,6 +75,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 }
 
 fn fit(a: FitArgs) -> anyhow::Result<()> {
+    check_output(&a.out, OutputKind::File, &[Input::new("--csv", &a.csv)])?;
     let kind: GpKind = a.kind.parse()?;
     let ignore: Vec<String> = a
         .ignore
@@ -108,6 +110,10 @@ fn fit(a: FitArgs) -> anyhow::Result<()> {
 }
 
 fn predict(a: PredictArgs) -> anyhow::Result<()> {
+    if let Some(out) = &a.out {
+        let inputs = [Input::new("--model", &a.model), Input::new("--csv", &a.csv)];
+        check_output(out, OutputKind::File, &inputs)?;
+    }
     let model = GpModel::load(&a.model)?;
     let table = Table::read(&a.csv, Columns::Only(model.input_names()))?;
     let x = table.select(model.input_names())?;
@@ -204,6 +210,27 @@ mod tests {
         }
         std::fs::write(&path, text).expect("writes");
         path
+    }
+
+    #[test]
+    fn gp_fit_and_predict_refuse_to_write_over_their_input_and_leave_it_intact() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let csv = write_csv(dir.path(), "x.csv", 25, false);
+        let before = std::fs::read(&csv).expect("reads");
+        let err = fit(fit_args(csv.clone(), csv.clone())).expect_err("out is the input");
+        assert!(err.to_string().contains("is the input --csv"), "{err}");
+        assert_eq!(std::fs::read(&csv).expect("reads"), before);
+        let model = dir.path().join("m.json");
+        fit(fit_args(csv.clone(), model.clone())).expect("fits");
+        let model_bytes = std::fs::read(&model).expect("reads");
+        let err = predict(PredictArgs {
+            model: model.clone(),
+            csv,
+            out: Some(model.clone()),
+        })
+        .expect_err("out is the model");
+        assert!(err.to_string().contains("is the input --model"), "{err}");
+        assert_eq!(std::fs::read(&model).expect("reads"), model_bytes);
     }
 
     #[test]

@@ -11,6 +11,7 @@ mod flow;
 mod generate;
 mod gp;
 mod occupancy;
+mod output_guard;
 mod score;
 mod show;
 mod study;

@@ -10,6 +10,8 @@ use patchflow_eval::stages::occupancy_with_bar;
 use patchflow_eval::{OccupancyReport, write_occupancy_report};
 use patchflow_occupancy::{AheadParams, OccupancyParams};
 
+use crate::output_guard::{Input, OutputKind, check_output};
+
 /// Arguments of `patchflow occupancy`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -26,6 +28,11 @@ pub struct Args {
 
 /// Runs `patchflow occupancy`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    check_output(
+        &args.out,
+        OutputKind::Folder,
+        &[Input::new("--data", &args.data)],
+    )?;
     let dataset = Dataset::open(&args.data)?;
     let report = occupancy_with_bar(
         &dataset,

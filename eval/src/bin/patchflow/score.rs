@@ -3,13 +3,15 @@
 //! ([`patchflow_eval::score_predictions`]), with the built-in methods beside them when models are
 //! given.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::progress::progress_bar;
 use patchflow_eval::{PredictionFolder, scans_to_evaluate, score_predictions};
 use patchflow_learn::MotionEstimator;
+
+use crate::output_guard::{Input, OutputKind, check_output};
 
 /// Arguments of `patchflow score`.
 #[derive(Debug, clap::Args)]
@@ -38,11 +40,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .iter()
         .map(|a| PredictionFolder::parse(a))
         .collect::<Result<Vec<_>, _>>()?;
-    let inputs: Vec<&Path> = std::iter::once(args.data.as_path())
-        .chain(folders.iter().map(|f| f.root.as_path()))
-        .chain(args.model.iter().map(PathBuf::as_path))
+    let inputs: Vec<Input<'_>> = std::iter::once(Input::new("--data", &args.data))
+        .chain(folders.iter().map(|f| Input::new("--predictions", &f.root)))
+        .chain(args.model.iter().map(|m| Input::new("--model", m)))
         .collect();
-    refuse_overlap(&args.out, &inputs)?;
+    check_output(&args.out, OutputKind::Folder, &inputs)?;
     let estimators = args
         .model
         .iter()
@@ -57,42 +59,5 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let files = report?.write(&args.out)?;
     println!("wrote {}", files.report_md.display());
-    Ok(())
-}
-
-/// The report folder must be neither one of the inputs, nor inside one, nor hold one.
-fn refuse_overlap(out: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
-    let resolve = |p: &Path| -> PathBuf {
-        // The output may not exist yet: resolve its nearest existing ancestor.
-        let mut existing = p.to_path_buf();
-        let mut rest = Vec::new();
-        while !existing.exists() {
-            match (existing.parent(), existing.file_name()) {
-                (Some(parent), Some(name)) => {
-                    rest.push(name.to_owned());
-                    existing = parent.to_path_buf();
-                }
-                _ => break,
-            }
-        }
-        let mut resolved = std::fs::canonicalize(&existing).unwrap_or(existing);
-        resolved.extend(rest.iter().rev());
-        resolved
-    };
-    let out_resolved = resolve(if out.as_os_str().is_empty() {
-        Path::new(".")
-    } else {
-        out
-    });
-    for input in inputs {
-        let input_resolved = resolve(input);
-        if out_resolved.starts_with(&input_resolved) || input_resolved.starts_with(&out_resolved) {
-            anyhow::bail!(
-                "--out {} overlaps the input {}: write the report to a folder of its own",
-                out.display(),
-                input.display()
-            );
-        }
-    }
     Ok(())
 }

@@ -9,6 +9,11 @@ use patchflow_dataset::Dataset;
 use patchflow_eval::{write_map_figure, write_scene_figures};
 use patchflow_learn::{FeatureParams, SweepFeatures};
 
+use crate::output_guard::{Input, OutputKind, check_output};
+
+/// Figure formats `show` writes, by the extension of `--out`.
+const FIGURE_EXTENSIONS: [&str; 1] = ["png"];
+
 /// Arguments of `patchflow show`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -30,6 +35,31 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     if args.scan == 0 {
         anyhow::bail!("--scan must be at least 1: the difference map needs the previous sweep");
+    }
+    let extension = args.out.extension().and_then(|e| e.to_str());
+    if !extension.is_some_and(|e| FIGURE_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str())) {
+        anyhow::bail!(
+            "--out {}: unknown figure format {:?}; the file name must end in one of: {}",
+            args.out.display(),
+            extension.unwrap_or(""),
+            FIGURE_EXTENSIONS.map(|e| format!(".{e}")).join(", ")
+        );
+    }
+    let beside = |suffix: &str| {
+        let stem = args
+            .out
+            .file_stem()
+            .map_or_else(|| "show".into(), |s| s.to_string_lossy());
+        args.out.with_file_name(format!("{stem}_{suffix}.png"))
+    };
+    let data = [Input::new("--data", &args.data)];
+    for out in [args.out.clone(), beside("scene"), beside("cloud")] {
+        check_output(&out, OutputKind::File, &data)?;
+    }
+    if let Some(name) = args.sequence.as_ref().filter(|n| !is_plain_name(n)) {
+        anyhow::bail!(
+            "--sequence {name:?}: a sequence is named by its folder under sequences/, without '/', '..' or a leading '.'"
+        );
     }
     let dataset = Dataset::open(&args.data)?;
     let name = match &args.sequence {
@@ -67,13 +97,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .with_context(|| format!("{}: cannot create the folder", folder.display()))?;
     }
     write_map_figure(&features, &curr, &title, &args.out)?;
-    let beside = |suffix: &str| {
-        let stem = args
-            .out
-            .file_stem()
-            .map_or_else(|| "show".into(), |s| s.to_string_lossy());
-        args.out.with_file_name(format!("{stem}_{suffix}.png"))
-    };
     let figures = write_scene_figures(
         &sequence,
         Some(args.scan),
@@ -87,4 +110,53 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         figures.cloud.display()
     );
     Ok(())
+}
+
+/// True for a single folder name: not empty, no separator, not `.`/`..` or hidden.
+fn is_plain_name(name: &str) -> bool {
+    !name.is_empty() && !name.starts_with('.') && !name.contains(['/', '\\', '\0'])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(data: PathBuf, sequence: Option<&str>, out: PathBuf) -> Args {
+        Args {
+            data,
+            sequence: sequence.map(String::from),
+            scan: 1,
+            out,
+        }
+    }
+
+    #[test]
+    fn an_unknown_figure_extension_is_refused_listing_the_allowed_ones() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let err = run(args(dir.path().join("D"), None, dir.path().join("f.gif")))
+            .expect_err("gif is not written");
+        let msg = err.to_string();
+        assert!(msg.contains("\"gif\"") && msg.contains(".png"), "{msg}");
+    }
+
+    #[test]
+    fn a_sequence_name_that_climbs_out_of_the_dataset_is_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let data = dir.path().join("D");
+        let out = dir.path().join("f.png");
+        let err = run(args(data, Some("../../etc"), out)).expect_err("refused");
+        assert!(err.to_string().contains("without '/'"), "{err}");
+    }
+
+    #[test]
+    fn a_figure_inside_the_dataset_is_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let data = dir.path().join("D");
+        std::fs::create_dir_all(&data).expect("mkdir");
+        let err = run(args(data.clone(), None, data.join("f.png"))).expect_err("refused");
+        assert!(
+            err.to_string().contains("lies inside the input --data"),
+            "{err}"
+        );
+    }
 }

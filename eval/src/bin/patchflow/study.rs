@@ -8,6 +8,8 @@ use std::path::PathBuf;
 use patchflow_eval::{BenchPlan, StudyFactor, StudyPlan, merge_study, run_study};
 use patchflow_sim::Shard;
 
+use crate::output_guard::{OutputKind, check_output};
+
 /// Arguments of `patchflow study`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
@@ -48,6 +50,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let out = args
         .out
         .unwrap_or_else(|| PathBuf::from(format!("results/study-{}", factor.name())));
+    check_output(&out, OutputKind::Folder, &[])?;
     let files = if args.merge {
         Some(merge_study(&plan, &out)?)
     } else {

@@ -8,6 +8,7 @@ use patchflow_eval::progress::progress_bar;
 use patchflow_learn::{EstimatorParams, FeatureParams, MotionEstimator};
 
 use crate::common::{parse_feature, parse_gp};
+use crate::output_guard::{Input, OutputKind, check_output};
 
 /// Arguments of `patchflow train`.
 #[derive(Debug, clap::Args)]
@@ -44,6 +45,11 @@ pub struct Args {
 
 /// Runs `patchflow train`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    check_output(
+        &args.out,
+        OutputKind::File,
+        &[Input::new("--data", &args.data)],
+    )?;
     let base = match args.thesis_training {
         true => EstimatorParams::thesis(),
         false => EstimatorParams::default(),
