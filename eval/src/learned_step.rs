@@ -6,7 +6,10 @@
 //!   [`VelocityMeasurement`]); a track reports from the first scan it took a GP measurement, so
 //!   it needs no two-point initiation.
 //! - `GP-ICP`: `ICP-AUTO`'s nearest-centroid association, ICP started from the GP's motion over
-//!   the interval instead of the centroid alignment.
+//!   the interval as well as from the centroid alignment; the alignment that pairs more points
+//!   (beyond 5 %), else the one with the smaller residual, wins. Point-to-point ICP stops in the
+//!   local minimum nearest its start, so neither start alone is safe: the centroid shift is off
+//!   when the visible side of an object changes, the GP's motion when the GP is.
 //!
 //! With a moving classifier, a cluster decided static is measured at rest by GP-KF and gets zero
 //! flow from both. Neither reads the truth: the target id only picks the estimate to score.
@@ -22,7 +25,7 @@ use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::method::Method;
 use crate::observation::ScanObservation;
-use crate::rigid_motion::{icp_rigid_motion, icp_rigid_motion_from};
+use crate::rigid_motion::{RigidMotion, icp_rigid_motion, icp_rigid_motion_from};
 use crate::tracker::{MultiTargetTracker, TrackStatus};
 use crate::velocity_measurement::{VelocityFloors, VelocityMeasurement};
 
@@ -159,16 +162,35 @@ impl LearnedTrackers {
                 let before = &previous.clusters.get(links.get(c).copied().flatten()?)?;
                 let before = thinned(&before.points_xy_world);
                 let current = thinned(&scan.clusters[c].points_xy_world);
-                let motion = match of(c).gp {
-                    Some(gp) => icp_rigid_motion_from(&before, &current, dt, gp.velocity_xy_mps, icp),
-                    None => icp_rigid_motion(&before, &current, dt, icp),
-                };
-                motion.map(ClusterFlow::Rigid)
+                let from_centroid = icp_rigid_motion(&before, &current, dt, icp);
+                let from_gp = of(c).gp.and_then(|gp| {
+                    icp_rigid_motion_from(&before, &current, dt, gp.velocity_xy_mps, icp)
+                });
+                better_alignment(from_gp, from_centroid).map(ClusterFlow::Rigid)
             })
             .collect();
         self.previous = Some(scan.clone());
         Ok(gp_icp)
     }
+}
+
+/// Of ICP from the GP's start and from the centroid's: a non-degenerate one over a degenerate
+/// one, then the one pairing more than 5 % more points, then the smaller residual (the GP's on a
+/// tie).
+fn better_alignment(gp: Option<RigidMotion>, centroid: Option<RigidMotion>) -> Option<RigidMotion> {
+    let (Some(g), Some(c)) = (gp, centroid) else {
+        return gp.or(centroid);
+    };
+    let (ga, ca) = (g.alignment, c.alignment);
+    let (gn, cn) = (ga.inlier_count as f64, ca.inlier_count as f64);
+    let centroid_wins = match (ga.degenerate, ca.degenerate) {
+        (true, false) => true,
+        (false, true) => false,
+        _ if gn < 0.95 * cn => true,
+        _ if cn < 0.95 * gn => false,
+        _ => ca.inlier_rms_m < ga.inlier_rms_m,
+    };
+    Some(if centroid_wins { c } else { g })
 }
 
 #[cfg(test)]

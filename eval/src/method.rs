@@ -176,6 +176,16 @@ impl Method {
         )
     }
 
+    /// The name as report tables print it: the oracle-association methods marked as the upper
+    /// bounds they are (`KF (oracle)`).
+    pub fn label(self) -> String {
+        if self.is_oracle() {
+            format!("{} (oracle)", self.name())
+        } else {
+            self.name().to_owned()
+        }
+    }
+
     /// Position in [`Self::ALL`], for stable plot colours.
     pub fn slot(self) -> usize {
         self as usize
@@ -281,6 +291,14 @@ mod tests {
             format!("{:>8}|{:<4}|", Method::Kf, Method::Icp),
             "      KF|ICP |"
         );
+    }
+
+    #[test]
+    fn only_the_truth_associated_methods_are_labelled_oracle() {
+        assert_eq!(Method::Icp.label(), "ICP (oracle)");
+        assert_eq!(Method::IcpAuto.label(), "ICP-AUTO");
+        assert!(Method::GpKf.is_learned() && !Method::KfAuto.is_learned());
+        assert_eq!(Method::gp_decided(GpKind::SpgpHet).name(), "SPGP-HET-ALL+MOS");
     }
 
     #[test]
