@@ -31,6 +31,7 @@ mod estimate;
 mod flow_export;
 mod icp;
 mod kalman;
+mod learned_perception;
 mod learned_step;
 mod method;
 mod metrics;
@@ -76,6 +77,7 @@ pub mod stages {
 pub use dataset_evaluation::evaluate_dataset;
 pub use estimate::MotionEstimate;
 pub use flow_export::export_flow;
+pub use learned_perception::{LearnedPerception, LearnedScan};
 pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
 pub use moving_iou::{MovingIou, is_moving_displacement};
