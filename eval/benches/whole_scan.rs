@@ -3,6 +3,9 @@
 //! (`scenarios/dense_traffic.toml`, its first sweeps generated in the setup), split into the
 //! features (slice, maps, clusters) and one estimator's step (patches, GP prediction, merging).
 //!
+//! A last case times the whole learned scan of issue 27: features, one estimator's step, the
+//! moving classifier, GP-KF and GP-ICP ([`LearnedPerception`], primed on the scan before).
+//!
 //! `cargo bench -p patchflow-eval --bench whole_scan`. The estimator is trained in the setup with
 //! the default's 100 pseudo-inputs and 242 patch values (what prediction costs depend on) but few
 //! iterations; `PATCHFLOW_BENCH_MODEL=<model.json>` loads a trained one instead (e.g.
@@ -12,10 +15,12 @@
 use std::hint::black_box;
 use std::path::PathBuf;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use patchflow_dataset::{Dataset, Sweep};
-use patchflow_eval::DENSE_TRAFFIC_TOML;
-use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SweepFeatures};
+use patchflow_eval::{BaselineParams, DENSE_TRAFFIC_TOML, LearnedPerception};
+use patchflow_learn::{
+    EstimatorParams, GpKind, MotionEstimator, MovingClassifier, MovingParams, SweepFeatures,
+};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
 /// The dataset to bench on: `PATCHFLOW_BENCH_DATASET`, or the dense scene's first four sweeps.
@@ -41,13 +46,13 @@ fn dataset(dir: &std::path::Path) -> Dataset {
     Dataset::open(&options.out).expect("opening the generated dataset")
 }
 
-/// Two consecutive sweeps: 60 and 61 of the first sequence, or its last two.
-fn sweeps(dataset: &Dataset) -> (Sweep, Sweep) {
+/// Three consecutive sweeps: 59 to 61 of the first sequence, or its last three.
+fn sweeps(dataset: &Dataset) -> (Sweep, Sweep, Sweep) {
     let info = dataset.sequences().first().expect("a sequence");
     let reader = dataset.sequence(&info.name).expect("sequence");
     let t = 61.min(reader.len() - 1);
     let read = |t| reader.read_sweep(t).expect("sweep");
-    (read(t - 1), read(t))
+    (read(t - 2), read(t - 1), read(t))
 }
 
 /// `PATCHFLOW_BENCH_MODEL`, or an SPGP-HET estimator of the default's size fitted briefly.
@@ -68,8 +73,14 @@ fn estimator(dataset: &Dataset) -> MotionEstimator {
 fn whole_scan(c: &mut Criterion) {
     let dir = tempfile::tempdir().expect("temporary folder");
     let dataset = dataset(dir.path());
-    let (prev, curr) = sweeps(&dataset);
+    let (before, prev, curr) = sweeps(&dataset);
     let estimator = estimator(&dataset);
+    let moving = MovingClassifier::train(
+        &dataset,
+        estimator.feature_params(),
+        &MovingParams::default(),
+    )
+    .expect("training the moving classifier");
     let params = estimator.feature_params().clone();
     let probe = estimator.estimate_scan(&prev, &curr).expect("scan");
     eprintln!(
@@ -90,6 +101,27 @@ fn whole_scan(c: &mut Criterion) {
     });
     group.bench_function("whole_scan_one_estimator", |b| {
         b.iter(|| estimator.estimate_scan(black_box(&prev), black_box(&curr)))
+    });
+    let earlier = SweepFeatures::compute(&before, &prev, &params).expect("features");
+    let primed = || {
+        let mut perception =
+            LearnedPerception::new(&estimator, Some(&moving), &BaselineParams::default())
+                .expect("perception");
+        perception
+            .step(&earlier, prev.stamp_secs)
+            .expect("the scan before");
+        perception
+    };
+    group.bench_function("whole_learned_scan_segmentation_gp_kf_gp_icp", |b| {
+        b.iter_batched(
+            primed,
+            |mut perception| {
+                let features = SweepFeatures::compute(black_box(&prev), black_box(&curr), &params)
+                    .expect("features");
+                perception.step(&features, curr.stamp_secs).expect("scan")
+            },
+            BatchSize::SmallInput,
+        )
     });
     group.finish();
 }

@@ -285,7 +285,7 @@ fn oracle_clusters(
 pub const MAX_ICP_POINTS: usize = 1500;
 
 /// The cluster's points, or every `k`-th of them when there are more than [`MAX_ICP_POINTS`].
-fn thinned(points: &[[f64; 2]]) -> std::borrow::Cow<'_, [[f64; 2]]> {
+pub(crate) fn thinned(points: &[[f64; 2]]) -> std::borrow::Cow<'_, [[f64; 2]]> {
     if points.len() <= MAX_ICP_POINTS {
         return std::borrow::Cow::Borrowed(points);
     }

@@ -2,7 +2,7 @@
 //! point behind `patchflow evaluate` and the evaluation stage of `patchflow bench`.
 
 use patchflow_dataset::{Dataset, SequenceReader};
-use patchflow_learn::MotionEstimator;
+use patchflow_learn::{MotionEstimator, MovingClassifier};
 
 use crate::baseline_params::BaselineParams;
 use crate::error::EvalError;
@@ -37,8 +37,10 @@ pub fn scans_to_evaluate(dataset: &Dataset) -> Result<u64, EvalError> {
     Ok(total)
 }
 
-/// Evaluates every sequence of a dataset with the given estimators (one per GP kind) and the
-/// four baselines, scans in order; `on_scan` is called once per scan evaluated.
+/// Evaluates every sequence of a dataset with the given estimators (one per GP kind), the
+/// moving classifier when given (the `+MOS` read-outs; GP-KF and GP-ICP take its decision),
+/// GP-KF, GP-ICP and the four baselines, scans in order; `on_scan` is called once per scan
+/// evaluated.
 ///
 /// ```no_run
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -46,7 +48,7 @@ pub fn scans_to_evaluate(dataset: &Dataset) -> Result<u64, EvalError> {
 /// use patchflow_eval::{BaselineParams, evaluate_dataset, write_report};
 /// let estimator = patchflow_learn::MotionEstimator::load(Path::new("models/spgp-het.json"))?;
 /// let dataset = patchflow_dataset::Dataset::open(Path::new("data/situations"))?;
-/// let report = evaluate_dataset(&dataset, &[estimator], &BaselineParams::default(), &|| {})?;
+/// let report = evaluate_dataset(&dataset, &[estimator], &BaselineParams::default(), None, &|| {})?;
 /// write_report(&report, Path::new("report"))?;
 /// # Ok(())
 /// # }
@@ -55,6 +57,7 @@ pub fn evaluate_dataset(
     dataset: &Dataset,
     estimators: &[MotionEstimator],
     baselines: &BaselineParams,
+    moving: Option<&MovingClassifier>,
     on_scan: &(dyn Fn() + Sync),
 ) -> Result<BenchmarkReport, EvalError> {
     for (k, e) in estimators.iter().enumerate() {
@@ -71,7 +74,7 @@ pub fn evaluate_dataset(
         if let Some(description) = description_of(&sequence) {
             report.descriptions.insert(name.clone(), description);
         }
-        let run = evaluate_sequence(&sequence, estimators, baselines, on_scan)?;
+        let run = evaluate_sequence(&sequence, estimators, baselines, moving, on_scan)?;
         report.situations.extend(run.target);
         report.scenes.push(run.scene);
     }

@@ -122,8 +122,29 @@ pub fn align_icp(
         target_centroid[0] - source_centroid[0],
         target_centroid[1] - source_centroid[1],
     );
+    align_icp_from(source, target, centroid_shift, params)
+}
+
+/// [`align_icp`] started from `initial` instead of the centroid alignment (`GP-ICP`: the GP's
+/// motion estimate over the interval). `None` when either set is empty; `initial` itself
+/// (flagged `degenerate`) when either has fewer than `min_points` points.
+pub fn align_icp_from(
+    source: &[[f64; 2]],
+    target: &[[f64; 2]],
+    initial: Isometry2<f64>,
+    params: &IcpParams,
+) -> Option<IcpAlignment> {
+    let finite = |p: &&[f64; 2]| p[0].is_finite() && p[1].is_finite();
+    if !source.iter().all(|p| finite(&p)) || !target.iter().all(|p| finite(&p)) {
+        let source: Vec<[f64; 2]> = source.iter().filter(finite).copied().collect();
+        let target: Vec<[f64; 2]> = target.iter().filter(finite).copied().collect();
+        return align_icp_from(&source, &target, initial, params);
+    }
+    if source.is_empty() || target.is_empty() {
+        return None;
+    }
     let translation_only = IcpAlignment {
-        target_from_source: centroid_shift,
+        target_from_source: initial,
         iterations: 0,
         converged: false,
         inlier_count: 0,
@@ -140,7 +161,7 @@ pub fn align_icp(
         return Some(translation_only);
     };
 
-    let mut current = centroid_shift;
+    let mut current = initial;
     let mut gate_m = params.initial_gate_m;
     let mut result = translation_only;
     for iteration in 1..=params.max_iterations {

@@ -17,6 +17,7 @@ use nalgebra::{Matrix2, Matrix2x4, Matrix4, Matrix4x2, Vector2, Vector4};
 
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
+use crate::velocity_measurement::VelocityMeasurement;
 
 /// Noise and initialisation of the constant-velocity filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,6 +89,7 @@ pub struct ConstantVelocityKalman {
     covariance: Matrix4<f64>,
     params: KalmanParams,
     updates: usize,
+    velocity_updates: usize,
 }
 
 const H: Matrix2x4<f64> = Matrix2x4::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
@@ -113,6 +115,7 @@ impl ConstantVelocityKalman {
             covariance: Matrix4::from_diagonal(&Vector4::new(pos_var, pos_var, vel_var, vel_var)),
             params,
             updates: 1,
+            velocity_updates: 0,
         })
     }
 
@@ -177,6 +180,29 @@ impl ConstantVelocityKalman {
         Ok(innovation)
     }
 
+    /// Corrects the state with a direct velocity measurement (`GP-KF`: the GP's merged heading
+    /// and speed, thesis 3.1.4), `z = [0 I] x + v`, `v ~ N(0, Σ)`; Joseph-form covariance update.
+    pub fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {
+        let h = Matrix2x4::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+        let z = Vector2::new(
+            measurement.velocity_xy_mps[0],
+            measurement.velocity_xy_mps[1],
+        );
+        let residual = z - h * self.state;
+        let s = h * self.covariance * h.transpose() + measurement.covariance;
+        let s_inv = s.try_inverse().ok_or_else(|| EvalError::BadParameter {
+            name: "VelocityMeasurement.covariance",
+            reason: "innovation covariance is singular".into(),
+        })?;
+        let gain: Matrix4x2<f64> = self.covariance * h.transpose() * s_inv;
+        self.state += gain * residual;
+        let i_kh = Matrix4::identity() - gain * h;
+        self.covariance = i_kh * self.covariance * i_kh.transpose()
+            + gain * measurement.covariance * gain.transpose();
+        self.velocity_updates += 1;
+        Ok(())
+    }
+
     /// Filtered position, metres.
     pub fn position(&self) -> [f64; 2] {
         [self.state[0], self.state[1]]
@@ -192,14 +218,21 @@ impl ConstantVelocityKalman {
         self.covariance.fixed_view::<2, 2>(2, 2).into_owned()
     }
 
+    /// Velocity measurements taken in so far.
+    pub fn velocity_updates(&self) -> usize {
+        self.velocity_updates
+    }
+
     /// Measurements taken in so far (the first one included).
     pub fn updates(&self) -> usize {
         self.updates
     }
 
-    /// The motion estimate (heading, speed and their variances), once enough updates were made.
+    /// The motion estimate (heading, speed and their variances), once enough updates were made
+    /// or a velocity was measured (from the first scan on, for `GP-KF`).
     pub fn estimate(&self) -> Option<MotionEstimate> {
-        (self.updates >= self.params.min_updates_for_estimate).then(|| {
+        let enough = self.updates >= self.params.min_updates_for_estimate;
+        (enough || self.velocity_updates > 0).then(|| {
             MotionEstimate::from_velocity_with_covariance(
                 self.velocity(),
                 self.velocity_covariance(),
@@ -287,6 +320,18 @@ mod tests {
         let e = kf.estimate().unwrap();
         assert!(e.heading_rad.abs() < 1e-9);
         assert!(e.heading_var.unwrap() > 0.0 && e.speed_var.unwrap() > 0.0);
+    }
+
+    #[test]
+    fn a_velocity_measurement_gives_an_estimate_from_the_first_scan() {
+        let mut kf = ConstantVelocityKalman::new([0.0, 0.0], KalmanParams::default()).unwrap();
+        let measured = VelocityMeasurement {
+            velocity_xy_mps: [6.0, 2.0],
+            covariance: Matrix2::identity() * 0.01,
+        };
+        kf.update_velocity(&measured).unwrap();
+        let e = kf.estimate().unwrap();
+        assert!((e.velocity_xy_mps[0] - 6.0).abs() < 0.01 && (e.velocity_xy_mps[1] - 2.0).abs() < 0.01);
     }
 
     #[test]

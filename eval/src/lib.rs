@@ -47,8 +47,11 @@ mod estimate;
 mod flow_export;
 mod icp;
 mod kalman;
+mod learned_perception;
+mod learned_step;
 mod method;
 mod metrics;
+mod moving_iou;
 mod objects;
 mod observation;
 mod occupancy;
@@ -69,6 +72,7 @@ mod study;
 pub mod thesis_tables;
 mod tracker;
 mod truth_at_scan;
+mod velocity_measurement;
 
 // ── The benchmark ──────────────────────────────────────────────────────────────────────────
 pub use bench::{
@@ -90,8 +94,10 @@ pub mod stages {
 pub use dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 pub use estimate::MotionEstimate;
 pub use flow_export::export_flow;
+pub use learned_perception::{LearnedPerception, LearnedScan};
 pub use method::{CANONICAL_METHODS, GpReadout, Method};
 pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
+pub use moving_iou::{MovingIou, is_moving_displacement};
 pub use perception_summary::PerceptionSummary;
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
 pub use score::{
@@ -110,10 +116,13 @@ pub use truth_at_scan::TruthAtScan;
 // ── Baselines (thesis 3.2) ──────────────────────────────────────────────────────────────────
 pub use baseline_params::BaselineParams;
 pub use baselines::{BaselineMethod, run_baseline};
-pub use icp::{IcpAlignment, IcpParams, align_icp};
+pub use icp::{IcpAlignment, IcpParams, align_icp, align_icp_from};
 pub use kalman::{ConstantVelocityKalman, KalmanParams};
-pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion};
+pub use rigid_motion::{
+    RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from,
+};
 pub use tracker::{MultiTargetTracker, TrackerParams};
+pub use velocity_measurement::{VelocityFloors, VelocityMeasurement};
 
 // ── Cross-validation (thesis 4.3) ───────────────────────────────────────────────────────────
 pub use cross_validation::{cross_validate, cross_validate_samples};

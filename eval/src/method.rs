@@ -31,10 +31,20 @@ pub enum Method {
     KfAuto,
     /// ICP between clusters linked by nearest predicted centroid.
     IcpAuto,
+    /// The KF-AUTO tracker whose filters also measure the GP's merged heading and speed.
+    GpKf,
+    /// ICP-AUTO started from the GP's merged motion instead of the centroid alignment.
+    GpIcp,
     /// Exact GP, all predictions merged.
     FullGpAll,
     /// Exact GP, low-variance predictions merged.
     FullGpBest,
+    /// SPGP ALL where the moving classifier says the cluster moves, zero flow where not.
+    SpgpAllMos,
+    /// SPGP-HET ALL with the moving/static decision.
+    SpgpHetAllMos,
+    /// Exact GP ALL with the moving/static decision.
+    FullGpAllMos,
     /// SPGP per point: each point moves with its own predicted heading and speed (scene flow only).
     SpgpPoint,
     /// SPGP-HET per point (scene flow only).
@@ -56,7 +66,7 @@ pub enum GpReadout {
 
 impl Method {
     /// Every method, in canonical order.
-    pub const ALL: [Self; 14] = [
+    pub const ALL: [Self; 19] = [
         Self::SpgpAll,
         Self::SpgpBest,
         Self::SpgpHetAll,
@@ -65,8 +75,13 @@ impl Method {
         Self::Icp,
         Self::KfAuto,
         Self::IcpAuto,
+        Self::GpKf,
+        Self::GpIcp,
         Self::FullGpAll,
         Self::FullGpBest,
+        Self::SpgpAllMos,
+        Self::SpgpHetAllMos,
+        Self::FullGpAllMos,
         Self::SpgpPoint,
         Self::SpgpHetPoint,
         Self::FullGpPoint,
@@ -84,8 +99,13 @@ impl Method {
             Self::Icp => "ICP",
             Self::KfAuto => "KF-AUTO",
             Self::IcpAuto => "ICP-AUTO",
+            Self::GpKf => "GP-KF",
+            Self::GpIcp => "GP-ICP",
             Self::FullGpAll => "FULL-GP-ALL",
             Self::FullGpBest => "FULL-GP-BEST",
+            Self::SpgpAllMos => "SPGP-ALL+MOS",
+            Self::SpgpHetAllMos => "SPGP-HET-ALL+MOS",
+            Self::FullGpAllMos => "FULL-GP-ALL+MOS",
             Self::SpgpPoint => "SPGP-POINT",
             Self::SpgpHetPoint => "SPGP-HET-POINT",
             Self::FullGpPoint => "FULL-GP-POINT",
@@ -106,6 +126,16 @@ impl Method {
             (GpKind::Full, Merged(MergeRule::All)) => Self::FullGpAll,
             (GpKind::Full, Merged(MergeRule::Best)) => Self::FullGpBest,
             (GpKind::Full, PerPoint) => Self::FullGpPoint,
+        }
+    }
+
+    /// The GP method of an estimator kind read out as ALL where the moving classifier decides
+    /// the cluster moves, zero flow where it decides it is static.
+    pub fn gp_decided(kind: GpKind) -> Self {
+        match kind {
+            GpKind::Spgp => Self::SpgpAllMos,
+            GpKind::SpgpHet => Self::SpgpHetAllMos,
+            GpKind::Full => Self::FullGpAllMos,
         }
     }
 
@@ -132,9 +162,28 @@ impl Method {
         self != Self::ZeroFlow
     }
 
-    /// Whether the method takes its data association from ground truth.
+    /// Whether the method takes its data association from ground truth (`KF`, `ICP`): an
+    /// oracle upper bound, kept out of the scene-flow ranking (issue 27).
     pub fn is_oracle(self) -> bool {
         matches!(self, Self::Kf | Self::Icp)
+    }
+
+    /// Whether the method uses a trained model (a GP, and for `+MOS` the moving classifier).
+    pub fn is_learned(self) -> bool {
+        !matches!(
+            self,
+            Self::Kf | Self::Icp | Self::KfAuto | Self::IcpAuto | Self::ZeroFlow
+        )
+    }
+
+    /// The name as report tables print it: the oracle-association methods marked as the upper
+    /// bounds they are (`KF (oracle)`).
+    pub fn label(self) -> String {
+        if self.is_oracle() {
+            format!("{} (oracle)", self.name())
+        } else {
+            self.name().to_owned()
+        }
     }
 
     /// Position in [`Self::ALL`], for stable plot colours.
@@ -177,9 +226,10 @@ impl<'de> Deserialize<'de> for Method {
     }
 }
 
-/// The eight methods of the per-target tables (SPEC §6), in table order: the four GP variants
-/// (thesis Table 4.5), the oracle-association baselines, then the self-associating baselines.
-pub const CANONICAL_METHODS: [Method; 8] = [
+/// The ten methods of the per-target tables (SPEC §6), in table order: the four GP variants
+/// (thesis Table 4.5), the oracle-association baselines, the self-associating baselines, then
+/// the GP-informed tracking (issue 27).
+pub const CANONICAL_METHODS: [Method; 10] = [
     Method::SpgpAll,
     Method::SpgpBest,
     Method::SpgpHetAll,
@@ -188,6 +238,8 @@ pub const CANONICAL_METHODS: [Method; 8] = [
     Method::Icp,
     Method::KfAuto,
     Method::IcpAuto,
+    Method::GpKf,
+    Method::GpIcp,
 ];
 
 #[cfg(test)]
@@ -239,6 +291,14 @@ mod tests {
             format!("{:>8}|{:<4}|", Method::Kf, Method::Icp),
             "      KF|ICP |"
         );
+    }
+
+    #[test]
+    fn only_the_truth_associated_methods_are_labelled_oracle() {
+        assert_eq!(Method::Icp.label(), "ICP (oracle)");
+        assert_eq!(Method::IcpAuto.label(), "ICP-AUTO");
+        assert!(Method::GpKf.is_learned() && !Method::KfAuto.is_learned());
+        assert_eq!(Method::gp_decided(GpKind::SpgpHet).name(), "SPGP-HET-ALL+MOS");
     }
 
     #[test]

@@ -55,6 +55,15 @@ pub struct PerceptionSummary {
     pub target: Spread,
     /// Mean sliced points of the target's cluster, when the sequence has a target.
     pub mean_target_points: Option<f64>,
+    /// The moving classifier on every hypothesis (issue 27).
+    pub segmentation: Spread,
+    /// GP-KF over every cluster.
+    pub gp_kf: Spread,
+    /// GP-ICP on the hypotheses.
+    pub gp_icp: Spread,
+    /// The whole learned perception with one estimator: features, its GP step, the classifier,
+    /// GP-KF and GP-ICP ([`ScanTiming::learned_scan_secs`]).
+    pub learned_scan: Spread,
 }
 
 impl PerceptionSummary {
@@ -93,6 +102,10 @@ impl PerceptionSummary {
             target: spread(&|t| t.target_secs),
             mean_target_points: (!with_target.is_empty())
                 .then(|| with_target.iter().sum::<f64>() / with_target.len() as f64),
+            segmentation: spread(&|t| t.segmentation_secs),
+            gp_kf: spread(&|t| t.gp_kf_secs),
+            gp_icp: spread(&|t| t.gp_icp_secs),
+            learned_scan: spread(&ScanTiming::learned_scan_secs),
         }
     }
 

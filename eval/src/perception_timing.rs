@@ -30,6 +30,15 @@ pub struct ScanTiming {
     pub target_secs: f64,
     /// Sliced points of the target's cluster.
     pub target_points: usize,
+    /// The moving classifier on every object hypothesis (0 without a classifier).
+    #[serde(default)]
+    pub segmentation_secs: f64,
+    /// GP-KF over every cluster.
+    #[serde(default)]
+    pub gp_kf_secs: f64,
+    /// GP-ICP on the hypotheses.
+    #[serde(default)]
+    pub gp_icp_secs: f64,
 }
 
 /// One estimator's whole-scan step, seconds (see [`PredictionTiming`]).
@@ -97,6 +106,12 @@ impl ScanTiming {
                 .iter()
                 .map(StepTiming::total_secs)
                 .sum::<f64>()
+    }
+
+    /// The whole learned perception of a scan with one estimator: features, one GP step, the
+    /// moving classifier, GP-KF and GP-ICP (issue 27's real-time figure).
+    pub fn learned_scan_secs(&self) -> f64 {
+        self.one_estimator_secs() + self.segmentation_secs + self.gp_kf_secs + self.gp_icp_secs
     }
 
     /// The whole scan for one estimator (the mean over the estimators run): what a car running

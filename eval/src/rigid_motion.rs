@@ -2,10 +2,10 @@
 //! that aligns the cluster at t−1 with the cluster at t, and the same transform applied to every
 //! point for per-point scene flow.
 
-use nalgebra::Point2;
+use nalgebra::{Isometry2, Point2};
 
 use crate::estimate::MotionEstimate;
-use crate::icp::{IcpAlignment, IcpParams, align_icp};
+use crate::icp::{IcpAlignment, IcpParams, align_icp, align_icp_from};
 use crate::observation::centroid_of;
 
 /// ICP motion estimate of a cluster seen at t−1 (`previous`) and t (`current`), `dt_secs` apart.
@@ -54,6 +54,33 @@ pub fn icp_rigid_motion(
         return None;
     }
     let alignment = align_icp(previous, current, params)?;
+    rigid_motion_of(previous, alignment, dt_secs)
+}
+
+/// [`icp_rigid_motion`] started from a known velocity (`GP-ICP`: the GP's merged heading and
+/// speed): the initial transform moves the cluster at t−1 by `velocity × Δt`.
+pub fn icp_rigid_motion_from(
+    previous: &[[f64; 2]],
+    current: &[[f64; 2]],
+    dt_secs: f64,
+    initial_velocity_xy_mps: [f64; 2],
+    params: &IcpParams,
+) -> Option<RigidMotion> {
+    if dt_secs <= 0.0 || !dt_secs.is_finite() {
+        return None;
+    }
+    let [vx, vy] = initial_velocity_xy_mps;
+    let initial = Isometry2::translation(vx * dt_secs, vy * dt_secs);
+    let alignment = align_icp_from(previous, current, initial, params)?;
+    rigid_motion_of(previous, alignment, dt_secs)
+}
+
+/// The motion an alignment of `previous` describes over `dt_secs`.
+fn rigid_motion_of(
+    previous: &[[f64; 2]],
+    alignment: IcpAlignment,
+    dt_secs: f64,
+) -> Option<RigidMotion> {
     let finite_previous: Vec<[f64; 2]> = previous
         .iter()
         .filter(|p| p[0].is_finite() && p[1].is_finite())

@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use patchflow_dataset::SequenceReader;
 use patchflow_learn::{
-    ClusterEstimate, ClusterMotion, FeatureParams, MotionEstimator, Scan, ScanMotion, ScanStream,
-    SweepFeatures,
+    ClusterEstimate, ClusterMotion, FeatureParams, MotionEstimator, MovingClassifier, Scan,
+    ScanMotion, ScanStream, SweepFeatures,
 };
 
 use crate::baseline_params::BaselineParams;
@@ -17,6 +17,7 @@ use crate::baselines::BaselineMethod;
 use crate::cpu_time::process_cpu_secs;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
+use crate::learned_step::{LearnedCluster, LearnedTrackers};
 use crate::method::{GpReadout, Method};
 use crate::objects::ObjectScan;
 use crate::oracle::{observe, target_at, target_cluster};
@@ -26,6 +27,7 @@ use crate::scan_scoring::{MethodFlow, object_scans, score_points};
 use crate::scene_flow::SceneFlowTally;
 use crate::scene_point::ScenePoints;
 use crate::truth_at_scan::TruthAtScan;
+use crate::velocity_measurement::VelocityFloors;
 
 /// What one sequence yields.
 #[derive(Debug, Clone)]
@@ -45,8 +47,16 @@ struct Scores {
     target_estimates: BTreeMap<Method, Vec<Option<MotionEstimate>>>,
 }
 
+/// The trackers of a sequence: the baselines and the GP-informed ones.
+struct Trackers {
+    baselines: BaselineTrackers,
+    learned: LearnedTrackers,
+}
+
 /// Evaluates every estimator and baseline on one sequence. Scan `k` of the result is sweep
-/// `k + 1`: the first sweep has no predecessor, so no difference map and no estimate.
+/// `k + 1`: the first sweep has no predecessor, so no difference map and no estimate. With a
+/// moving classifier, the `+MOS` readouts, GP-KF and GP-ICP take its moving/static decision.
+/// GP-KF and GP-ICP read the first estimator's merged (ALL) estimates.
 ///
 /// The whole-scene scores use the estimators trained with the first estimator's feature
 /// parameters (they share its maps and clusters); an estimator trained with other parameters
@@ -55,6 +65,7 @@ pub fn evaluate_sequence(
     sequence: &SequenceReader,
     estimators: &[MotionEstimator],
     baselines: &BaselineParams,
+    moving: Option<&MovingClassifier>,
     on_scan: &(dyn Fn() + Sync),
 ) -> Result<SequenceRun, EvalError> {
     let name = sequence.info().name.clone();
@@ -78,7 +89,10 @@ pub fn evaluate_sequence(
         group_of.push(group);
     }
     let has_target = sequence.len() >= 2 && sequence.read_sweep(0)?.target().is_some();
-    let mut trackers = BaselineTrackers::new(&name, baselines)?;
+    let mut trackers = Trackers {
+        baselines: BaselineTrackers::new(&name, baselines)?,
+        learned: LearnedTrackers::new(baselines, VelocityFloors::default())?,
+    };
     let mut scores = Scores {
         tallies: BTreeMap::new(),
         objects: Vec::new(),
@@ -100,7 +114,7 @@ pub fn evaluate_sequence(
             &scan,
             cpu_start,
             dt,
-            (estimators, &group_of),
+            (estimators, &group_of, moving),
             has_target.then_some(&name),
             &mut trackers,
             &mut scores,
@@ -134,9 +148,9 @@ fn evaluate_scan(
     scan: &Scan,
     cpu_start: Option<f64>,
     dt_secs: f64,
-    (estimators, group_of): (&[MotionEstimator], &[usize]),
+    (estimators, group_of, moving): (&[MotionEstimator], &[usize], Option<&MovingClassifier>),
     situation: Option<&String>,
-    trackers: &mut BaselineTrackers,
+    trackers: &mut Trackers,
     scores: &mut Scores,
 ) -> Result<(), EvalError> {
     let features = &scan.features[0];
@@ -151,6 +165,17 @@ fn evaluate_scan(
     timing.whole_scan_cpu_secs = cpu_start
         .zip(process_cpu_secs())
         .map(|(start, end)| end - start);
+    // Moving or static, per object hypothesis (issue 27).
+    let start = Instant::now();
+    let probabilities = match moving {
+        Some(classifier) => Some(classifier.cluster_probabilities(features)?),
+        None => None,
+    };
+    let decisions: Vec<Option<bool>> = match &probabilities {
+        Some(p) => p.iter().map(|p| p.map(|p| p > 0.5)).collect(),
+        None => vec![None; features.clusters().len()],
+    };
+    timing.segmentation_secs = start.elapsed().as_secs_f64();
     // The oracle association (thesis 4.4): every actor's cluster.
     let observation = observe(scan, features);
     let hypotheses = hypothesis_flags(features);
@@ -178,10 +203,35 @@ fn evaluate_scan(
         wanted[c] = true;
     }
     let start = Instant::now();
-    let baseline = trackers.step(observation.clone(), &wanted)?;
+    let baseline = trackers.baselines.step(observation.clone(), &wanted)?;
     timing.baselines_secs = start.elapsed().as_secs_f64();
+    // GP-KF on every cluster, GP-ICP where ICP-AUTO runs, from the first estimator's ALL.
+    let learned: Vec<LearnedCluster> = (0..features.clusters().len())
+        .map(|c| LearnedCluster {
+            gp: motions
+                .first()
+                .and_then(|(_, m)| m.clusters[c].and_then(|e| e.all))
+                .map(to_estimate),
+            moving: decisions[c],
+        })
+        .collect();
+    let start = Instant::now();
+    let gp_kf = trackers.learned.step_kf(&observation, &learned)?;
+    timing.gp_kf_secs = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let gp_icp = trackers
+        .learned
+        .step_icp(&observation, &learned, &wanted)?;
+    timing.gp_icp_secs = start.elapsed().as_secs_f64();
+    let learned_flows = BTreeMap::from([(Method::GpKf, gp_kf), (Method::GpIcp, gp_icp)]);
     // Scene flow of every method on every scored point, and every actor.
-    let flows = method_flows(&motions, &baseline, &hypotheses);
+    let flows = method_flows(
+        &motions,
+        &baseline,
+        &learned_flows,
+        &hypotheses,
+        moving.map(|_| &decisions[..]),
+    );
     let points = ScenePoints::new(features, &scan.sweep, dt_secs);
     let errors = score_points(
         &points,
@@ -201,6 +251,9 @@ fn evaluate_scan(
     if let Some(truth) = target {
         timing.target_points = truth.target_points.unwrap_or(0);
         scores.target_truth.push(truth);
+        let target_moving = observation
+            .target_cluster()
+            .and_then(|c| decisions.get(c).copied().flatten());
         for (kind, estimate) in target_gp {
             for (rule, motion) in [
                 (patchflow_learn::MergeRule::All, estimate.all),
@@ -210,6 +263,25 @@ fn evaluate_scan(
                 let column = scores.target_estimates.entry(method).or_default();
                 column.push(motion.map(to_estimate));
             }
+            if moving.is_some() {
+                let decided = match target_moving {
+                    Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
+                    _ => estimate.all.map(to_estimate),
+                };
+                let column = scores
+                    .target_estimates
+                    .entry(Method::gp_decided(kind))
+                    .or_default();
+                column.push(decided);
+            }
+        }
+        for (&method, clusters) in &learned_flows {
+            let estimate = observation
+                .target_cluster()
+                .and_then(|c| clusters.get(c).copied().flatten())
+                .map(|f| f.estimate());
+            let column = scores.target_estimates.entry(method).or_default();
+            column.push(estimate);
         }
         for baseline_method in BaselineMethod::ALL {
             let method = baseline_method.method();
@@ -236,11 +308,14 @@ fn hypothesis_flags(features: &SweepFeatures) -> Vec<bool> {
     flags
 }
 
-/// How each method moves the scan's points.
+/// How each method moves the scan's points. `decisions` (with a moving classifier): per cluster,
+/// moving or static for the object hypotheses.
 fn method_flows(
     motions: &[(patchflow_learn::GpKind, ScanMotion)],
     baseline: &BaselineScan,
+    learned: &BTreeMap<Method, Vec<Option<ClusterFlow>>>,
     hypotheses: &[bool],
+    decisions: Option<&[Option<bool>]>,
 ) -> BTreeMap<Method, MethodFlow> {
     let mut flows = BTreeMap::new();
     for (kind, motion) in motions {
@@ -256,10 +331,24 @@ fn method_flows(
         };
         flows.insert(all, merged(|e| e.all));
         flows.insert(best, merged(|e| e.best));
+        if let Some(decisions) = decisions {
+            let decided = motion.clusters.iter().zip(decisions).map(|(e, moving)| {
+                let all = e.as_ref().and_then(|e| e.all).map(to_estimate);
+                match moving {
+                    Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
+                    _ => all,
+                }
+                .map(ClusterFlow::Uniform)
+            });
+            flows.insert(
+                Method::gp_decided(*kind),
+                MethodFlow::Clusters(decided.collect()),
+            );
+        }
         let velocities = motion.points.iter().map(|p| p.map(|p| p.velocity_xy_mps()));
         flows.insert(point, MethodFlow::Points(velocities.collect()));
     }
-    for (&method, clusters) in &baseline.clusters {
+    for (&method, clusters) in baseline.clusters.iter().chain(learned) {
         let kept = clusters
             .iter()
             .zip(hypotheses)

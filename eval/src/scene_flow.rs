@@ -18,6 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::moving_iou::MovingIou;
 use crate::scene_point::FlowClass;
 
 /// Dynamic above this true speed (Argoverse 2: 0.05 m per 0.1 s).
@@ -37,6 +38,9 @@ pub struct SceneFlowTally {
     threeway: [ErrorSum; 3],
     /// Per class (in `FlowClass::ALL` order) and speed bucket.
     buckets: Vec<Bucket>,
+    /// Moving-object segmentation of the points (moving when displaced faster than 0.5 m/s).
+    #[serde(default)]
+    moving: MovingIou,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -77,6 +81,9 @@ pub struct SceneFlowMetrics {
     pub normalised_dynamic_epe: Option<f64>,
     /// Bucketed EPE: mean over classes of the raw EPE of the static bucket, metres.
     pub bucketed_static_epe_m: Option<f64>,
+    /// IoU of the moving class per point (LiDAR-MOS), the method's displacement read as a
+    /// moving/static segmentation.
+    pub moving_iou: Option<f64>,
 }
 
 impl Default for SceneFlowTally {
@@ -89,6 +96,7 @@ impl Default for SceneFlowTally {
             outliers: 0,
             threeway: [ErrorSum::default(); 3],
             buckets: vec![Bucket::default(); FlowClass::ALL.len() * SPEED_BUCKETS],
+            moving: MovingIou::default(),
         }
     }
 }
@@ -130,6 +138,7 @@ impl SceneFlowTally {
         self.relax += u64::from(epe < 0.1 || relative < 0.1);
         self.outliers += u64::from(epe > 0.3 || relative > 0.1);
         let dynamic = displacement > DYNAMIC_SPEED_MPS * dt_secs;
+        self.moving.add_displacements(predicted_m, truth_m, dt_secs);
         let way = match (class.is_foreground(), dynamic) {
             (true, true) => Some(0),
             (true, false) => Some(1),
@@ -162,6 +171,12 @@ impl SceneFlowTally {
             a.epe_sum_m += b.epe_sum_m;
             a.displacement_sum_m += b.displacement_sum_m;
         }
+        self.moving.merge(&other.moving);
+    }
+
+    /// The moving-object segmentation counts.
+    pub fn moving(&self) -> MovingIou {
+        self.moving
     }
 
     /// Points scored so far.
@@ -206,6 +221,7 @@ impl SceneFlowTally {
             epe_threeway_m: mean_of(&ways),
             normalised_dynamic_epe: mean_of(&dynamics),
             bucketed_static_epe_m: mean_of(&statics),
+            moving_iou: self.moving.iou(),
         }
     }
 }

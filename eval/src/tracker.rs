@@ -18,6 +18,7 @@
 
 use crate::error::EvalError;
 use crate::kalman::{ConstantVelocityKalman, KalmanParams};
+use crate::velocity_measurement::VelocityMeasurement;
 
 /// Knobs of the tracker.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,6 +113,20 @@ impl MultiTargetTracker {
         stamp_secs: f64,
         centroids_xy: &[[f64; 2]],
     ) -> Result<Vec<Option<usize>>, EvalError> {
+        self.step_measured(scan, stamp_secs, centroids_xy, &[])
+    }
+
+    /// [`Self::step`] where cluster `c` may also come with a measured velocity
+    /// (`velocities[c]`, `GP-KF`): the track that takes it, or the track it starts, is also
+    /// corrected by it. A shorter slice means the rest have none.
+    pub fn step_measured(
+        &mut self,
+        scan: usize,
+        stamp_secs: f64,
+        centroids_xy: &[[f64; 2]],
+        velocities: &[Option<VelocityMeasurement>],
+    ) -> Result<Vec<Option<usize>>, EvalError> {
+        let velocity_of = |c: usize| velocities.get(c).copied().flatten();
         // 1. Predict.
         if let Some(last) = self.last_stamp_secs {
             let dt = stamp_secs - last;
@@ -156,6 +171,9 @@ impl MultiTargetTracker {
             match cluster {
                 Some(ci) => {
                     track.filter.update(centroids_xy[*ci])?;
+                    if let Some(v) = velocity_of(*ci) {
+                        track.filter.update_velocity(&v)?;
+                    }
                     track.consecutive_hits += 1;
                     track.consecutive_misses = 0;
                     if track.consecutive_hits >= self.params.confirm_hits {
@@ -185,6 +203,9 @@ impl MultiTargetTracker {
                 };
                 if self.params.confirm_hits <= 1 {
                     track.status = TrackStatus::Confirmed;
+                }
+                if let Some(v) = velocity_of(ci) {
+                    track.filter.update_velocity(&v)?;
                 }
                 *assigned = Some(track.id);
                 self.next_id += 1;

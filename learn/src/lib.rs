@@ -52,6 +52,7 @@
 mod error;
 mod estimator;
 mod features;
+mod moving;
 mod timing;
 
 // ── Errors ──────────────────────────────────────────────────────────────────────────────────
@@ -75,6 +76,12 @@ pub use features::{Alignment, Sample, SampleSet, importance_sample};
 pub use estimator::{
     ClusterEstimate, ClusterMotion, Gaussian, MergeRule, MergedHeading, MotionEstimator,
     PointMotion, PredictionTiming, ScanEstimate, ScanMotion, TrainingRecord, rows_to_matrix,
+};
+
+// ── Moving or static, learned (issue 27) ──────────────────────────────────────────────────
+pub use moving::{
+    MOVING_FILE_NAME, MOVING_FORMAT, MOVING_INPUT_NAMES, MOVING_SPEED_MPS, MOVING_VERSION,
+    MovingClassifier, MovingParams, cluster_inputs, cluster_is_moving,
 };
 
 // ── The GPs (`patchflow-gp`) ─────────────────────────────────────────────────────────────────

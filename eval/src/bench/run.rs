@@ -5,7 +5,10 @@ use std::path::Path;
 use std::time::Instant;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{EstimatorParams, GpKind, MotionEstimator, SampleSet};
+use patchflow_learn::{
+    EstimatorParams, GpKind, MOVING_FILE_NAME, MotionEstimator, MovingClassifier, MovingParams,
+    SampleSet,
+};
 use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard};
 use rayon::prelude::*;
 
@@ -134,6 +137,27 @@ pub fn run_bench(
             Ok(())
         },
     )?;
+    // 3b. The moving/static classifier on the training tracks' maps (issue 27), saved beside
+    //     the models.
+    let mut moving = None;
+    stage("train moving classifier", &mut || {
+        let features = estimators
+            .first()
+            .map(|e| e.feature_params().clone())
+            .ok_or_else(|| missing("estimator"))?;
+        let params = MovingParams {
+            seed: plan.seed,
+            ..MovingParams::default()
+        };
+        let bar = spinner("fitting the moving classifier");
+        let classifier = MovingClassifier::train(&train, &features, &params);
+        bar.finish_and_clear();
+        let classifier = classifier?;
+        classifier.save(&out.join("models").join(MOVING_FILE_NAME))?;
+        moving = Some(classifier);
+        Ok(())
+    })?;
+    let moving = moving.ok_or_else(|| missing("moving classifier"))?;
     // 4. Simulate the evaluation sequences (SPEC §3). The training tracks are no longer needed:
     //    without `keep_data` they go first, so the two datasets are never on disk together.
     if !plan.keep_data {
@@ -159,7 +183,7 @@ pub fn run_bench(
     //    GPs on the targets only (the baselines do not learn).
     let load_before = load_average();
     stage("evaluate situations", &mut || {
-        report = Some(evaluate_with_bar(&situations, &estimators)?);
+        report = Some(evaluate_with_bar(&situations, &estimators, Some(&moving))?);
         Ok(())
     })?;
     let load = load_before.zip(load_average());
@@ -183,7 +207,7 @@ pub fn run_bench(
     // 7. The realism study (issue #10): the situations at every rung, the same models.
     let mut realism = None;
     stage("realism study", &mut || {
-        realism = Some(realism_in_bench(plan, &report, &estimators, out)?);
+        realism = Some(realism_in_bench(plan, &report, &estimators, Some(&moving), out)?);
         Ok(())
     })?;
     // 8. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the

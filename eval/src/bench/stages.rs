@@ -8,7 +8,7 @@ use std::sync::Mutex;
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use patchflow_dataset::{Dataset, Manifest};
-use patchflow_learn::{FeatureKind, FeatureParams, MotionEstimator, SampleSet};
+use patchflow_learn::{FeatureKind, FeatureParams, MotionEstimator, MovingClassifier, SampleSet};
 use patchflow_occupancy::{AheadParams, OccupancyParams, OccupancySequence, SampleParams};
 use patchflow_sim::{GenerateOptions, Progress, ScenarioSource, generate_dataset};
 
@@ -158,16 +158,18 @@ pub fn cross_validate_with_bar(
     report
 }
 
-/// Evaluates every sequence of a dataset with a progress bar over the scans.
+/// Evaluates every sequence of a dataset with a progress bar over the scans (with the moving
+/// classifier when given).
 pub fn evaluate_with_bar(
     dataset: &Dataset,
     estimators: &[MotionEstimator],
+    moving: Option<&MovingClassifier>,
 ) -> Result<BenchmarkReport, EvalError> {
     let total = scans_to_evaluate(dataset)?;
     let bar = progress_bar(total, "evaluating scans");
     let lines = ProgressLines::new("scans evaluated");
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let result = evaluate_dataset(dataset, estimators, &BaselineParams::default(), &|| {
+    let result = evaluate_dataset(dataset, estimators, &BaselineParams::default(), moving, &|| {
         bar.inc(1);
         let done = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
         lines.update(done, total as usize);

@@ -95,7 +95,7 @@ fn summary_section(md: &mut String, metrics: &[SituationMetrics]) {
     let _ = writeln!(md, " mean coverage | mean EPE (m/s) |");
     let _ = writeln!(md, "|---|{}---|---|", "---|".repeat(names.len()));
     for method in &methods {
-        let _ = write!(md, "| {method} |");
+        let _ = write!(md, "| {} |", method.label());
         let (mut coverage, mut epe) = (Vec::new(), Vec::new());
         for (_, _, situation) in metrics {
             match situation.get(method) {
@@ -175,7 +175,8 @@ fn situation_section(
         let row = thesis.and_then(|t| thesis_row(&t.heading, *method));
         let _ = writeln!(
             md,
-            "| {method} | {} | {} | {} | {:.3} |{}",
+            "| {} | {} | {} | {} | {:.3} |{}",
+            method.label(),
             fmt_opt(m.heading_rmse_deg, 2),
             fmt_opt(m.heading_me_deg, 2),
             m.heading_scored_scans,
@@ -192,7 +193,8 @@ fn situation_section(
         let row = thesis.and_then(|t| thesis_row(&t.speed, *method));
         let _ = writeln!(
             md,
-            "| {method} | {} | {} | {} | {:.3} |{}",
+            "| {} | {} | {} | {} | {:.3} |{}",
+            method.label(),
             fmt_opt(m.speed_rmse_mps, 2),
             fmt_opt(m.speed_me_mps, 2),
             fmt_opt(m.epe_mps, 2),

@@ -71,5 +71,22 @@ pub(crate) fn perception_section(md: &mut String, summaries: &[PerceptionSummary
             ms(spread.worst_secs)
         );
     }
+    let learned = [
+        ("moving classifier (segmentation)", all.segmentation),
+        ("GP-KF, every cluster", all.gp_kf),
+        ("GP-ICP, the hypotheses", all.gp_icp),
+        (
+            "whole learned scan: one estimator, segmentation, GP-KF, GP-ICP",
+            all.learned_scan,
+        ),
+    ];
+    for (stage, spread) in learned {
+        let _ = writeln!(
+            md,
+            "| {stage} | {:.1} | {:.1} |",
+            ms(spread.median_secs),
+            ms(spread.worst_secs)
+        );
+    }
     let _ = writeln!(md);
 }

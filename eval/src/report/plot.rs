@@ -18,7 +18,7 @@ use crate::result::SituationResult;
 use patchflow_dataset::wrap_angle_rad;
 
 /// Colour per canonical method slot (tab10), then a few spares.
-const PALETTE: [RGBColor; 12] = [
+const PALETTE: [RGBColor; 19] = [
     RGBColor(31, 119, 180),
     RGBColor(23, 190, 207),
     RGBColor(44, 160, 44),
@@ -31,6 +31,13 @@ const PALETTE: [RGBColor; 12] = [
     RGBColor(127, 127, 127),
     RGBColor(100, 100, 160),
     RGBColor(160, 100, 100),
+    RGBColor(0, 90, 50),
+    RGBColor(200, 0, 120),
+    RGBColor(90, 60, 0),
+    RGBColor(0, 60, 140),
+    RGBColor(120, 180, 60),
+    RGBColor(230, 170, 0),
+    RGBColor(60, 60, 60),
 ];
 
 /// The colour of a method in every plot.

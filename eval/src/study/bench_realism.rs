@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use patchflow_learn::MotionEstimator;
+use patchflow_learn::{MotionEstimator, MovingClassifier};
 use patchflow_sim::Realism;
 
 use crate::baseline_params::BaselineParams;
@@ -29,6 +29,7 @@ pub fn realism_in_bench(
     plan: &BenchPlan,
     urban: &BenchmarkReport,
     estimators: &[MotionEstimator],
+    moving: Option<&MovingClassifier>,
     out: &Path,
 ) -> Result<StudyReport, EvalError> {
     let mut study = StudyPlan::from_bench(StudyFactor::Realism, plan);
@@ -68,6 +69,7 @@ pub fn realism_in_bench(
                 &situations,
                 estimators,
                 &BaselineParams::default(),
+                moving,
             )?;
             if !plan.keep_data {
                 remove_data(&out.join("data").join(point.evaluate.data_key()))?;

@@ -7,7 +7,9 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{EstimatorParams, FeatureParams, MotionEstimator, SampleSet};
+use patchflow_learn::{
+    EstimatorParams, FeatureParams, MotionEstimator, MovingClassifier, MovingParams, SampleSet,
+};
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 use crate::bench::{
@@ -44,7 +46,7 @@ pub fn run_study(
     shard: Shard,
     on_point: &dyn Fn(&PointResult),
 ) -> Result<Option<StudyFiles>, EvalError> {
-    let mut trained: BTreeMap<String, Vec<MotionEstimator>> = BTreeMap::new();
+    let mut trained: BTreeMap<String, (Vec<MotionEstimator>, MovingClassifier)> = BTreeMap::new();
     for point in plan.points.iter().filter(|p| shard.takes(p.index)) {
         // Models of one training setting serve every point that shares it (the realism study).
         let key = point.train.key();
@@ -52,8 +54,11 @@ pub fn run_study(
             let estimators = train_for(plan, &point.train, out)?;
             trained.insert(key.clone(), estimators);
         }
-        let estimators = trained.get(&key).map_or(&[][..], Vec::as_slice);
-        let result = evaluate_point(plan, point, estimators, out)?;
+        let (estimators, moving) = match trained.get(&key) {
+            Some((estimators, moving)) => (&estimators[..], Some(moving)),
+            None => (&[][..], None),
+        };
+        let result = evaluate_point(plan, point, estimators, moving, out)?;
         write_point(out, plan, &result)?;
         on_point(&result);
     }
@@ -85,12 +90,12 @@ pub(crate) fn write_point(
 
 /// Simulates the training tracks with a setting (`plan.training_sweep_share` of their sweeps),
 /// samples patches with the setting's features (thesis 3.1.2, prior 0.5) and trains one
-/// estimator per GP kind on them (thesis 3.1.3).
+/// estimator per GP kind on them (thesis 3.1.3), and the moving classifier on the same maps.
 fn train_for(
     plan: &StudyPlan,
     setting: &SensorSetting,
     out: &Path,
-) -> Result<Vec<MotionEstimator>, EvalError> {
+) -> Result<(Vec<MotionEstimator>, MovingClassifier), EvalError> {
     let folder = out.join("data").join(setting.data_key());
     let tracks = shortened_tracks(
         &plan.training,
@@ -100,7 +105,19 @@ fn train_for(
     let train = generate(plan, &tracks, setting, out, "train")?;
     let features = setting.features();
     let set = sample_patches(&train, &features, plan.samples, plan.seed)?;
-    plan.gps
+    let bar = spinner(&format!("fitting the moving classifier ({})", setting.key()));
+    let moving = MovingClassifier::train(
+        &train,
+        &features,
+        &MovingParams {
+            seed: plan.seed,
+            ..MovingParams::default()
+        },
+    );
+    bar.finish_and_clear();
+    let moving = moving?;
+    let estimators = plan
+        .gps
         .iter()
         .map(|&gp| {
             let params = EstimatorParams {
@@ -117,7 +134,8 @@ fn train_for(
             bar.finish_and_clear();
             Ok(estimator?.with_sequences(&train))
         })
-        .collect()
+        .collect::<Result<Vec<_>, EvalError>>()?;
+    Ok((estimators, moving))
 }
 
 /// Importance-samples `n` map patches of `features` (prior 0.5) from a dataset (thesis 3.1.2),
@@ -143,10 +161,11 @@ pub(crate) fn evaluate_point(
     plan: &StudyPlan,
     point: &StudyPoint,
     estimators: &[MotionEstimator],
+    moving: Option<&MovingClassifier>,
     out: &Path,
 ) -> Result<PointResult, EvalError> {
     let situations = generate(plan, &plan.situations, &point.evaluate, out, "situations")?;
-    let report = evaluate_with_bar(&situations, estimators)?;
+    let report = evaluate_with_bar(&situations, estimators, moving)?;
     PointResult::from_report(point, &report)
 }
 

@@ -8,7 +8,7 @@ use patchflow_eval::stages::evaluate_with_bar;
 use patchflow_eval::{
     PerceptionSummary, add_to_metrics, write_dataset_scene_figures, write_report,
 };
-use patchflow_learn::MotionEstimator;
+use patchflow_learn::{MOVING_FILE_NAME, MotionEstimator, MovingClassifier};
 
 use crate::output_guard::{Input, OutputKind, check_output};
 
@@ -38,8 +38,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             MotionEstimator::load(path).with_context(|| format!("loading model {}", path.display()))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
+    // The moving classifier `patchflow train` writes beside the (first) model, if there.
+    let moving_path = args.model[0].with_file_name(MOVING_FILE_NAME);
+    let moving = if moving_path.exists() {
+        let classifier = MovingClassifier::load(&moving_path)
+            .with_context(|| format!("loading {}", moving_path.display()))?;
+        Some(classifier)
+    } else {
+        None
+    };
     let dataset = Dataset::open(&args.data)?;
-    let mut report = evaluate_with_bar(&dataset, &estimators)?;
+    let mut report = evaluate_with_bar(&dataset, &estimators, moving.as_ref())?;
     let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
     report.scene_figures = write_dataset_scene_figures(&dataset, &names, &args.out.join("plots"))?;
     let files = write_report(&report, &args.out)?;

@@ -70,6 +70,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let estimator = train_with_bar(&dataset, &params)?;
     estimator.save(&args.out)?;
     println!("wrote {}", args.out.display());
+    // The moving/static classifier on the same maps, beside the model (issue 27).
+    let moving = patchflow_learn::MovingClassifier::train(
+        &dataset,
+        estimator.feature_params(),
+        &patchflow_learn::MovingParams {
+            seed: params.seed,
+            ..patchflow_learn::MovingParams::default()
+        },
+    )
+    .with_context(|| format!("training the moving classifier on {}", dataset.root().display()))?;
+    let moving_path = args.out.with_file_name(patchflow_learn::MOVING_FILE_NAME);
+    moving.save(&moving_path)?;
+    println!("wrote {}", moving_path.display());
     print_summary(&estimator);
     Ok(())
 }
