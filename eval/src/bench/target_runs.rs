@@ -17,7 +17,7 @@ use crate::baselines::run_all_baselines;
 use crate::dataset_evaluation::sequences_to_evaluate;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
-use crate::method::{GpReadout, Method};
+use crate::method::Method;
 use crate::observation::ScanObservation;
 use crate::oracle::{observe, target_at, target_cluster};
 use crate::result::{BenchmarkReport, SituationResult};
@@ -90,10 +90,15 @@ fn evaluate_target(
     for run in runs {
         let mut groups = Vec::with_capacity(run.len());
         for e in run {
-            match params.iter().position(|p| p == e.feature_params()) {
+            // The training-only speed jitter does not change the run-time maps.
+            let own = FeatureParams {
+                speed_jitter_deg: 0.0,
+                ..e.feature_params().clone()
+            };
+            match params.iter().position(|p| *p == own) {
                 Some(g) => groups.push(g),
                 None => {
-                    params.push(e.feature_params().clone());
+                    params.push(own);
                     groups.push(params.len() - 1);
                 }
             }
@@ -132,7 +137,9 @@ fn evaluate_target(
                     (MergeRule::All, estimate.all),
                     (MergeRule::Best, estimate.best),
                 ] {
-                    let method = Method::gp(estimator.gp_kind(), GpReadout::Merged(rule));
+                    let Some(method) = Method::of_target_readout(estimator, rule) else {
+                        continue;
+                    };
                     let column = columns.entry(method).or_default();
                     column.push(motion.map(to_estimate));
                 }
