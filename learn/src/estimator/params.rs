@@ -16,7 +16,7 @@ use crate::{FeatureKind, FeatureParams, FeatureValidParams, GpKind, LearnError, 
 /// | `features.speed_jitter_deg` | 0 | 25 |
 /// | [`Self::zero_mean`] | yes | no (prior mean = training targets' mean) |
 /// | [`Self::projection_dims`] | 0 (raw 242 values) | 0 |
-/// | [`Self::most_likely_noise`] | no | no |
+/// | [`Self::most_likely_noise`] | no | yes |
 #[derive(Debug, Clone, PartialEq)]
 pub struct EstimatorParams {
     /// GP used for all three regressions (sin, cos of the relative heading; speed).
@@ -64,7 +64,7 @@ impl Default for EstimatorParams {
             pseudo_inputs: 100,
             zero_mean: false,
             projection_dims: 0,
-            most_likely_noise: false,
+            most_likely_noise: true,
             max_iters: 300,
             seed: 0,
         }
