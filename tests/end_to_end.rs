@@ -24,6 +24,8 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         occupancy_params: Default::default(),
         ahead_params: Default::default(),
         gps: vec![GpKind::Spgp, GpKind::SpgpHet],
+        estimator: Default::default(),
+        thesis_preset: true,
         samples: 200,
         pseudo_inputs: 10,
         max_iters: 25,

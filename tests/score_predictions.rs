@@ -87,6 +87,7 @@ fn the_truth_scores_zero_error_and_a_moving_iou_of_one_and_zero_flow_scores_as_z
         &data,
         &[folder(&truth, "TRUTH"), folder(&zero, "ZERO")],
         &[model],
+        None,
         &|| {},
     )
     .unwrap();
@@ -116,8 +117,14 @@ fn a_folder_written_by_flow_scores_what_evaluate_gives_that_method() {
     let exported = dir.path().join("exported");
     let readout = GpReadout::Merged(MergeRule::All);
     export_flow(&data, &model, readout, &exported, &|| {}).unwrap();
-    let report =
-        score_predictions(&data, &[folder(&exported, "EXPORTED")], &[model], &|| {}).unwrap();
+    let report = score_predictions(
+        &data,
+        &[folder(&exported, "EXPORTED")],
+        &[model],
+        None,
+        &|| {},
+    )
+    .unwrap();
     let (ours, theirs) = (
         report.pooled.methods["EXPORTED"].scene_flow,
         report.pooled.methods["SPGP-ALL"].scene_flow,
@@ -146,7 +153,7 @@ fn broken_prediction_folders_are_refused_naming_the_file() {
         write_folder(&data, &root, |s| vec![[0.0; 3]; s.len()], None);
     };
     let score = || {
-        score_predictions(&data, &[folder(&root, "P")], &[], &|| {})
+        score_predictions(&data, &[folder(&root, "P")], &[], None, &|| {})
             .unwrap_err()
             .to_string()
     };

@@ -7,6 +7,17 @@
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
 use patchflow_eval::{CvGp, CvParams, cross_validate};
+use patchflow_learn::{EstimatorParams, FeatureKind, MotionEstimator, Sample, SampleSet};
+
+// Placeholder bounds, replaced by measured values below.
+const HELD_OUT_IDEAL_DEFAULT_DEG: f64 = 1e9;
+const HELD_OUT_IDEAL_DEFAULT_MPS: f64 = 1e9;
+const HELD_OUT_URBAN_DEFAULT_DEG: f64 = 1e9;
+const HELD_OUT_URBAN_DEFAULT_MPS: f64 = 1e9;
+const HELD_OUT_IDEAL_THESIS_DEG: f64 = 1e9;
+const HELD_OUT_IDEAL_THESIS_MPS: f64 = 1e9;
+const HELD_OUT_URBAN_THESIS_DEG: f64 = 1e9;
+const HELD_OUT_URBAN_THESIS_MPS: f64 = 1e9;
 
 /// Re-recorded when training began to use mirror images and jittered speed alignments
 /// (2026-11-22, second session): measured 27.68° with seed 5 (seeds 6 and 7: 25.26°, 27.85°).
@@ -73,5 +84,100 @@ fn check_bounds(scene: &str, heading_bound_deg: f64, speed_bound_mps: f64) {
     assert!(
         speed <= speed_bound_mps,
         "speed RMSE {speed:.4} m/s > bound {speed_bound_mps}"
+    );
+}
+
+/// Held-out heading and speed RMSE of the whole estimator (its three regressions, with their
+/// projections and noise GPs) trained by `params` on the first two thirds of a draw from `scene`
+/// and tested on the last third: (heading °, speed m/s).
+fn held_out_errors(scene: &str, params: &EstimatorParams) -> (f64, f64) {
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = patchflow_tests::generate_scene(dir.path(), "regression", scene, 11);
+    let set = SampleSet::collect(&dataset, &params.features, FeatureKind::Patch, 600, 5).unwrap();
+    let cut = set.samples.len() * 2 / 3;
+    let train = SampleSet {
+        samples: set.samples[..cut].to_vec(),
+        ..set.clone()
+    };
+    let test = &set.samples[cut..];
+    let model = MotionEstimator::fit_samples(&train, params).unwrap();
+    let rows = |pick: fn(&Sample) -> &Vec<f64>| -> Vec<f64> {
+        test.iter().flat_map(|s| pick(s).iter().copied()).collect()
+    };
+    let [sin, cos, speed] = model.regressors();
+    let heading_rows = rows(|s| &s.heading_features);
+    let n = test.len();
+    let sin = sin.predict_row_groups(&heading_rows, &[n]).unwrap().mean;
+    let cos = cos.predict_row_groups(&heading_rows, &[n]).unwrap().mean;
+    let speed = speed
+        .predict_row_groups(&rows(|s| &s.speed_features), &[n])
+        .unwrap()
+        .mean;
+    let (mut heading_sq, mut speed_sq) = (0.0, 0.0);
+    for (k, s) in test.iter().enumerate() {
+        let d = sin[k].atan2(cos[k]) - s.sin_rel.atan2(s.cos_rel);
+        let error = d.sin().atan2(d.cos()); // wrapped to (−π, π]
+        heading_sq += error.to_degrees().powi(2);
+        speed_sq += (speed[k] - s.speed_mps).powi(2);
+    }
+    let rmse = |sq: f64| (sq / n as f64).sqrt();
+    (rmse(heading_sq), rmse(speed_sq))
+}
+
+/// The held-out check's sizes, as small as the cross-validation's above.
+fn small(params: EstimatorParams) -> EstimatorParams {
+    EstimatorParams {
+        samples: 400,
+        pseudo_inputs: 20,
+        max_iters: 60,
+        seed: 5,
+        ..params
+    }
+}
+
+fn check_held_out(scene: &str, params: &EstimatorParams, bounds: (f64, f64)) {
+    let (heading, speed) = held_out_errors(scene, params);
+    println!("held-out heading RMSE {heading:.3} deg, speed RMSE {speed:.4} m/s");
+    assert!(
+        heading <= bounds.0,
+        "heading RMSE {heading:.3} deg > bound {}",
+        bounds.0
+    );
+    assert!(
+        speed <= bounds.1,
+        "speed RMSE {speed:.4} m/s > bound {}",
+        bounds.1
+    );
+}
+
+/// Bounds of the default estimator's held-out errors (heading °, speed m/s), `ideal` and
+/// `urban`: measured values plus a margin (see the tests' output for the figures).
+const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (HELD_OUT_IDEAL_DEFAULT_DEG, HELD_OUT_IDEAL_DEFAULT_MPS);
+const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (HELD_OUT_URBAN_DEFAULT_DEG, HELD_OUT_URBAN_DEFAULT_MPS);
+/// The same for the thesis preset.
+const THESIS_HELD_OUT_IDEAL: (f64, f64) = (HELD_OUT_IDEAL_THESIS_DEG, HELD_OUT_IDEAL_THESIS_MPS);
+const THESIS_HELD_OUT_URBAN: (f64, f64) = (HELD_OUT_URBAN_THESIS_DEG, HELD_OUT_URBAN_THESIS_MPS);
+
+#[test]
+fn the_default_estimator_stays_within_its_held_out_bounds_on_both_rungs() {
+    let ideal = format!("realism = \"ideal\"\n{}", patchflow_tests::TRAFFIC_SCENE);
+    let params = small(EstimatorParams::default());
+    check_held_out(&ideal, &params, DEFAULT_HELD_OUT_IDEAL);
+    check_held_out(
+        patchflow_tests::TRAFFIC_SCENE,
+        &params,
+        DEFAULT_HELD_OUT_URBAN,
+    );
+}
+
+#[test]
+fn the_thesis_preset_stays_within_its_held_out_bounds_on_both_rungs() {
+    let ideal = format!("realism = \"ideal\"\n{}", patchflow_tests::TRAFFIC_SCENE);
+    let params = small(EstimatorParams::thesis());
+    check_held_out(&ideal, &params, THESIS_HELD_OUT_IDEAL);
+    check_held_out(
+        patchflow_tests::TRAFFIC_SCENE,
+        &params,
+        THESIS_HELD_OUT_URBAN,
     );
 }

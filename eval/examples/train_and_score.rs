@@ -7,7 +7,8 @@
 //!
 //! `cargo run --release -p patchflow-eval --example train_and_score -- situations=DIR
 //! (train=DIR [samples=1600] [pseudo=100] [iters=300] [seed=7] [mirror=1] [jitter=25]
-//! [min_speed=V] [save=MODEL.json] | model=MODEL.json) [label=TEXT] [json=PATH] [scans=SITUATION]`
+//! [min_speed=V] [preset=thesis] [zero_mean=0|1] [pls=K] [mlhgp=0|1] [save=MODEL.json] |
+//! model=MODEL.json) [label=TEXT] [json=PATH] [scans=SITUATION]`
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -29,16 +30,26 @@ fn main() -> Result<(), Failure> {
     let estimator = match (get("model"), get("train")) {
         (Some(model), _) => MotionEstimator::load(Path::new(model))?,
         (None, Some(train)) => {
-            let defaults = EstimatorParams::default();
+            // `preset=thesis` starts from the thesis' protocol; `zero_mean=0|1`, `pls=K` and
+            // `mlhgp=0|1` switch the estimator's options (docs/estimator.md).
+            let defaults = match get("preset") {
+                Some("thesis") => EstimatorParams::thesis(),
+                _ => EstimatorParams::default(),
+            };
+            let flag = |k: &str, default: bool| get(k).map_or(default, |v| v == "1");
             let params = EstimatorParams {
+                zero_mean: flag("zero_mean", defaults.zero_mean),
+                most_likely_noise: flag("mlhgp", defaults.most_likely_noise),
+                projection_dims: get("pls").map_or(Ok(defaults.projection_dims), str::parse)?,
                 gp: GpKind::SpgpHet,
                 samples: get("samples").map_or(Ok(1600), str::parse)?,
                 pseudo_inputs: get("pseudo").map_or(Ok(100), str::parse)?,
                 max_iters: get("iters").map_or(Ok(300), str::parse)?,
                 seed: get("seed").map_or(Ok(7), str::parse)?,
-                mirror_images: get("mirror").is_none_or(|m| m != "0"),
+                mirror_images: flag("mirror", defaults.mirror_images),
                 features: FeatureParams {
-                    speed_jitter_deg: get("jitter").map_or(Ok(25.0), str::parse)?,
+                    speed_jitter_deg: get("jitter")
+                        .map_or(Ok(defaults.features.speed_jitter_deg), str::parse)?,
                     ..defaults.features.clone()
                 },
                 ..defaults
@@ -95,6 +106,7 @@ fn main() -> Result<(), Failure> {
         let estimates = situation
             .methods
             .get(&Method::SpgpHetAll)
+            .or_else(|| situation.methods.get(&Method::SpgpHetAllThesis))
             .ok_or("no SPGP-HET-ALL estimates")?;
         let m = score_method(&situation.truth, estimates)?;
         let (h, s) = (

@@ -101,7 +101,7 @@ pub use moving_iou::{MovingIou, is_moving_displacement};
 pub use perception_summary::PerceptionSummary;
 pub use result::{BenchmarkReport, SceneResult, SituationResult};
 pub use score::{
-    ExternalTally, MAX_PREDICTED_SPEED_MPS, MethodScores, MethodSource, MethodTally, MovingCounts,
+    ExternalTally, MAX_PREDICTED_SPEED_MPS, MethodScores, MethodSource, MethodTally,
     PredictionFolder, ScoreFiles, ScoreReport, SequenceScores, score_predictions,
 };
 pub use study::{
@@ -118,9 +118,7 @@ pub use baseline_params::BaselineParams;
 pub use baselines::{BaselineMethod, run_baseline};
 pub use icp::{IcpAlignment, IcpParams, align_icp, align_icp_from};
 pub use kalman::{ConstantVelocityKalman, KalmanParams};
-pub use rigid_motion::{
-    RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from,
-};
+pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from};
 pub use tracker::{MultiTargetTracker, TrackerParams};
 pub use velocity_measurement::{VelocityFloors, VelocityMeasurement};
 

@@ -23,6 +23,10 @@ pub enum Method {
     SpgpHetAll,
     /// SPGP-HET, low-variance predictions merged.
     SpgpHetBest,
+    /// SPGP-HET, all predictions merged, trained by the thesis' protocol exactly
+    /// (`EstimatorParams::thesis`), beside the default's [`Self::SpgpHetAll`] (per-target
+    /// tables only).
+    SpgpHetAllThesis,
     /// Constant-velocity Kalman filter on the cluster centroid, association from ground truth.
     Kf,
     /// ICP between the cluster at t−1 and at t, association from ground truth.
@@ -66,11 +70,12 @@ pub enum GpReadout {
 
 impl Method {
     /// Every method, in canonical order.
-    pub const ALL: [Self; 19] = [
+    pub const ALL: [Self; 20] = [
         Self::SpgpAll,
         Self::SpgpBest,
         Self::SpgpHetAll,
         Self::SpgpHetBest,
+        Self::SpgpHetAllThesis,
         Self::Kf,
         Self::Icp,
         Self::KfAuto,
@@ -95,6 +100,7 @@ impl Method {
             Self::SpgpBest => "SPGP-BEST",
             Self::SpgpHetAll => "SPGP-HET-ALL",
             Self::SpgpHetBest => "SPGP-HET-BEST",
+            Self::SpgpHetAllThesis => "SPGP-HET-ALL (thesis)",
             Self::Kf => "KF",
             Self::Icp => "ICP",
             Self::KfAuto => "KF-AUTO",
@@ -136,6 +142,24 @@ impl Method {
             GpKind::Spgp => Self::SpgpAllMos,
             GpKind::SpgpHet => Self::SpgpHetAllMos,
             GpKind::Full => Self::FullGpAllMos,
+        }
+    }
+
+    /// The per-target method of an estimator read out by `rule`: the thesis preset's SPGP-HET
+    /// model gives [`Self::SpgpHetAllThesis`] for ALL and nothing for BEST (one row is kept for
+    /// it); any other model [`Self::gp`].
+    pub fn of_target_readout(
+        estimator: &patchflow_learn::MotionEstimator,
+        rule: MergeRule,
+    ) -> Option<Self> {
+        let kind = estimator.gp_kind();
+        match (
+            estimator.is_thesis_preset() && kind == GpKind::SpgpHet,
+            rule,
+        ) {
+            (true, MergeRule::All) => Some(Self::SpgpHetAllThesis),
+            (true, MergeRule::Best) => None,
+            (false, _) => Some(Self::gp(kind, GpReadout::Merged(rule))),
         }
     }
 
@@ -298,7 +322,10 @@ mod tests {
         assert_eq!(Method::Icp.label(), "ICP (oracle)");
         assert_eq!(Method::IcpAuto.label(), "ICP-AUTO");
         assert!(Method::GpKf.is_learned() && !Method::KfAuto.is_learned());
-        assert_eq!(Method::gp_decided(GpKind::SpgpHet).name(), "SPGP-HET-ALL+MOS");
+        assert_eq!(
+            Method::gp_decided(GpKind::SpgpHet).name(),
+            "SPGP-HET-ALL+MOS"
+        );
     }
 
     #[test]

@@ -75,7 +75,8 @@ pub use features::{Alignment, Sample, SampleSet, importance_sample};
 // ── The motion estimator (thesis 3.1, Algorithm 3.1) ────────────────────────────────────────
 pub use estimator::{
     ClusterEstimate, ClusterMotion, Gaussian, MergeRule, MergedHeading, MotionEstimator,
-    PointMotion, PredictionTiming, ScanEstimate, ScanMotion, TrainingRecord, rows_to_matrix,
+    NoiseModel, PointMotion, PredictionTiming, Projection, Regressor, ScanEstimate, ScanMotion,
+    TrainingRecord, kmeans, rows_to_matrix,
 };
 
 // ── Moving or static, learned (issue 27) ──────────────────────────────────────────────────

@@ -1,7 +1,7 @@
 //! What a benchmark run does: which scenarios, how many samples, pseudo-inputs, iterations and
 //! folds. The full plan follows the thesis (4.3); the quick one is smaller.
 
-use patchflow_learn::GpKind;
+use patchflow_learn::{EstimatorParams, GpKind};
 use patchflow_occupancy::{AheadParams, OccupancyParams};
 use patchflow_sim::{Realism, ScenarioSource};
 
@@ -49,6 +49,12 @@ pub struct BenchPlan {
     pub ahead_params: AheadParams,
     /// GP kinds trained, one estimator each.
     pub gps: Vec<GpKind>,
+    /// How the estimators are trained (their samples, pseudo-inputs, iterations and seed come
+    /// from this plan): `EstimatorParams::default()`.
+    pub estimator: EstimatorParams,
+    /// Also train SPGP-HET by the thesis' protocol (`EstimatorParams::thesis`) for every seed
+    /// and report its `SPGP-HET-ALL (thesis)` rows beside the default's.
+    pub thesis_preset: bool,
     /// Importance-sampled training samples per estimator (thesis 4.3: 1,600).
     pub samples: usize,
     /// Pseudo-inputs per sparse GP (thesis 4.3: 100).
@@ -104,6 +110,8 @@ impl BenchPlan {
             occupancy_params: OccupancyParams::default(),
             ahead_params: AheadParams::default(),
             gps: vec![GpKind::Spgp, GpKind::SpgpHet],
+            estimator: EstimatorParams::default(),
+            thesis_preset: true,
             samples: 1600,
             pseudo_inputs: 100,
             max_iters: 300,

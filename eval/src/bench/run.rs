@@ -21,8 +21,8 @@ use crate::bench::run_files::{
 use crate::bench::seed_spread::SeedSpread;
 use crate::bench::short_tracks::shortened_tracks;
 use crate::bench::stages::{
-    collect_draws_with_bar, cross_validate_with_bar, evaluate_with_bar, generate_with_progress,
-    occupancy_with_bar,
+    collect_draws_with_bar, collect_feature_draws_with_bar, cross_validate_with_bar,
+    evaluate_with_bar, generate_with_progress, occupancy_with_bar,
 };
 use crate::bench::target_runs::evaluate_targets;
 use crate::cpu_time::load_average;
@@ -99,6 +99,7 @@ pub fn run_bench(
     let (mut sets, mut estimators, mut cv, mut report) = (Vec::new(), Vec::new(), None, None);
     let seeds = plan.training_seeds();
     let (mut further, mut further_targets) = (Vec::new(), Vec::new());
+    let mut thesis_models: Vec<MotionEstimator> = Vec::new();
 
     // 1. Simulate the training tracks (SPEC §3); the evaluation sequences follow training.
     stage("generate training tracks", &mut || {
@@ -111,12 +112,19 @@ pub fn run_bench(
     // 2. Importance-sample map patches once per prior (thesis 3.1.2); prior 0.5 also trains.
     //    The further seeds draw their own samples (prior 0.5) in the same pass over the maps.
     let further_seeds = seeds.get(1..).unwrap_or_default();
-    let mut further_sets = Vec::new();
+    let (mut further_sets, mut thesis_sets) = (Vec::new(), Vec::new());
     stage("sample patches", &mut || {
         let mut draws: Vec<(f64, u64)> = plan.cv.priors.iter().map(|&p| (p, plan.seed)).collect();
         draws.extend(further_seeds.iter().map(|&seed| (0.5, seed)));
         sets = collect_draws_with_bar(&train, &draws, plan.samples)?;
         further_sets = sets.split_off(plan.cv.priors.len());
+        // The thesis preset's own draws: its speed patches carry no heading jitter.
+        if plan.thesis_preset {
+            let thesis = EstimatorParams::thesis();
+            let draws: Vec<(f64, u64)> = seeds.iter().map(|&seed| (0.5, seed)).collect();
+            thesis_sets =
+                collect_feature_draws_with_bar(&train, &thesis.features, &draws, plan.samples)?;
+        }
         Ok(())
     })?;
     let training_set = sets
@@ -131,9 +139,13 @@ pub fn run_bench(
         &mut || {
             let mut draws: Vec<(&SampleSet, u64)> = vec![(training_set, plan.seed)];
             draws.extend(further_sets.iter().zip(further_seeds.iter().copied()));
-            let mut runs = train_seeds(&train, &draws, plan, out)?.into_iter();
+            let thesis_draws: Vec<(&SampleSet, u64)> =
+                thesis_sets.iter().zip(seeds.iter().copied()).collect();
+            let (runs, thesis_runs) = train_seeds(&train, &draws, &thesis_draws, plan, out)?;
+            let mut runs = runs.into_iter();
             estimators = runs.next().unwrap_or_default();
             further = runs.collect();
+            thesis_models = thesis_runs;
             Ok(())
         },
     )?;
@@ -187,13 +199,26 @@ pub fn run_bench(
         Ok(())
     })?;
     let load = load_before.zip(load_average());
-    if !further.is_empty() {
+    let mut thesis_targets = Vec::new();
+    if !further.is_empty() || !thesis_models.is_empty() {
         stage("evaluate further seeds", &mut || {
-            further_targets = evaluate_targets(&situations, &further)?;
+            // One pass over the maps: the thesis preset of every seed beside the further seeds'
+            // models (run k + 1 is seed k's thesis model, for seeds past the first with its
+            // further models).
+            let runs = target_runs_with_thesis(&further, &thesis_models);
+            let mut results = evaluate_targets(&situations, &runs)?.into_iter();
+            if !thesis_models.is_empty() {
+                thesis_targets = results.next().unwrap_or_default();
+            }
+            further_targets = results.collect();
             Ok(())
         })?;
     }
     let (cv, mut report) = cv.zip(report).ok_or_else(|| missing("results"))?;
+    // The thesis preset's rows of the first seed beside the default's.
+    for (situation, thesis) in report.situations.iter_mut().zip(thesis_targets) {
+        situation.methods.extend(thesis.methods);
+    }
     // A bird's-eye view and a point cloud of each situation, from the data before it goes.
     let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
     stage("scene figures", &mut || {
@@ -207,7 +232,13 @@ pub fn run_bench(
     // 7. The realism study (issue #10): the situations at every rung, the same models.
     let mut realism = None;
     stage("realism study", &mut || {
-        realism = Some(realism_in_bench(plan, &report, &estimators, Some(&moving), out)?);
+        realism = Some(realism_in_bench(
+            plan,
+            &report,
+            &estimators,
+            Some(&moving),
+            out,
+        )?);
         Ok(())
     })?;
     // 8. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the
@@ -310,42 +341,77 @@ fn generate(sources: &[ScenarioSource], out: &Path, seed: u64) -> Result<Dataset
 fn train_seeds(
     dataset: &Dataset,
     draws: &[(&SampleSet, u64)],
+    thesis_draws: &[(&SampleSet, u64)],
     plan: &BenchPlan,
     out: &Path,
-) -> Result<Vec<Vec<MotionEstimator>>, EvalError> {
+) -> Result<(Vec<Vec<MotionEstimator>>, Vec<MotionEstimator>), EvalError> {
     let models = out.join("models");
     std::fs::create_dir_all(&models).map_err(|e| EvalError::io(&models, e))?;
-    let fits: Vec<(usize, GpKind)> = (0..draws.len())
-        .flat_map(|d| plan.gps.iter().map(move |&gp| (d, gp)))
+    // (draw, GP kind, thesis preset): every kind of the plan on the default's draws, SPGP-HET
+    // alone on the thesis preset's.
+    let mut fits: Vec<(usize, GpKind, bool)> = (0..draws.len())
+        .flat_map(|d| plan.gps.iter().map(move |&gp| (d, gp, false)))
         .collect();
+    fits.extend((0..thesis_draws.len()).map(|d| (d, GpKind::SpgpHet, true)));
     let spinner = spinner(&format!(
-        "fitting {} GPs ({} kinds × {} seeds × 3)",
+        "fitting {} GPs ({} kinds × {} seeds × 3, and {} thesis-preset models)",
         fits.len() * 3,
         plan.gps.len(),
-        draws.len()
+        draws.len(),
+        thesis_draws.len()
     ));
     let fitted = fits
         .par_iter()
-        .map(|&(d, gp)| {
-            let (set, seed) = draws[d];
+        .map(|&(d, gp, thesis)| {
+            let (set, seed) = if thesis { thesis_draws[d] } else { draws[d] };
+            let base = if thesis {
+                EstimatorParams::thesis()
+            } else {
+                plan.estimator.clone()
+            };
             let params = EstimatorParams {
                 gp,
                 samples: plan.samples,
                 pseudo_inputs: plan.pseudo_inputs,
                 max_iters: plan.max_iters,
                 seed,
-                ..EstimatorParams::default()
+                ..base
             };
             MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset))
         })
         .collect::<Result<Vec<_>, _>>();
     spinner.finish_and_clear();
     let mut runs: Vec<Vec<MotionEstimator>> = vec![Vec::new(); draws.len()];
-    for ((d, gp), estimator) in fits.into_iter().zip(fitted?) {
-        estimator.save(&out.join(model_file(plan, gp, draws[d].1)))?;
-        runs[d].push(estimator);
+    let mut thesis_runs = Vec::new();
+    for ((d, gp, thesis), estimator) in fits.into_iter().zip(fitted?) {
+        if thesis {
+            let file = model_file(plan, gp, thesis_draws[d].1).replace(".json", "-thesis.json");
+            estimator.save(&out.join(file))?;
+            thesis_runs.push(estimator);
+        } else {
+            estimator.save(&out.join(model_file(plan, gp, draws[d].1)))?;
+            runs[d].push(estimator);
+        }
     }
-    Ok(runs)
+    Ok((runs, thesis_runs))
+}
+
+/// The target runs of the further seeds with the thesis preset's models: the first seed's
+/// thesis model alone, then each further seed's models with its thesis model.
+fn target_runs_with_thesis(
+    further: &[Vec<MotionEstimator>],
+    thesis: &[MotionEstimator],
+) -> Vec<Vec<MotionEstimator>> {
+    let mut runs = Vec::with_capacity(further.len() + 1);
+    if let Some(first) = thesis.first() {
+        runs.push(vec![first.clone()]);
+    }
+    for (k, models) in further.iter().enumerate() {
+        let mut run = models.clone();
+        run.extend(thesis.get(k + 1).cloned());
+        runs.push(run);
+    }
+    runs
 }
 
 /// The first `n` samples of a set (samples are in dataset order, so this is itself a sample).

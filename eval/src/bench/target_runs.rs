@@ -20,7 +20,7 @@ use crate::dataset_evaluation::sequences_to_evaluate;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::learned_step::{LearnedCluster, LearnedTrackers};
-use crate::method::{GpReadout, Method};
+use crate::method::Method;
 use crate::observation::ScanObservation;
 use crate::oracle::{observe, target_at, target_cluster};
 use crate::result::{BenchmarkReport, SituationResult};
@@ -97,10 +97,15 @@ fn evaluate_target(
     for run in runs {
         let mut groups = Vec::with_capacity(run.len());
         for e in run {
-            match params.iter().position(|p| p == e.feature_params()) {
+            // The training-only speed jitter does not change the run-time maps.
+            let own = FeatureParams {
+                speed_jitter_deg: 0.0,
+                ..e.feature_params().clone()
+            };
+            match params.iter().position(|p| *p == own) {
                 Some(g) => groups.push(g),
                 None => {
-                    params.push(e.feature_params().clone());
+                    params.push(own);
                     groups.push(params.len() - 1);
                 }
             }
@@ -153,7 +158,9 @@ fn evaluate_target(
                     (MergeRule::All, estimate.all),
                     (MergeRule::Best, estimate.best),
                 ] {
-                    let method = Method::gp(estimator.gp_kind(), GpReadout::Merged(rule));
+                    let Some(method) = Method::of_target_readout(estimator, rule) else {
+                        continue;
+                    };
                     let column = columns.entry(method).or_default();
                     column.push(motion.map(to_estimate));
                 }
@@ -258,8 +265,14 @@ mod tests {
         };
         let estimator = MotionEstimator::train(&dataset, &params).unwrap();
         let estimators = [estimator];
-        let whole =
-            evaluate_dataset(&dataset, &estimators, &BaselineParams::default(), None, &|| {}).unwrap();
+        let whole = evaluate_dataset(
+            &dataset,
+            &estimators,
+            &BaselineParams::default(),
+            None,
+            &|| {},
+        )
+        .unwrap();
         let runs = [estimators.to_vec(), estimators.to_vec()];
         let targets = evaluate_targets(&dataset, &runs).unwrap();
         assert_eq!(targets.len(), 2, "one result per run");
@@ -294,7 +307,11 @@ mod tests {
             without_learned_tracking(&with.situations),
             without_learned_tracking(&whole.situations)
         );
-        assert!(with.situations[0].methods[&Method::GpKf].iter().any(Option::is_some));
+        assert!(
+            with.situations[0].methods[&Method::GpKf]
+                .iter()
+                .any(Option::is_some)
+        );
         assert!(
             with.situations[0].methods[&Method::IcpAuto]
                 .iter()

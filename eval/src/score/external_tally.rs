@@ -8,19 +8,20 @@ use patchflow_dataset::Sweep;
 use patchflow_learn::SweepFeatures;
 
 use crate::estimate::MotionEstimate;
+use crate::moving_iou::{MovingIou, is_moving_displacement};
 use crate::objects::MIN_OBJECT_POINTS;
-use crate::scene_flow::{DYNAMIC_SPEED_MPS, SceneFlowTally};
+use crate::scene_flow::SceneFlowTally;
 use crate::scene_point::ScenePoints;
-use crate::score::moving_counts::MovingCounts;
 use crate::truth_at_scan::TruthAtScan;
 
 /// What one method's predictions scored so far.
 #[derive(Debug, Clone, Default)]
 pub struct ExternalTally {
-    /// Scene flow on the scored points, as `evaluate` tallies it.
+    /// Scene flow on the scored points, as `evaluate` tallies it (with its moving-object counts
+    /// by predicted displacement).
     pub flow: SceneFlowTally,
-    /// Moving-object segmentation on the scored points.
-    pub moving: MovingCounts,
+    /// Moving-object segmentation by the folder's `moving/` mask, when it has one.
+    pub mask: Option<MovingIou>,
     /// Every actor with enough scored points at every scan: its truth ...
     pub object_truth: Vec<TruthAtScan>,
     /// ... and the mean predicted velocity of its predicted points (`None`: none predicted).
@@ -38,8 +39,8 @@ struct ActorSums {
 impl ExternalTally {
     /// Scores scan `scan` (sweep `sweep`, its sliced points `points` from `features`) with the
     /// predicted velocities `flow` (one per point of the sweep) and the optional moving mask.
-    /// A point with no prediction (NaN) stands still and is static, as in `evaluate`; without
-    /// a mask, a point moves when its predicted speed exceeds 0.5 m/s (Argoverse 2's dynamic).
+    /// A point with no prediction (NaN) stands still and is static, as in `evaluate`. A point
+    /// truly moves when its true displacement exceeds 0.5 m/s × Δt (Argoverse 2's dynamic).
     pub fn add_scan(
         &mut self,
         scan: usize,
@@ -65,12 +66,12 @@ impl ExternalTally {
                 points.class[i],
                 points.dt_secs,
             );
-            let predicted_moving = match moving {
-                Some(mask) => mask[point.index],
-                None => v[0].hypot(v[1]).hypot(v[2]) > DYNAMIC_SPEED_MPS,
-            };
-            self.moving
-                .add(predicted_moving, sweep.labels[point.index].is_moving());
+            if let Some(mask) = moving {
+                let truly = is_moving_displacement(points.truth_m[i], points.dt_secs);
+                self.mask
+                    .get_or_insert_with(MovingIou::default)
+                    .add(mask[point.index], truly);
+            }
             if points.actor[i] != 0 {
                 let sums = actors.entry(points.actor[i]).or_default();
                 sums.points += 1;

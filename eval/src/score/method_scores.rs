@@ -7,8 +7,8 @@ use serde::Serialize;
 use crate::error::EvalError;
 use crate::estimate::MotionEstimate;
 use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
+use crate::moving_iou::MovingIou;
 use crate::scene_flow::{SceneFlowMetrics, SceneFlowTally};
-use crate::score::moving_counts::MovingCounts;
 use crate::truth_at_scan::TruthAtScan;
 
 /// Where a method's rows come from.
@@ -32,8 +32,9 @@ pub struct MethodTally {
     pub has_heading: bool,
     /// Scene flow on the scored points.
     pub flow: SceneFlowTally,
-    /// Moving-object segmentation, where the method makes a per-point decision.
-    pub moving: Option<MovingCounts>,
+    /// Moving-object segmentation by a prediction folder's own `moving/` mask (without one, the
+    /// scene-flow tally's decision by predicted displacement counts).
+    pub mask: Option<MovingIou>,
     /// Moving objects' truth at every scan they were scored ...
     pub object_truth: Vec<TruthAtScan>,
     /// ... and the method's estimate for each.
@@ -47,10 +48,11 @@ pub struct MethodScores {
     pub source: MethodSource,
     /// Scene-flow metrics on the scored points.
     pub scene_flow: SceneFlowMetrics,
-    /// IoU of the moving class, per point (`None`: no decision or nothing moving).
+    /// IoU of the moving class, per point (`None`: nothing moving in truth or prediction): by
+    /// the folder's `moving/` mask where it has one, else by the predicted displacement.
     pub moving_iou: Option<f64>,
-    /// The counts behind it.
-    pub moving: Option<MovingCounts>,
+    /// Whether the IoU comes from a `moving/` mask.
+    pub moving_from_mask: bool,
     /// Moving object scans scored (true speed at least 0.5 m/s).
     pub object_scans: usize,
     /// Heading and speed of the moving objects, as the per-target tables score them.
@@ -59,12 +61,12 @@ pub struct MethodScores {
 
 impl MethodTally {
     /// An empty tally.
-    pub fn new(source: MethodSource, has_heading: bool, with_moving: bool) -> Self {
+    pub fn new(source: MethodSource, has_heading: bool) -> Self {
         Self {
             source,
             has_heading,
             flow: SceneFlowTally::default(),
-            moving: with_moving.then(MovingCounts::default),
+            mask: None,
             object_truth: Vec::new(),
             object_estimates: Vec::new(),
         }
@@ -83,8 +85,10 @@ impl MethodTally {
     /// Adds another tally of the same method (another sequence).
     pub fn merge(&mut self, other: &Self) {
         self.flow.merge(&other.flow);
-        if let (Some(a), Some(b)) = (&mut self.moving, &other.moving) {
-            a.merge(b);
+        match (&mut self.mask, &other.mask) {
+            (Some(a), Some(b)) => a.merge(b),
+            (None, Some(b)) => self.mask = Some(*b),
+            _ => {}
         }
         self.object_truth.extend(&other.object_truth);
         self.object_estimates.extend(&other.object_estimates);
@@ -97,11 +101,12 @@ impl MethodTally {
             objects.heading_rmse_deg = None;
             objects.heading_me_deg = None;
         }
+        let scene_flow = self.flow.metrics();
         Ok(MethodScores {
             source: self.source.clone(),
-            scene_flow: self.flow.metrics(),
-            moving_iou: self.moving.and_then(|m| m.iou()),
-            moving: self.moving,
+            scene_flow,
+            moving_iou: self.mask.map_or(scene_flow.moving_iou, |m| m.iou()),
+            moving_from_mask: self.mask.is_some(),
             object_scans: self.object_truth.len(),
             objects,
         })
@@ -114,7 +119,7 @@ mod tests {
 
     #[test]
     fn standing_objects_are_left_out_of_the_heading_and_speed_scores() {
-        let mut tally = MethodTally::new(MethodSource::BuiltIn, true, false);
+        let mut tally = MethodTally::new(MethodSource::BuiltIn, true);
         let truth = [
             TruthAtScan::from_velocity(0, [5.0, 0.0]),
             TruthAtScan::from_velocity(1, [0.0, 0.0]),
@@ -128,7 +133,7 @@ mod tests {
 
     #[test]
     fn a_method_without_heading_reports_none() {
-        let mut tally = MethodTally::new(MethodSource::BuiltIn, false, false);
+        let mut tally = MethodTally::new(MethodSource::BuiltIn, false);
         let truth = [TruthAtScan::from_velocity(0, [5.0, 0.0])];
         tally.add_objects(&truth, &[Some(MotionEstimate::from_velocity([0.0, 0.0]))]);
         let scores = tally.scores().unwrap();

@@ -4,14 +4,13 @@
 
 mod external_tally;
 mod method_scores;
-mod moving_counts;
 mod prediction_folder;
 mod score_report;
 
 use std::collections::BTreeMap;
 
 use patchflow_dataset::Dataset;
-use patchflow_learn::{FeatureParams, MotionEstimator, ScanStream};
+use patchflow_learn::{FeatureParams, MotionEstimator, MovingClassifier, ScanStream};
 
 use crate::baseline_params::BaselineParams;
 use crate::dataset_evaluation::{evaluate_dataset, sequences_to_evaluate};
@@ -22,12 +21,12 @@ use crate::scene_point::ScenePoints;
 
 pub use external_tally::ExternalTally;
 pub use method_scores::{MethodScores, MethodSource, MethodTally};
-pub use moving_counts::MovingCounts;
 pub use prediction_folder::{MAX_PREDICTED_SPEED_MPS, PredictionFolder};
 pub use score_report::{ScoreFiles, ScoreReport, SequenceScores};
 
 /// Scores every prediction folder on every sequence of `dataset` that `evaluate` scores, and
-/// with `estimators` (one per GP kind) also every built-in method. The scored points are the
+/// with `estimators` (one per GP kind) also every built-in method (with `moving`, the moving
+/// classifier `train` writes beside the model, also the methods that use it). The scored points are the
 /// height-sliced points in the map window of the first estimator's feature parameters (the
 /// defaults without one), exactly those `evaluate` scores. `on_scan` hears of every scan.
 ///
@@ -36,7 +35,7 @@ pub use score_report::{ScoreFiles, ScoreReport, SequenceScores};
 /// use patchflow_eval::{PredictionFolder, score_predictions};
 /// let dataset = patchflow_dataset::Dataset::open(std::path::Path::new("data/situations"))?;
 /// let mine = PredictionFolder::parse("predictions/nn=NN-FLOW")?;
-/// let report = score_predictions(&dataset, &[mine], &[], &|| {})?;
+/// let report = score_predictions(&dataset, &[mine], &[], None, &|| {})?;
 /// report.write(std::path::Path::new("results/score"))?;
 /// # Ok(())
 /// # }
@@ -45,6 +44,7 @@ pub fn score_predictions(
     dataset: &Dataset,
     folders: &[PredictionFolder],
     estimators: &[MotionEstimator],
+    moving: Option<&MovingClassifier>,
     on_scan: &(dyn Fn() + Sync),
 ) -> Result<ScoreReport, EvalError> {
     let names = sequences_to_evaluate(dataset)?;
@@ -59,7 +59,14 @@ pub fn score_predictions(
     let built_in = if estimators.is_empty() {
         Vec::new()
     } else {
-        evaluate_dataset(dataset, estimators, &BaselineParams::default(), on_scan)?.scenes
+        evaluate_dataset(
+            dataset,
+            estimators,
+            &BaselineParams::default(),
+            moving,
+            on_scan,
+        )?
+        .scenes
     };
     let mut sequences = BTreeMap::new();
     let mut pooled: BTreeMap<String, MethodTally> = BTreeMap::new();
@@ -128,9 +135,9 @@ fn score_sequence(
     let mut out = BTreeMap::new();
     for (folder, tally) in folders.iter().zip(tallies) {
         let source = MethodSource::Predictions(folder.root.display().to_string());
-        let mut method = MethodTally::new(source, true, true);
+        let mut method = MethodTally::new(source, true);
         method.flow = tally.flow;
-        method.moving = Some(tally.moving);
+        method.mask = tally.mask;
         method.add_objects(&tally.object_truth, &tally.object_estimates);
         out.insert(folder.name.clone(), method);
     }
@@ -145,7 +152,7 @@ fn built_in_tallies(scene: &SceneResult) -> BTreeMap<String, MethodTally> {
         false => MethodSource::BuiltIn,
     };
     for (&method, flow) in &scene.scene_flow {
-        let mut tally = MethodTally::new(source(method), method.has_heading(), false);
+        let mut tally = MethodTally::new(source(method), method.has_heading());
         tally.flow = flow.clone();
         out.insert(method.name().to_owned(), tally);
     }
@@ -153,7 +160,7 @@ fn built_in_tallies(scene: &SceneResult) -> BTreeMap<String, MethodTally> {
         for (&method, estimate) in &object.estimates {
             let tally = out
                 .entry(method.name().to_owned())
-                .or_insert_with(|| MethodTally::new(source(method), method.has_heading(), false));
+                .or_insert_with(|| MethodTally::new(source(method), method.has_heading()));
             tally.add_objects(&[object.truth], &[*estimate]);
         }
     }

@@ -113,12 +113,26 @@ impl<K: Kernel> GpValidParams<K> {
         let kind = self.kind();
         // Standardise inputs per column and the target (stored with the model).
         let inputs = Standardiser::for_kernel(x, self.kernel());
-        let target = Standardiser::of_vector(y);
+        let target = if self.zero_mean() {
+            Standardiser::of_vector_uncentred(y)
+        } else {
+            Standardiser::of_vector(y)
+        };
         let names: Vec<&str> = input_names.iter().map(String::as_str).collect();
         check_transform(&inputs, &names)?;
         check_transform(&target, &[target_name])?;
         // Seeded initialisation: random-subset pseudo-inputs, the kernel's start (gp.md §5.3).
-        let data = TrainData::new(&inputs.apply(x), &target.apply_vector(y));
+        let mut data = TrainData::new(&inputs.apply(x), &target.apply_vector(y));
+        if let Some(w) = self.noise_weights() {
+            if w.len() != y.len() {
+                return Err(GpError::InvalidParams(format!(
+                    "{} noise weights for {} training samples",
+                    w.len(),
+                    y.len()
+                )));
+            }
+            data.noise_weights = Some(w.clone());
+        }
         let objective = GpObjective::standardised(self, data)?;
         // Maximise the marginal likelihood p(y | X, X̄, Θ) (eq. 3.30) jointly in Θ, the
         // pseudo-inputs X̄ and, for SPGP-HET, the pseudo-input noise h (eq. 3.34).

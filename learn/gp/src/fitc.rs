@@ -98,7 +98,8 @@ fn pass1<K: Kernel>(
         |j0, columns| {
             for (col, n) in columns.chunks_exact_mut(m).zip(j0..) {
                 // step 4: λ = diag K_NN − q clamped at 0, q = ‖V_{:,n}‖²
-                let g_n = (k_diag[n] - dot(col, col)).max(0.0) + h.noise_variance;
+                let g_n = (k_diag[n] - dot(col, col)).max(0.0)
+                    + data.noise_at(start + n, h.noise_variance);
                 let g_isqrt = 1.0 / g_n.sqrt();
                 let yt = y[n] * g_isqrt; // ỹ = Γ^{-1/2}y
                 for (v, acc) in col.iter_mut().zip(vy.as_mut_slice()) {
@@ -267,7 +268,11 @@ fn pass2<K: Kernel>(
             Rhs::transpose_of(&p.vt),
         ),
         diag_grad: h.kernel.diag_gradient(data.points().range(start, len), &d),
-        sum_d: d.sum(),
+        // ∂𝓛/∂σ² = Σ d_n w_n with per-sample noise σ²·w_n.
+        sum_d: match &data.noise_weights {
+            None => d.sum(),
+            Some(w) => d.dot(&w.rows(start, len)),
+        },
     }
 }
 

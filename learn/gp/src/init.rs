@@ -27,13 +27,15 @@ pub(crate) fn random_subset(n: usize, m: usize, seed: u64) -> Vec<usize> {
 }
 
 /// The starting hyperparameters for a fit of `kind` with `m` pseudo-inputs (capped at N), with
-/// `kernel` initialised from the inputs' spread and the target variance.
+/// `kernel` initialised from the inputs' spread and the target variance; `start` gives the
+/// pseudo-inputs instead of a seeded random subset.
 pub(crate) fn initial_hyper<K: Kernel>(
     data: &TrainData,
     kind: GpKind,
     m: usize,
     seed: u64,
     mut kernel: K,
+    start: Option<&DMatrix<f64>>,
 ) -> Result<Hyper<K>> {
     let (n, dims) = (data.len(), data.dims());
     let mean_y = data.y.mean();
@@ -43,10 +45,15 @@ pub(crate) fn initial_hyper<K: Kernel>(
     let (pseudo_inputs, pseudo_noise) = match kind {
         GpKind::Full => (DMatrix::zeros(0, dims), None),
         GpKind::Spgp | GpKind::SpgpHet => {
-            let rows = random_subset(n, m, seed);
-            let z = DMatrix::from_fn(rows.len(), dims, |i, d| data.xt[(d, rows[i])]);
+            let z = match start {
+                Some(z) => z.clone(),
+                None => {
+                    let rows = random_subset(n, m, seed);
+                    DMatrix::from_fn(rows.len(), dims, |i, d| data.xt[(d, rows[i])])
+                }
+            };
             let h = (kind == GpKind::SpgpHet)
-                .then(|| DVector::from_element(rows.len(), noise_variance / 10.0));
+                .then(|| DVector::from_element(z.nrows(), noise_variance / 10.0));
             (z, h)
         }
     };

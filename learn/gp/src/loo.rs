@@ -99,6 +99,31 @@ pub(crate) fn loo_moments<K: Kernel>(
     ))
 }
 
+impl<K: Kernel> crate::GpModel<K> {
+    /// Leave-one-out moments of this model's hyperparameters on training data `x` (N×D) and
+    /// `y` (N), in the target's units: each sample predicted from the other N − 1 (GPML eq.
+    /// 5.12). Kersting et al.'s noise GP reads its held-out residuals from these (gp.md §7).
+    pub fn loo_moments(&self, x: &nalgebra::DMatrix<f64>, y: &DVector<f64>) -> Result<LooMoments> {
+        if x.nrows() != y.len() || x.ncols() != self.input_names.len() {
+            return Err(crate::GpError::InvalidParams(format!(
+                "leave-one-out on {}×{} inputs and {} targets, the model takes {} columns",
+                x.nrows(),
+                x.ncols(),
+                y.len(),
+                self.input_names.len()
+            )));
+        }
+        let data = TrainData::new(&self.inputs.apply(x), &self.target.apply_vector(y))
+            .with_point_data(&self.hyper.kernel);
+        let loo = loo_moments(&data, self.kind, &self.hyper, self.jitter)?;
+        Ok(LooMoments {
+            mean: self.target.invert_vector(&loo.mean),
+            var_latent: self.target.invert_variance(&loo.var_latent),
+            var_y: self.target.invert_variance(&loo.var_y),
+        })
+    }
+}
+
 #[cfg(test)]
 #[path = "loo_tests.rs"]
 mod tests;

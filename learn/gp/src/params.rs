@@ -5,6 +5,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
 use super::kernel::Kernel;
@@ -68,6 +69,9 @@ pub struct GpParams<K = Stationary> {
     grad_tol: f64,
     rel_tol: f64,
     optimise_pseudo_inputs: bool,
+    zero_mean: bool,
+    start_pseudo_inputs: Option<DMatrix<f64>>,
+    noise_weights: Option<DVector<f64>>,
 }
 
 impl Default for GpParams {
@@ -92,6 +96,9 @@ impl GpParams {
             grad_tol: 1e-5,
             rel_tol: 1e-9,
             optimise_pseudo_inputs: true,
+            zero_mean: false,
+            start_pseudo_inputs: None,
+            noise_weights: None,
         }
     }
 }
@@ -111,6 +118,9 @@ impl<K: Kernel> GpParams<K> {
             grad_tol: self.grad_tol,
             rel_tol: self.rel_tol,
             optimise_pseudo_inputs: self.optimise_pseudo_inputs,
+            zero_mean: self.zero_mean,
+            start_pseudo_inputs: self.start_pseudo_inputs,
+            noise_weights: self.noise_weights,
         }
     }
     /// Number of pseudo-inputs M (sparse kinds; capped at N during the fit).
@@ -159,6 +169,31 @@ impl<K: Kernel> GpParams<K> {
         self
     }
 
+    /// Whether the prior mean function is 0 in the target's own units (thesis 3.1.3: "the mean
+    /// function is set to 0"): the target is then only scaled (by its root mean square), not
+    /// centred. The default centres it, so far from the data a prediction returns to the
+    /// training targets' mean instead of to 0.
+    pub fn zero_mean(mut self, zero: bool) -> Self {
+        self.zero_mean = zero;
+        self
+    }
+
+    /// Starts the pseudo-inputs at these rows (M×D, in the *standardised* input units of the
+    /// fit, e.g. k-means centres of standardised inputs) instead of a random subset of the
+    /// inputs; with [`Self::optimise_pseudo_inputs`]`(false)` they stay there.
+    pub fn start_pseudo_inputs(mut self, z: DMatrix<f64>) -> Self {
+        self.start_pseudo_inputs = Some(z);
+        self
+    }
+
+    /// A fixed relative noise level per training sample (sparse kinds): sample n's noise
+    /// variance is σ²·w_n, σ² still learned (Kersting et al. 2007's G3 with the noise shape of
+    /// its noise GP; gp.md §7). Must hold one positive finite value per training row.
+    pub fn noise_weights(mut self, w: DVector<f64>) -> Self {
+        self.noise_weights = Some(w);
+        self
+    }
+
     /// Validates the parameters.
     pub fn check(&self) -> Result<GpValidParams<K>> {
         let bad = |what: &str| Err(GpError::InvalidParams(what.to_string()));
@@ -173,6 +208,19 @@ impl<K: Kernel> GpParams<K> {
         }
         if !(self.grad_tol >= 0.0 && self.rel_tol >= 0.0) {
             return bad("tolerances must be non-negative");
+        }
+        if let Some(w) = &self.noise_weights {
+            if self.kind == GpKind::Full {
+                return bad("per-sample noise weights need a sparse GP kind");
+            }
+            if w.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+                return bad("noise weights must be positive and finite");
+            }
+        }
+        if let Some(z) = &self.start_pseudo_inputs {
+            if self.kind == GpKind::Full || z.nrows() == 0 || z.iter().any(|v| !v.is_finite()) {
+                return bad("starting pseudo-inputs need a sparse GP kind and finite rows");
+            }
         }
         Ok(GpValidParams(self.clone()))
     }
@@ -222,6 +270,18 @@ impl<K: Kernel> GpValidParams<K> {
     /// Whether the pseudo-inputs are optimised.
     pub fn optimise_pseudo_inputs(&self) -> bool {
         self.0.optimise_pseudo_inputs
+    }
+    /// Whether the prior mean is 0 in target units ([`GpParams::zero_mean`]).
+    pub fn zero_mean(&self) -> bool {
+        self.0.zero_mean
+    }
+    /// Given starting pseudo-inputs, if any.
+    pub fn start_pseudo_inputs(&self) -> Option<&DMatrix<f64>> {
+        self.0.start_pseudo_inputs.as_ref()
+    }
+    /// Per-sample noise weights, if any.
+    pub fn noise_weights(&self) -> Option<&DVector<f64>> {
+        self.0.noise_weights.as_ref()
     }
 }
 

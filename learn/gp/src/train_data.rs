@@ -20,6 +20,8 @@ pub(crate) struct TrainData {
     pub extra: Option<DMatrix<f64>>,
     /// Targets (N).
     pub y: DVector<f64>,
+    /// Relative noise level per sample (noise σ²·w_n), or σ² for all.
+    pub noise_weights: Option<DVector<f64>>,
 }
 
 impl TrainData {
@@ -30,6 +32,7 @@ impl TrainData {
             x: x.clone(),
             extra: None,
             y: y.clone(),
+            noise_weights: None,
         }
     }
 
@@ -37,6 +40,12 @@ impl TrainData {
     pub fn with_point_data<K: Kernel>(mut self, kernel: &K) -> Self {
         self.extra = kernel.point_data(&self.xt);
         self
+    }
+
+    /// Noise variance of sample `n` for a global noise variance `noise`.
+    #[inline(always)]
+    pub fn noise_at(&self, n: usize, noise: f64) -> f64 {
+        self.noise_weights.as_ref().map_or(noise, |w| noise * w[n])
     }
 
     /// Number of samples N.

@@ -63,6 +63,17 @@ impl Standardiser {
         }
     }
 
+    /// The transform of a target whose prior mean is 0: no centring, scaled by the root mean
+    /// square (1 for an all-zero target).
+    pub fn of_vector_uncentred(y: &DVector<f64>) -> Self {
+        let rms = (y.iter().map(|v| v * v).sum::<f64>() / y.len().max(1) as f64).sqrt();
+        let scale = if rms > CONSTANT_SPREAD { rms } else { 1.0 };
+        Self {
+            mean: vec![0.0],
+            scale: vec![scale],
+        }
+    }
+
     /// Number of columns transformed.
     pub fn len(&self) -> usize {
         self.mean.len()

@@ -4,16 +4,22 @@
 mod cluster_estimate;
 mod cluster_prediction;
 mod feature_matrix;
+mod kmeans;
 mod merge;
 mod model_file;
 mod motion_estimator;
 mod params;
+mod projection;
+mod regressor;
 mod scan_motion;
 
 pub use cluster_estimate::{
     ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming, ScanEstimate, ScanMotion,
 };
 pub use feature_matrix::rows_to_matrix;
+pub use kmeans::kmeans;
 pub use merge::{Gaussian, MergeRule, MergedHeading};
 pub use motion_estimator::{MotionEstimator, TrainingRecord};
 pub use params::{EstimatorParams, EstimatorValidParams};
+pub use projection::Projection;
+pub use regressor::{NoiseModel, Regressor};

@@ -7,6 +7,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use super::motion_estimator::{MotionEstimator, TrainingRecord};
+use super::projection::Projection;
+use super::regressor::{NoiseModel, Regressor, projected_names};
 use crate::{
     FeatureKind, FeatureParams, GaborParams, GpKind, GpModel, GroundMode, LearnError, Result,
 };
@@ -33,6 +35,22 @@ struct ModelFile {
     heading_sin: Value,
     heading_cos: Value,
     speed: Value,
+    /// Each regression's PLS projection and noise GP (sin, cos, speed), when the model has any
+    /// (thesis Ch. 6 options); absent for the thesis' plain GPs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    extras: Option<Vec<RegressorExtras>>,
+}
+
+/// What a regression holds beside its GP.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RegressorExtras {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    projection: Option<Projection>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    noise_gp: Option<Value>,
+    #[serde(default)]
+    noise_offset: f64,
 }
 
 /// Every field of [`FeatureParams`], so a model reproduces its maps exactly.
@@ -143,9 +161,10 @@ impl MotionEstimator {
             feature: feature_name(self.feature).to_owned(),
             features: FeatureRecord::from(self.features.params()),
             training: self.training.clone(),
-            heading_sin: without_timing(self.heading_sin.to_json_value()?),
-            heading_cos: without_timing(self.heading_cos.to_json_value()?),
-            speed: without_timing(self.speed.to_json_value()?),
+            heading_sin: without_timing(self.heading_sin.gp.to_json_value()?),
+            heading_cos: without_timing(self.heading_cos.gp.to_json_value()?),
+            speed: without_timing(self.speed.gp.to_json_value()?),
+            extras: self.extras_record()?,
         };
         let model_err = |reason: String| LearnError::Model {
             path: path.to_path_buf(),
@@ -192,12 +211,45 @@ impl MotionEstimator {
             ..FeatureParams::from(file.features)
         };
         let features = features.check().map_err(|e| model_err(e.to_string()))?;
+        let gps = [file.heading_sin, file.heading_cos, file.speed];
+        let extras: Vec<Option<RegressorExtras>> = match file.extras {
+            None => vec![None, None, None],
+            Some(e) if e.len() == 3 => e.into_iter().map(Some).collect(),
+            Some(e) => {
+                return Err(model_err(format!(
+                    "extras for {} regressions, expected 3",
+                    e.len()
+                )));
+            }
+        };
+        let mut regressors = Vec::with_capacity(3);
+        for (gp, extra) in gps.into_iter().zip(extras) {
+            let mut r = Regressor::plain(GpModel::from_json_value(with_timing(gp), path)?);
+            if let Some(extra) = extra {
+                if let Some(p) = &extra.projection {
+                    if !p.is_consistent() {
+                        return Err(model_err("an inconsistent PLS projection".into()));
+                    }
+                }
+                r.projection = extra.projection;
+                if let Some(noise) = extra.noise_gp {
+                    r.noise = Some(NoiseModel {
+                        gp: GpModel::from_json_value(with_timing(noise), path)?,
+                        offset: extra.noise_offset,
+                    });
+                }
+            }
+            regressors.push(r);
+        }
+        let [heading_sin, heading_cos, speed]: [Regressor; 3] = regressors
+            .try_into()
+            .map_err(|_| model_err("expected three regressions".into()))?;
         let estimator = Self {
             gp: file.gp,
             feature,
-            heading_sin: GpModel::from_json_value(with_timing(file.heading_sin), path)?,
-            heading_cos: GpModel::from_json_value(with_timing(file.heading_cos), path)?,
-            speed: GpModel::from_json_value(with_timing(file.speed), path)?,
+            heading_sin,
+            heading_cos,
+            speed,
             features,
             training: file.training,
         };
@@ -208,9 +260,57 @@ impl MotionEstimator {
     /// The labels written in the file must agree with what the GPs are: `gp` with each GP's
     /// kind (so a file cannot be edited to report one method's results under another's name),
     /// `feature` with their input columns, and the targets in their order.
+    fn extras_record(&self) -> Result<Option<Vec<RegressorExtras>>> {
+        let regressors = self.regressors();
+        if regressors
+            .iter()
+            .all(|r| r.projection.is_none() && r.noise.is_none())
+        {
+            return Ok(None);
+        }
+        let mut out = Vec::with_capacity(3);
+        for r in regressors {
+            out.push(RegressorExtras {
+                projection: r.projection.clone(),
+                noise_gp: match &r.noise {
+                    Some(n) => Some(without_timing(n.gp.to_json_value()?)),
+                    None => None,
+                },
+                noise_offset: r.noise.as_ref().map_or(0.0, |n| n.offset),
+            });
+        }
+        Ok(Some(out))
+    }
+
     fn check_content(&self) -> std::result::Result<(), String> {
-        let names = self.feature.names();
-        for (gp, target) in self.gps().into_iter().zip(["sin_rel", "cos_rel", "speed"]) {
+        let feature_names = self.feature.names();
+        for (r, target) in self
+            .regressors()
+            .into_iter()
+            .zip(["sin_rel", "cos_rel", "speed"])
+        {
+            let gp = &r.gp;
+            let names = match &r.projection {
+                None => feature_names.clone(),
+                Some(p) => {
+                    if p.input_dims() != feature_names.len() {
+                        return Err(format!(
+                            "the {target} projection reads {} values, the {} feature has {}",
+                            p.input_dims(),
+                            feature_name(self.feature),
+                            feature_names.len()
+                        ));
+                    }
+                    projected_names(p.dims)
+                }
+            };
+            if let Some(noise) = &r.noise {
+                if noise.gp.input_names() != names.as_slice() {
+                    return Err(format!(
+                        "the {target} noise GP reads other inputs than its GP"
+                    ));
+                }
+            }
             if gp.kind() != self.gp {
                 return Err(format!(
                     "the file says gp {}, but its {target} GP is {}",

@@ -6,9 +6,10 @@ use patchflow_dataset::Dataset;
 
 use super::feature_matrix::rows_to_matrix;
 use super::params::{EstimatorParams, EstimatorValidParams};
+use super::regressor::Regressor;
 use crate::{
-    FeatureKind, FeatureParams, FeatureValidParams, GpKind, GpModel, GpParams, LearnError, Result,
-    SampleSet, SweepFeatures,
+    FeatureKind, FeatureParams, FeatureValidParams, GpKind, GpModel, LearnError, Result, SampleSet,
+    SweepFeatures,
 };
 
 /// A trained motion estimator: GPs for sin and cos of the heading relative to the bearing, and
@@ -18,9 +19,9 @@ pub struct MotionEstimator {
     pub(crate) gp: GpKind,
     pub(crate) feature: FeatureKind,
     pub(crate) features: FeatureValidParams,
-    pub(crate) heading_sin: GpModel,
-    pub(crate) heading_cos: GpModel,
-    pub(crate) speed: GpModel,
+    pub(crate) heading_sin: Regressor,
+    pub(crate) heading_cos: Regressor,
+    pub(crate) speed: Regressor,
     pub(crate) training: TrainingRecord,
 }
 
@@ -37,6 +38,15 @@ pub struct TrainingRecord {
     pub mirror_images: bool,
     /// Pseudo-inputs per sparse GP.
     pub pseudo_inputs: usize,
+    /// GPs with a zero prior mean (the thesis); absent in older files (they centred).
+    #[serde(default)]
+    pub zero_mean: bool,
+    /// PLS directions the patches were projected to (0: none).
+    #[serde(default)]
+    pub projection_dims: usize,
+    /// Whether the most-likely heteroscedastic noise GPs were fitted.
+    #[serde(default)]
+    pub most_likely_noise: bool,
     /// Seed of sampling and initialisation.
     pub seed: u64,
     /// Wall time of the whole training, seconds. Not written to the model file, so that identical
@@ -136,28 +146,20 @@ impl MotionEstimator {
             DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.cos_rel));
         let speed_y =
             DVector::from_iterator(set.samples.len(), set.samples.iter().map(|s| s.speed_mps));
-        let gp = |seed_offset: u64| {
-            GpParams::new(params.gp)
-                .pseudo_inputs(params.pseudo_inputs.min(set.samples.len()))
-                .max_iters(params.max_iters)
-                .seed(params.seed.wrapping_add(seed_offset))
-        };
+        let seed = |offset: u64| params.seed.wrapping_add(offset);
         // 3.1.1: one GP for each of sin and cos of (heading − bearing), one for the speed.
-        let heading_sin = gp(1)
-            .check()?
-            .fit_named(&heading_x, &sin_y, &names, "sin_rel")?;
-        let heading_cos = gp(2)
-            .check()?
-            .fit_named(&heading_x, &cos_y, &names, "cos_rel")?;
-        let speed = gp(3)
-            .check()?
-            .fit_named(&speed_x, &speed_y, &names, "speed")?;
+        let heading_sin = Regressor::fit(&heading_x, &sin_y, &names, "sin_rel", params, seed(1))?;
+        let heading_cos = Regressor::fit(&heading_x, &cos_y, &names, "cos_rel", params, seed(2))?;
+        let speed = Regressor::fit(&speed_x, &speed_y, &names, "speed", params, seed(3))?;
         let training = TrainingRecord {
             sequences: Vec::new(),
             pool_size: drawn.pool_size,
             samples: drawn.samples.len(),
             mirror_images: params.mirror_images,
             pseudo_inputs: params.pseudo_inputs,
+            zero_mean: params.zero_mean,
+            projection_dims: params.projection_dims,
+            most_likely_noise: params.most_likely_noise,
             seed: params.seed,
             seconds: start.elapsed().as_secs_f64(),
         };
@@ -212,6 +214,18 @@ impl MotionEstimator {
         }
     }
 
+    /// Whether the model was trained by the thesis' protocol exactly
+    /// ([`EstimatorParams::thesis`]'s training fields, whatever its sample counts).
+    pub fn is_thesis_preset(&self) -> bool {
+        let thesis = EstimatorParams::thesis();
+        let t = &self.training;
+        !t.mirror_images
+            && t.zero_mean == thesis.zero_mean
+            && t.projection_dims == thesis.projection_dims
+            && t.most_likely_noise == thesis.most_likely_noise
+            && self.features.speed_jitter_deg == thesis.features.speed_jitter_deg
+    }
+
     /// What the training saw.
     pub fn training(&self) -> &TrainingRecord {
         &self.training
@@ -219,6 +233,11 @@ impl MotionEstimator {
 
     /// The three GPs: sin and cos of the relative heading, and the speed.
     pub fn gps(&self) -> [&GpModel; 3] {
+        [&self.heading_sin.gp, &self.heading_cos.gp, &self.speed.gp]
+    }
+
+    /// The three regressions with their projections and noise GPs, if any.
+    pub fn regressors(&self) -> [&Regressor; 3] {
         [&self.heading_sin, &self.heading_cos, &self.speed]
     }
 }

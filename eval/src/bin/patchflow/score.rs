@@ -9,7 +9,7 @@ use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::progress::progress_bar;
 use patchflow_eval::{PredictionFolder, scans_to_evaluate, score_predictions};
-use patchflow_learn::MotionEstimator;
+use patchflow_learn::{MOVING_FILE_NAME, MotionEstimator, MovingClassifier};
 
 use crate::output_guard::{Input, OutputKind, check_output};
 
@@ -52,10 +52,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             MotionEstimator::load(path).with_context(|| format!("loading model {}", path.display()))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
+    // The moving classifier `patchflow train` writes beside the (first) model, if there.
+    let moving = match args
+        .model
+        .first()
+        .map(|m| m.with_file_name(MOVING_FILE_NAME))
+    {
+        Some(path) if path.exists() => Some(
+            MovingClassifier::load(&path).with_context(|| format!("loading {}", path.display()))?,
+        ),
+        _ => None,
+    };
     let dataset = Dataset::open(&args.data)?;
     let passes = 1 + u64::from(!estimators.is_empty());
     let bar = progress_bar(scans_to_evaluate(&dataset)? * passes, "scoring scans");
-    let report = score_predictions(&dataset, &folders, &estimators, &|| bar.inc(1));
+    let report = score_predictions(&dataset, &folders, &estimators, moving.as_ref(), &|| {
+        bar.inc(1)
+    });
     bar.finish_and_clear();
     let files = report?.write(&args.out)?;
     println!("wrote {}", files.report_md.display());

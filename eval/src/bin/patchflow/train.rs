@@ -37,10 +37,25 @@ pub struct Args {
     /// Seed of sampling and initialisation.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Train on the thesis' training set exactly: no mirror images, speed patches aligned to the
-    /// exact true heading (see ARCHITECTURE.md for why the default differs).
-    #[arg(long)]
+    /// `default` or `thesis`: the thesis' protocol exactly (no mirror images, speed patches
+    /// aligned to the exact true heading, GPs with a zero mean function; the list of the
+    /// default's deviations is `EstimatorParams`' doc and README's "The estimator's defaults").
+    #[arg(long, default_value = "default")]
+    pub preset: String,
+    /// Same as `--preset thesis` (kept for older scripts).
+    #[arg(long, hide = true)]
     pub thesis_training: bool,
+    /// Thesis Ch. 6: project the patches to this many PLS directions with k-means
+    /// pseudo-inputs (0: the raw patch values, free pseudo-inputs). Default: the preset's.
+    #[arg(long)]
+    pub projection_dims: Option<usize>,
+    /// Thesis Ch. 6: Kersting et al.'s most-likely heteroscedastic noise GP (`true`/`false`).
+    /// Default: the preset's.
+    #[arg(long)]
+    pub most_likely_noise: Option<bool>,
+    /// GPs with a zero prior mean (`true`/`false`). Default: the preset's.
+    #[arg(long)]
+    pub zero_mean: Option<bool>,
 }
 
 /// Runs `patchflow train`.
@@ -50,9 +65,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         OutputKind::File,
         &[Input::new("--data", &args.data)],
     )?;
-    let base = match args.thesis_training {
-        true => EstimatorParams::thesis(),
-        false => EstimatorParams::default(),
+    let base = match (args.preset.as_str(), args.thesis_training) {
+        ("thesis", _) | (_, true) => EstimatorParams::thesis(),
+        ("default", false) => EstimatorParams::default(),
+        (other, _) => anyhow::bail!("unknown preset '{other}' (expected default or thesis)"),
+    };
+    let base = EstimatorParams {
+        projection_dims: args.projection_dims.unwrap_or(base.projection_dims),
+        most_likely_noise: args.most_likely_noise.unwrap_or(base.most_likely_noise),
+        zero_mean: args.zero_mean.unwrap_or(base.zero_mean),
+        ..base
     };
     let params = EstimatorParams {
         gp: parse_gp(&args.gp)?,
@@ -79,7 +101,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             ..patchflow_learn::MovingParams::default()
         },
     )
-    .with_context(|| format!("training the moving classifier on {}", dataset.root().display()))?;
+    .with_context(|| {
+        format!(
+            "training the moving classifier on {}",
+            dataset.root().display()
+        )
+    })?;
     let moving_path = args.out.with_file_name(patchflow_learn::MOVING_FILE_NAME);
     moving.save(&moving_path)?;
     println!("wrote {}", moving_path.display());

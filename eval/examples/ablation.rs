@@ -1,0 +1,188 @@
+//! The estimator's ablation (docs/estimator.md): every variant of the training options trained on
+//! the same sample draws for each training seed, and all scored in one pass over the situations'
+//! maps (`evaluate_targets`, as `bench` scores its further seeds): SPGP-HET-ALL heading RMSE (°)
+//! and speed RMSE (m/s) per situation, mean ± std over the seeds, as a Markdown table; every
+//! figure also as JSON with `json=PATH`.
+//!
+//! `cargo run --release -p patchflow-eval --example ablation -- situations=DIR train=DIR
+//! [seeds=7,8,9] [samples=1200] [pseudo=60] [iters=150] [variants=default,thesis,...]
+//! [json=PATH]`
+//!
+//! DIRs are `bench --quick --keep-data`'s `data/situations` and `data/train`; the default sizes are
+//! `bench --quick`'s. Variants: `default`, `thesis` (its own draws, no speed jitter), `zero-mean`,
+//! `pls<K>` (e.g. `pls20`), `mlhgp`, joined with `+` (`pls20+mlhgp`), and `x<F>` to train on F
+//! times the samples (`pls20+x3`; the samples drawn once at the largest size, each variant
+//! taking the first ones).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use patchflow_dataset::Dataset;
+use patchflow_eval::{Method, score_method, stages::evaluate_targets};
+use patchflow_learn::{EstimatorParams, FeatureKind, MotionEstimator, SampleSet};
+use rayon::prelude::*;
+
+type Failure = Box<dyn std::error::Error>;
+
+/// A variant's parameters (sizes from the command line) and its sample factor.
+fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize, bool), Failure> {
+    let mut p = base.clone();
+    let (mut factor, mut thesis) = (1, false);
+    for part in name.split('+') {
+        match part {
+            "default" => {}
+            "thesis" => {
+                thesis = true;
+                p = EstimatorParams {
+                    samples: p.samples,
+                    pseudo_inputs: p.pseudo_inputs,
+                    max_iters: p.max_iters,
+                    ..EstimatorParams::thesis()
+                };
+            }
+            "zero-mean" => p.zero_mean = true,
+            "centred" => p.zero_mean = false,
+            "mlhgp" => p.most_likely_noise = true,
+            "no-mirror" => p.mirror_images = false,
+            other if other.starts_with("pls") => p.projection_dims = other[3..].parse()?,
+            other if other.starts_with('x') => factor = other[1..].parse()?,
+            other if other.starts_with('m') => p.pseudo_inputs = other[1..].parse()?,
+            other => return Err(format!("unknown variant part '{other}'").into()),
+        }
+    }
+    p.samples *= factor;
+    Ok((p, factor, thesis))
+}
+
+fn main() -> Result<(), Failure> {
+    let args: BTreeMap<String, String> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.split_once('=').map(|(k, v)| (k.to_owned(), v.to_owned())))
+        .collect();
+    let get = |k: &str| args.get(k).map(String::as_str);
+    let situations = Dataset::open(Path::new(get("situations").ok_or("situations=DIR")?))?;
+    let train = Dataset::open(Path::new(get("train").ok_or("train=DIR")?))?;
+    let seeds: Vec<u64> = get("seeds")
+        .unwrap_or("7,8,9")
+        .split(',')
+        .map(str::parse)
+        .collect::<Result<_, _>>()?;
+    let base = EstimatorParams {
+        samples: get("samples").map_or(Ok(1200), str::parse)?,
+        pseudo_inputs: get("pseudo").map_or(Ok(60), str::parse)?,
+        max_iters: get("iters").map_or(Ok(150), str::parse)?,
+        ..EstimatorParams::default()
+    };
+    let names: Vec<String> = get("variants")
+        .unwrap_or("default,thesis,zero-mean,pls20,mlhgp,pls20+mlhgp")
+        .split(',')
+        .map(str::to_owned)
+        .collect();
+    let variants: Vec<(EstimatorParams, usize, bool)> = names
+        .iter()
+        .map(|n| variant(n, &base))
+        .collect::<Result<_, _>>()?;
+    let most = variants.iter().map(|v| v.1).max().unwrap_or(1);
+    // One pass over the training maps per feature setting, every seed at once.
+    let draws: Vec<(f64, u64)> = seeds.iter().map(|&s| (0.5, s)).collect();
+    let clock = std::time::Instant::now();
+    let default_sets = SampleSet::collect_draws(
+        &train,
+        &base.features,
+        &draws,
+        FeatureKind::Patch,
+        base.samples * most,
+        &|_, _| {},
+    )?;
+    let thesis_sets = if variants.iter().any(|v| v.2) {
+        SampleSet::collect_draws(
+            &train,
+            &EstimatorParams::thesis().features,
+            &draws,
+            FeatureKind::Patch,
+            base.samples,
+            &|_, _| {},
+        )?
+    } else {
+        Vec::new()
+    };
+    eprintln!("samples drawn in {:.1} s", clock.elapsed().as_secs_f64());
+    let jobs: Vec<(usize, usize)> = (0..variants.len())
+        .flat_map(|v| (0..seeds.len()).map(move |s| (v, s)))
+        .collect();
+    let clock = std::time::Instant::now();
+    let models = jobs
+        .par_iter()
+        .map(|&(v, s)| {
+            let (params, _, thesis) = &variants[v];
+            let set = if *thesis {
+                &thesis_sets[s]
+            } else {
+                &default_sets[s]
+            };
+            let params = EstimatorParams {
+                seed: seeds[s],
+                ..params.clone()
+            };
+            MotionEstimator::fit_samples(set, &params)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    eprintln!(
+        "{} models fitted in {:.1} s",
+        models.len(),
+        clock.elapsed().as_secs_f64()
+    );
+    let clock = std::time::Instant::now();
+    let runs: Vec<Vec<MotionEstimator>> = models.into_iter().map(|m| vec![m]).collect();
+    let results = evaluate_targets(&situations, &runs)?;
+    eprintln!("scored in {:.1} s", clock.elapsed().as_secs_f64());
+    // figures[variant][situation] = per-seed (heading, speed)
+    let mut figures: Vec<BTreeMap<String, Vec<(f64, f64)>>> = vec![BTreeMap::new(); variants.len()];
+    for (&(v, _), run) in jobs.iter().zip(&results) {
+        for situation in run {
+            let estimates = [Method::SpgpHetAll, Method::SpgpHetAllThesis]
+                .iter()
+                .find_map(|m| situation.methods.get(m))
+                .ok_or("no SPGP-HET-ALL estimates")?;
+            let m = score_method(&situation.truth, estimates)?;
+            figures[v].entry(situation.name.clone()).or_default().push((
+                m.heading_rmse_deg.unwrap_or(f64::NAN),
+                m.speed_rmse_mps.unwrap_or(f64::NAN),
+            ));
+        }
+    }
+    let stats = |xs: &[f64]| {
+        let mean = xs.iter().sum::<f64>() / xs.len() as f64;
+        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / xs.len().max(2) as f64;
+        (mean, var.sqrt())
+    };
+    let situation_names: Vec<String> = figures
+        .first()
+        .map_or(Vec::new(), |f| f.keys().cloned().collect());
+    println!("| variant | {} | within bar |", situation_names.join(" | "));
+    println!("|---|{}---|", "---|".repeat(situation_names.len()));
+    let mut json = Vec::new();
+    for (name, per) in names.iter().zip(&figures) {
+        let mut cells = Vec::new();
+        let mut met = 0;
+        for s in &situation_names {
+            let values = &per[s];
+            let (h, hs) = stats(&values.iter().map(|v| v.0).collect::<Vec<_>>());
+            let (v, vs) = stats(&values.iter().map(|v| v.1).collect::<Vec<_>>());
+            if h <= 25.0 && v <= 1.5 {
+                met += 1;
+            }
+            cells.push(format!("{h:.1} ± {hs:.1} / {v:.2} ± {vs:.2}"));
+            json.push(
+                serde_json::json!({"variant": name, "situation": s, "seeds": seeds,
+                "heading_rmse_deg": values.iter().map(|v| v.0).collect::<Vec<_>>(),
+                "speed_rmse_mps": values.iter().map(|v| v.1).collect::<Vec<_>>()}),
+            );
+        }
+        println!("| {name} | {} | {met} |", cells.join(" | "));
+    }
+    if let Some(path) = get("json") {
+        std::fs::write(path, serde_json::to_string_pretty(&json)?)?;
+    }
+    Ok(())
+}
