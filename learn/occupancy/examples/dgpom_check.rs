@@ -93,9 +93,19 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     }
     let map = Arc::new(map);
-    let samples = SampleParams::default();
+    let samples = SampleParams {
+        past_free: std::env::var("PAST_FREE").map_or(true, |v| v != "0"),
+        ..SampleParams::default()
+    };
     let methods: Vec<Box<dyn MapMethod>> = vec![
-        Box::new(DgpomMethod::new(DgpomParams::default(), map)),
+        Box::new(DgpomMethod::new(
+            DgpomParams {
+                samples: samples.clone(),
+                max_iters: std::env::var("ITERS").map_or(Ok(50), |v| v.parse())?,
+                ..DgpomParams::default()
+            },
+            map,
+        )),
         Box::new(GpomMethod::space(samples.clone())),
         Box::new(GpomMethod::space_time(samples)),
     ];

@@ -94,3 +94,91 @@ fn cell_index(centre: [f64; 2], offset: f64, cell_m: f64) -> Cell {
         ((centre[1] + offset) / cell_m).floor() as i64,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use patchflow_dataset::{ActorClass, ObjectTruth, SensorInfo, SensorKind};
+
+    use super::*;
+    use crate::{Beam, GroundTruth, PlanarScan};
+
+    /// A car 4 m × 2 m centred at (6, 0) driving +x at 2 m/s, and a scan from the origin whose
+    /// beams fan over it.
+    fn training() -> OccupancySequence {
+        let car = ObjectTruth {
+            id: 1,
+            name: "car".into(),
+            class: ActorClass::Car,
+            target: false,
+            moving: true,
+            centre_m: [6.0, 0.0, 0.75],
+            size_m: [4.0, 2.0, 1.5],
+            yaw_rad: 0.0,
+            velocity_mps: [2.0, 0.0, 0.0],
+            speed_mps: 2.0,
+            heading_rad: 0.0,
+            yaw_rate_radps: 0.0,
+            point_count: 0,
+        };
+        let beams = (0..41)
+            .map(|j| {
+                let a = (-40.0 + 2.0 * f64::from(j)).to_radians();
+                Beam {
+                    start_m: [0.0, 0.0],
+                    end_m: [12.0 * a.cos(), 12.0 * a.sin()],
+                    hit: false,
+                }
+            })
+            .collect();
+        let scan = PlanarScan {
+            index: 0,
+            stamp_secs: 0.0,
+            sensor_m: [0.0, 0.0],
+            yaw_rad: 0.0,
+            beams,
+        };
+        OccupancySequence {
+            name: "test".into(),
+            dir: "test".into(),
+            sensor: SensorInfo {
+                kind: SensorKind::Planar,
+                rate_hz: 1.0,
+                max_range_m: 12.0,
+                mount_height_m: 0.5,
+                columns: 41,
+                first_azimuth_deg: -40.0,
+                azimuth_step_deg: 2.0,
+                elevations_deg: vec![0.0],
+            },
+            scans: vec![scan],
+            truth: GroundTruth::new(&[], vec![(0.0, vec![car])]),
+            scan_height_m: 0.5,
+        }
+    }
+
+    #[derive(Debug)]
+    struct Field(f64);
+
+    impl MotionField for Field {
+        fn velocity_mps(&self, xy_m: [f64; 2]) -> [f64; 2] {
+            let on_car = (4.0..=8.0).contains(&xy_m[0]) && xy_m[1].abs() <= 1.0;
+            [if on_car { self.0 } else { 0.0 }, 0.0]
+        }
+        fn error_mps(&self, _: [f64; 2]) -> f64 {
+            0.1
+        }
+    }
+
+    #[test]
+    fn the_exact_lane_velocity_scores_zero_and_a_still_field_the_cars_speed() {
+        let seq = training();
+        let exact = MotionAccuracy::of(&Field(2.0), &seq, 0.5);
+        assert!(
+            exact.lane_cells > 10 && exact.off_lane_cells > 100,
+            "{exact:?}"
+        );
+        assert!(exact.lane_rmse_mps < 1e-12 && exact.off_lane_rmse_mps < 1e-12);
+        let still = MotionAccuracy::of(&Field(0.0), &seq, 0.5);
+        assert!((still.lane_rmse_mps - 2.0).abs() < 1e-12, "{still:?}");
+    }
+}
