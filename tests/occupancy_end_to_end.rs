@@ -15,7 +15,7 @@ use patchflow_eval::{
     occupancy_sequences, predict_ahead, write_occupancy_report,
 };
 use patchflow_occupancy::{
-    AheadParams, DgpomMethod, DgpomParams, GpomMethod, MapMethod, OccupancyGridMethod,
+    AheadParams, DgpomMethod, DgpomParams, GpSolver, GpomMethod, MapMethod, OccupancyGridMethod,
     OccupancyParams, OccupancySequence, SampleParams, Thinning,
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
@@ -42,7 +42,10 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
         ..SampleParams::default()
     };
     let small = |m: GpomMethod| GpomMethod {
-        pseudo_inputs: 60,
+        solver: GpSolver {
+            exact_up_to: 0,
+            pseudo_inputs: 60,
+        },
         max_iters: 25,
         ..m
     };
@@ -214,7 +217,10 @@ fn a_one_hertz_3d_lidar_is_mapped_through_the_height_slice_and_a_ten_hertz_one_i
         ..kind.sample_params(7)
     };
     let gpom = GpomMethod {
-        pseudo_inputs: 60,
+        solver: GpSolver {
+            exact_up_to: 0,
+            pseudo_inputs: 60,
+        },
         max_iters: 25,
         ..GpomMethod::space(samples)
     };

@@ -45,8 +45,10 @@ pub fn dgpom_notes(ahead: &AheadParams) -> Vec<String> {
             map.raster_m
         ),
         format!(
-            "DGPOM kernel (eqs. 2-6, patchflow-gp `MotionAdapted`): every training point is carried along Υ from its scan's time to the query time (eq. 4, classical Runge-Kutta with a fixed {} s step), then SE-ARD in space between the carried points times the sum of two non-stationary Matérn 3/2 terms in time with l_t(x) = a·ε(x)^(−1/b) (eq. 5-6; the l(x) = l(x') limit is taken analytically). ℓx, ℓy, a, b, the signal and noise variances are learned per map by maximising the marginal likelihood (analytic gradients, checked against central differences in tests), in an SPGP with {} pseudo-inputs held at a seeded subset of the training points (at most {} L-BFGS iterations); classification by the same probabilistic least squares as GPOM. The paper does not say how it solved its GPs.",
-            method.step_secs, method.pseudo_inputs, method.max_iters
+            "DGPOM kernel (eqs. 2-6, patchflow-gp `MotionAdapted`): every training point is carried along Υ from its scan's time to the query time (eq. 4, classical Runge-Kutta with a fixed {} s step), then SE-ARD in space between the carried points times the sum of two non-stationary Matérn 3/2 terms in time with l_t(x) = a·ε(x)^(−1/b) (eq. 5-6; the l(x) = l(x') limit is taken analytically). ℓx, ℓy, a, b, the signal and noise variances are learned per map by maximising the marginal likelihood (analytic gradients, checked against central differences in tests), with {} (at most {} L-BFGS iterations); classification by the same probabilistic least squares as GPOM. The paper does not say how it solved its GPs.",
+            method.step_secs,
+            method.solver.describe(),
+            method.max_iters
         ),
         format!(
             "Predicting ahead (cf. the paper's Figure 10): DGPOM is fit once to the scan at a start time and the {} before it, then predicts at the times of the next {} scans with no newer scan; the AUC against the exact occupancy then (the paper approximated its truth by a map of the scan at the query time and scored only where that map was confident), over the area the scanner observes at the start time, averaged over start times {:?} (± 1 standard deviation). The paper's Figure 10 is on its recorded busy intersection; ours is on the simulated scenario named.",

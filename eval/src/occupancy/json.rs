@@ -6,7 +6,9 @@
 
 use std::collections::BTreeMap;
 
-use patchflow_occupancy::{AheadScores, ClusterKind, MethodScores, MotionMap, SequenceScores};
+use patchflow_occupancy::{
+    AheadScores, ClusterKind, MethodScores, MotionAccuracy, MotionMap, SequenceScores,
+};
 use serde::Serialize;
 
 use super::OccupancyReport;
@@ -39,6 +41,8 @@ struct ScenarioEntry {
 
 #[derive(Serialize)]
 struct MotionMapEntry {
+    /// Υ against the training run's actors (RMSE on and off the lanes).
+    accuracy: MotionAccuracy,
     arrived_clusters: usize,
     error_points: usize,
     stationary_clusters: usize,
@@ -60,6 +64,7 @@ struct AheadEntry {
 fn motion_map_entry(map: &MotionMap) -> MotionMapEntry {
     let count = |k: ClusterKind| map.clusters.iter().filter(|c| c.kind == k).count();
     MotionMapEntry {
+        accuracy: map.accuracy,
         arrived_clusters: count(ClusterKind::Arrived),
         error_points: map.error_points,
         stationary_clusters: count(ClusterKind::Stationary),
@@ -92,6 +97,13 @@ struct MethodEntry {
     mean_auc: Option<f64>,
     seconds_by_query_time: BTreeMap<String, f64>,
     seconds_per_map: f64,
+    /// The GP each map solved (`exact`, `SPGP M`), by query time; absent without a GP.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    solver_by_query_time: BTreeMap<String, String>,
+    /// The learned temporal length-scale by query time: (ε m/s, l_t s) pairs, ε 0 where l_t does
+    /// not depend on it; absent for a method without one.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    temporal_lengthscale_by_query_time: BTreeMap<String, Vec<[f64; 2]>>,
     training_points_by_query_time: BTreeMap<String, usize>,
     training_points_per_map: f64,
 }
@@ -127,6 +139,19 @@ fn method_entry(scores: &SequenceScores, m: &MethodScores, cpu: Option<&Vec<f64>
         mean_auc: (!aucs.is_empty()).then(|| aucs.iter().sum::<f64>() / aucs.len() as f64),
         seconds_by_query_time: by_time(m.seconds_per_map.clone()),
         seconds_per_map: m.mean_seconds_per_map(),
+        solver_by_query_time: scans
+            .iter()
+            .map(|&t| query_time_key(scores, t))
+            .zip(m.solver_per_map.iter())
+            .filter_map(|(t, s)| s.clone().map(|s| (t, s)))
+            .collect(),
+        temporal_lengthscale_by_query_time: scans
+            .iter()
+            .map(|&t| query_time_key(scores, t))
+            .zip(m.temporal_lengthscales_per_map.iter())
+            .filter(|(_, l)| !l.is_empty())
+            .map(|(t, l)| (t, l.clone()))
+            .collect(),
         training_points_by_query_time: scans
             .iter()
             .map(|&t| query_time_key(scores, t))

@@ -5,8 +5,11 @@
 
 use std::fmt::Write as _;
 
-use patchflow_occupancy::{AheadScores, ClusterKind, MotionField, MotionMap, SequenceScores};
+use patchflow_occupancy::{
+    AheadScores, ClusterKind, DgpomParams, MotionField, MotionMap, SequenceScores,
+};
 
+use super::fit_tables::{solver_table, temporal_table};
 use super::json::query_time_key;
 use super::paper_table::{PAPER_QUERY_TIMES, PAPER_TABLE_1};
 use super::plot_dgpom::{ahead_file_name, motion_map_file_name};
@@ -43,6 +46,8 @@ pub fn occupancy_section(report: &OccupancyReport) -> String {
         let observed_by = report.kinds.get(&scores.name).map_or("", |k| k.label());
         auc_table(&mut md, scores, observed_by);
         timing_table(&mut md, scores, report.cpu_seconds.get(&scores.name));
+        solver_table(&mut md, scores);
+        temporal_table(&mut md, scores, DgpomParams::default().temporal_range_secs);
         let _ = writeln!(
             md,
             "Figures (cf. the paper's Figure 6: ground truth with the scan, probability of occupancy, predictive variance):\n"
@@ -195,13 +200,18 @@ fn motion_map_section(md: &mut String, scores: &SequenceScores, map: &MotionMap)
     let file = motion_map_file_name(&scores.name);
     let _ = writeln!(
         md,
-        "#### {}: DGPOM's motion map (cf. the paper's Figure 5)\n\nFrom the training run `{}_train`: {} arrived, {} vacated and {} stationary clusters. {}. Figure: [plots/{file}](plots/{file}).\n",
+        "#### {}: DGPOM's motion map (cf. the paper's Figure 5)\n\nFrom the training run `{}_train`: {} arrived, {} vacated and {} stationary clusters. {}. Figure: [plots/{file}](plots/{file}).\n\nMotion-map accuracy against the training run's actors ({} m cells the run observed): RMSE of Υ on the lanes (cells a car covered, truth its velocity) {:.3} m/s over {} cells, off them (truth 0) {:.3} m/s over {} cells.\n",
         scores.name,
         scores.name,
         count(ClusterKind::Arrived),
         count(ClusterKind::Vacated),
         count(ClusterKind::Stationary),
-        map.summary
+        map.summary,
+        map.accuracy.cell_m,
+        map.accuracy.lane_rmse_mps,
+        map.accuracy.lane_cells,
+        map.accuracy.off_lane_rmse_mps,
+        map.accuracy.off_lane_cells
     );
     let Some(scan) = scores.figures.first().map(|f| &f.scan) else {
         return;

@@ -4,6 +4,7 @@
 
 mod ahead;
 mod dgpom;
+mod fit_tables;
 mod json;
 mod markdown;
 mod paper_table;

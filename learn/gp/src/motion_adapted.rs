@@ -52,6 +52,8 @@ pub struct MotionAdapted<F> {
     pub(crate) signal_variance: f64,
     pub(crate) time_scale_a: f64,
     pub(crate) decay_b: f64,
+    /// log l_t is held inside this range (what the observations' time span can identify).
+    pub(crate) log_temporal_range: [f64; 2],
 }
 
 impl<F> Clone for MotionAdapted<F> {
@@ -83,7 +85,23 @@ impl<F: MotionField> MotionAdapted<F> {
             signal_variance: 1.0,
             time_scale_a: START_TIME_SCALE_SECS,
             decay_b: 1.0,
+            log_temporal_range: [-LOG_LIMIT, LOG_LIMIT],
         }
+    }
+
+    /// Holds l_t(x) inside (`lo`, `hi`) seconds (default: unbounded but for exp()'s range):
+    /// beyond the span of the observations' times every longer l_t means "no decay" and the
+    /// marginal likelihood cannot tell them apart. log l_t is squashed smoothly into the range
+    /// (a tanh of the unbounded log l_t about the range's centre). Errors unless 0 < lo < hi,
+    /// both finite.
+    pub fn temporal_range_secs(mut self, lo: f64, hi: f64) -> Result<Self> {
+        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && lo < hi) {
+            return Err(GpError::InvalidParams(format!(
+                "temporal length-scale range must satisfy 0 < lo < hi, got [{lo}, {hi}]"
+            )));
+        }
+        self.log_temporal_range = [lo.ln().max(-LOG_LIMIT), hi.ln().min(LOG_LIMIT)];
+        Ok(self)
     }
 
     /// The integration step of the flow lines (default 0.1 s).
@@ -149,10 +167,23 @@ impl<F: MotionField> MotionAdapted<F> {
         self.log_temporal(error_mps.max(MIN_ERROR_MPS).ln()).0.exp()
     }
 
-    /// log l_t for log ε, clamped, and whether it is inside the clamp (else its derivatives are 0).
-    fn log_temporal(&self, log_error: f64) -> (f64, bool) {
+    /// log l_t for log ε and its derivative by the unbounded a·ε^(−1/b)'s log. Without a range,
+    /// clamped to exp()'s range (derivative 0 outside); with one, squashed smoothly into it by
+    /// c + h·tanh((raw − c)/h) (c, h the range's centre and half-width in logs), so the fit is
+    /// never stuck on a flat bound.
+    fn log_temporal(&self, log_error: f64) -> (f64, f64) {
         let raw = self.time_scale_a.ln() - log_error / self.decay_b;
-        (raw.clamp(-LOG_LIMIT, LOG_LIMIT), raw.abs() <= LOG_LIMIT)
+        let [lo, hi] = self.log_temporal_range;
+        if lo <= -LOG_LIMIT && hi >= LOG_LIMIT {
+            let inside = raw.abs() <= LOG_LIMIT;
+            return (
+                raw.clamp(-LOG_LIMIT, LOG_LIMIT),
+                f64::from(u8::from(inside)),
+            );
+        }
+        let (c, h) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+        let th = ((raw - c) / h).tanh();
+        (c + h * th, 1.0 - th * th)
     }
 
     /// The carried inputs of `p`, from its per-point data or, if it has none, derived now.
@@ -198,15 +229,15 @@ impl<F: MotionField> MotionAdapted<F> {
             ((p.z[1] - q.z[1]) / ly).powi(2),
         );
         let se = self.signal_variance * (-0.5 * (rx + ry)).exp();
-        let (lp, p_free) = self.log_temporal(p.log_error);
-        let (lq, q_free) = self.log_temporal(q.log_error);
+        let (lp, p_slope) = self.log_temporal(p.log_error);
+        let (lq, q_slope) = self.log_temporal(q.log_error);
         let (kt, dp, dq) = nonstationary_matern32(p.t - q.t, lp.exp(), lq.exp());
         let k = se * kt;
         if !with_gradient {
             return (k, [0.0; 5]);
         }
         // log l_t = log a − log ε / b: ∂/∂log a = 1, ∂/∂log b = log ε / b.
-        let (dp, dq) = (if p_free { dp } else { 0.0 }, if q_free { dq } else { 0.0 });
+        let (dp, dq) = (dp * p_slope, dq * q_slope);
         let b = self.decay_b;
         (
             k,

@@ -130,7 +130,15 @@ fn points_without_point_data_are_carried_on_the_fly_to_the_same_values() {
 
 #[test]
 fn every_theta_gradient_including_a_and_b_matches_central_differences() {
-    let mut k = kernel(Lanes);
+    check_cross_gradient(kernel(Lanes));
+}
+
+#[test]
+fn with_a_temporal_range_the_theta_gradient_still_matches_central_differences() {
+    check_cross_gradient(kernel(Lanes).temporal_range_secs(0.5, 4.0).unwrap());
+}
+
+fn check_cross_gradient(mut k: MotionAdapted<Lanes>) {
     let (a, b) = (points(11, 7), points(9, 8));
     let (ea, eb) = (k.point_data(&a), k.point_data(&b));
     let (pa, pb) = (Points::new(&a, ea.as_ref()), Points::new(&b, eb.as_ref()));
@@ -214,4 +222,27 @@ fn a_kernel_over_two_input_columns_is_refused() {
     let mut k = kernel(Lanes);
     assert!(k.initialise(&DMatrix::zeros(2, 5), 1.0).is_err());
     assert!(k.initialise(&points(5, 0), 1.0).is_ok());
+}
+
+#[test]
+fn a_temporal_range_holds_every_local_length_scale_inside_it() {
+    let k = MotionAdapted::new(Arc::new(Lanes), 3.0)
+        .with_values([1.0, 1.0], 1.0, 2.0, 0.2)
+        .unwrap()
+        .temporal_range_secs(0.5, 30.0)
+        .unwrap();
+    // l_t = 2 · ε^(−5) unbounded: 2e5 s at ε = 0.1, 2e-5 s at ε = 10; squashed inside.
+    for e in [0.01, 0.1, 0.5, 1.0, 2.0, 10.0, 100.0] {
+        let l = k.temporal_lengthscale_secs(e);
+        assert!(l > 0.5 && l < 30.0, "l_t({e}) = {l}");
+    }
+    assert!(k.temporal_lengthscale_secs(0.1) > 25.0);
+    assert!(k.temporal_lengthscale_secs(10.0) < 0.6);
+    // Monotone in ε as the unbounded l_t is.
+    assert!(k.temporal_lengthscale_secs(0.5) > k.temporal_lengthscale_secs(1.0));
+    assert!(
+        MotionAdapted::new(Arc::new(Lanes), 3.0)
+            .temporal_range_secs(3.0, 1.0)
+            .is_err()
+    );
 }

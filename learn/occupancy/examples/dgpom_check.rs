@@ -19,12 +19,17 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let seq = OccupancySequence::load(&dataset.sequence(name)?)?;
     let train = OccupancySequence::load(&dataset.sequence(&format!("{name}_train"))?)?;
     let start = Instant::now();
-    let map = MotionMap::learn(&train, &MotionMapParams::default())?;
+    let mut mm = MotionMapParams::default();
+    if let Ok(v) = std::env::var("MIN_CELLS") {
+        mm.clusters.min_cells = v.parse()?;
+    }
+    let map = MotionMap::learn(&train, &mm)?;
     println!(
         "motion map in {:.2} s: {}",
         start.elapsed().as_secs_f64(),
         map.summary
     );
+    println!("accuracy: {:?}", map.accuracy);
     let kinds = |k: ClusterKind| map.clusters.iter().filter(|c| c.kind == k).count();
     println!(
         "clusters: {} arrived, {} vacated, {} stationary; paired {}",
@@ -88,14 +93,44 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     }
     let map = Arc::new(map);
-    let samples = SampleParams::default();
+    let samples = SampleParams {
+        past_free: std::env::var("PAST_FREE").map_or(true, |v| v != "0"),
+        ..SampleParams::default()
+    };
     let methods: Vec<Box<dyn MapMethod>> = vec![
-        Box::new(DgpomMethod::new(DgpomParams::default(), map)),
+        Box::new(DgpomMethod::new(
+            DgpomParams {
+                samples: samples.clone(),
+                max_iters: std::env::var("ITERS").map_or(Ok(50), |v| v.parse())?,
+                ..DgpomParams::default()
+            },
+            map,
+        )),
         Box::new(GpomMethod::space(samples.clone())),
         Box::new(GpomMethod::space_time(samples)),
     ];
-    let refs: Vec<&dyn MapMethod> = methods.iter().map(|m| m.as_ref()).collect();
-    let scores = evaluate_sequence(&seq, &refs, &OccupancyParams::default(), &|_, _| {})?;
+    // METHODS=DGPOM,GPOM-RD keeps only those; QUERY=5,6 only those query times.
+    let only = std::env::var("METHODS").ok();
+    let refs: Vec<&dyn MapMethod> = methods
+        .iter()
+        .map(|m| m.as_ref())
+        .filter(|m| {
+            only.as_ref()
+                .is_none_or(|o| o.split(',').any(|n| n == m.name()))
+        })
+        .collect();
+    let mut params = OccupancyParams::default();
+    if let Ok(q) = std::env::var("QUERY") {
+        params.query_scans = q
+            .split(',')
+            .map(str::parse)
+            .collect::<std::result::Result<_, _>>()?;
+        params.figure_scans.clear();
+    }
+    if let Ok(n) = std::env::var("SCANS") {
+        params.scans_per_map = n.parse()?;
+    }
+    let scores = evaluate_sequence(&seq, &refs, &params, &|_, _| {})?;
     for (name, m) in &scores.methods {
         let aucs: Vec<String> = m
             .auc_by_query_scan
@@ -112,6 +147,13 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             aucs.join(" "),
             m.mean_seconds_per_map(),
             m.summaries.last().cloned().unwrap_or_default()
+        );
+        println!(
+            "           s/map {:?}",
+            m.seconds_per_map
+                .iter()
+                .map(|s| format!("{s:.2}"))
+                .collect::<Vec<_>>()
         );
     }
     Ok(())

@@ -25,6 +25,11 @@ pub struct MethodScores {
     pub drawn_points_per_map: Vec<usize>,
     /// What each map's fit learned, one line per map.
     pub summaries: Vec<String>,
+    /// The GP each map solved (`exact`, `SPGP M`; `None` without a GP).
+    pub solver_per_map: Vec<Option<String>>,
+    /// Each map's learned temporal length-scale as (ε m/s, l_t s) pairs (ε 0 where l_t does not
+    /// depend on it); empty for a method without one.
+    pub temporal_lengthscales_per_map: Vec<Vec<[f64; 2]>>,
 }
 
 impl MethodScores {
@@ -108,6 +113,10 @@ pub fn evaluate_sequence(
             entry.training_points_per_map.push(output.training_points);
             entry.drawn_points_per_map.push(output.drawn_points);
             entry.summaries.push(output.summary.clone());
+            entry.solver_per_map.push(output.solver.clone());
+            entry
+                .temporal_lengthscales_per_map
+                .push(output.temporal_lengthscales.clone());
         }
         if params.figure_scans.contains(&t) {
             let mut figure = scan.figure;

@@ -7,12 +7,12 @@
 //! query points at the query time.
 
 use nalgebra::DMatrix;
-use patchflow_gp::{GpKind, GpParams, PlsParams, Shape, Stationary};
+use patchflow_gp::{PlsParams, Shape, Stationary};
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    MapMethod, MapOutput, OccupancyError, OccupancySample, Result, SampleParams, ScanWindow,
-    window_samples,
+    GpSolver, MapMethod, MapOutput, OccupancyError, OccupancySample, Result, SampleParams,
+    ScanWindow, window_samples,
 };
 
 /// Which inputs a GPOM sees.
@@ -32,9 +32,8 @@ pub struct GpomMethod {
     pub space: GpomSpace,
     /// How training samples are drawn from each scan.
     pub samples: SampleParams,
-    /// Pseudo-inputs of the sparse GP (SPGP with pseudo-inputs held at a seeded random subset of
-    /// the training points); 0 fits the exact GP.
-    pub pseudo_inputs: usize,
+    /// Exact GP up to a few thousand training points, SPGP above.
+    pub solver: GpSolver,
     /// Iteration limit of the marginal-likelihood maximisation.
     pub max_iters: usize,
 }
@@ -45,7 +44,7 @@ impl GpomMethod {
         Self {
             space: GpomSpace::Space,
             samples,
-            pseudo_inputs: 250,
+            solver: GpSolver::default(),
             max_iters: 50,
         }
     }
@@ -104,22 +103,18 @@ impl MapMethod for GpomMethod {
         let x = self.inputs(samples.iter().map(|s| (s.xy_m, s.t_secs)));
         let labels: Vec<bool> = samples.iter().map(|s| s.occupied).collect();
         // GP classification by probabilistic least squares, α and β by leave-one-out (GPML §6.5).
-        let gp = match self.pseudo_inputs {
-            0 => GpParams::new(GpKind::Full),
-            m => GpParams::new(GpKind::Spgp)
-                .pseudo_inputs(m)
-                .optimise_pseudo_inputs(false)
-                .seed(self.samples.seed ^ scan as u64),
-        }
-        .max_iters(self.max_iters)
-        // Squared exponential over (x, y) with ARD length-scales; in ℜ^{D+1} times a squared
-        // exponential over t with its own, learned temporal length-scale.
-        .kernel(match self.space {
-            GpomSpace::Space => Stationary::se_ard(),
-            GpomSpace::SpaceTime => {
-                Stationary::space_time(2, Shape::SquaredExponential, Shape::SquaredExponential)
-            }
-        });
+        let gp = self
+            .solver
+            .params(samples.len(), self.samples.seed ^ scan as u64)
+            .max_iters(self.max_iters)
+            // Squared exponential over (x, y) with ARD length-scales; in ℜ^{D+1} times a squared
+            // exponential over t with its own, learned temporal length-scale.
+            .kernel(match self.space {
+                GpomSpace::Space => Stationary::se_ard(),
+                GpomSpace::SpaceTime => {
+                    Stationary::space_time(2, Shape::SquaredExponential, Shape::SquaredExponential)
+                }
+            });
         let classifier = PlsParams::new(gp)
             .fit(&x, &labels)
             .map_err(|e| degenerate(e.to_string()))?;
@@ -130,14 +125,18 @@ impl MapMethod for GpomMethod {
             .map_err(|e| degenerate(e.to_string()))?;
         let model = classifier.regression();
         let units = ["x", "y", "t"];
-        let scales: Vec<String> = model
+        let scales_in_units: Vec<f64> = model
             .lengthscales()
             .iter()
             .zip(model_input_spread(&x))
+            .map(|(l, spread)| l * spread)
+            .collect();
+        let scales: Vec<String> = scales_in_units
+            .iter()
             .zip(units)
-            .map(|((l, spread), axis)| {
+            .map(|(l, axis)| {
                 let unit = if axis == "t" { "s" } else { "m" };
-                format!("ℓ{axis} {:.2} {unit}", l * spread)
+                format!("ℓ{axis} {l:.2} {unit}")
             })
             .collect();
         let s = classifier.squashing();
@@ -155,6 +154,11 @@ impl MapMethod for GpomMethod {
                 s.beta,
                 report.evals
             ),
+            solver: Some(self.solver.path(samples.len())),
+            temporal_lengthscales: scales_in_units
+                .get(2)
+                .map(|&l| vec![[0.0, l]])
+                .unwrap_or_default(),
         })
     }
 }
@@ -212,7 +216,10 @@ mod tests {
                 free_spacing_m: 1.0,
                 ..SampleParams::default()
             },
-            pseudo_inputs: 80,
+            solver: GpSolver {
+                exact_up_to: 0,
+                pseudo_inputs: 80,
+            },
             max_iters: 40,
         }
     }

@@ -132,6 +132,11 @@ impl GroundTruth {
         &self.statics
     }
 
+    /// The actors at every scan: (scan time, actors then), in time order.
+    pub fn actors_by_scan(&self) -> &[(f64, Vec<ObjectTruth>)] {
+        &self.scans
+    }
+
     /// Every box at instant `t_secs`: the static ones and each actor, moved on from the latest
     /// scan at or before `t_secs` (or back from the first scan if `t_secs` is earlier).
     pub fn boxes_at(&self, t_secs: f64) -> Vec<OrientedBox> {

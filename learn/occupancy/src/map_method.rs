@@ -36,6 +36,11 @@ pub struct MapOutput {
     pub drawn_points: usize,
     /// What the fit learned, for the report (hyperparameters, squashing), one line.
     pub summary: String,
+    /// The GP the map solved (`exact` or `SPGP M`); `None` for a method without a GP.
+    pub solver: Option<String>,
+    /// The temporal length-scale the fit learned, (ε m/s or 0 for one without ε, l_t s) pairs;
+    /// empty for a method without one.
+    pub temporal_lengthscales: Vec<[f64; 2]>,
 }
 
 /// A way of building occupancy maps (GRID, GPOM-RD, GPOM-RD1, DGPOM).

@@ -71,7 +71,8 @@ pub struct MotionClusterParams {
     pub link_m: f64,
     /// A Diff cluster whose nearest cell is at most this far from an object's is next to it, metres.
     pub adjacency_m: f64,
-    /// Diff clusters with fewer cells are ignored (a cell flickering at an edge is not motion).
+    /// Diff clusters with no object next to them and fewer cells are not paired (a cell
+    /// flickering at an edge is not motion); next to an object every Diff cluster counts.
     pub min_cells: usize,
     /// Fastest motion a vacated and an arrived cluster are paired across, m/s.
     pub max_speed_mps: f64,
@@ -170,11 +171,14 @@ pub(crate) fn motion_clusters(
             .collect()
     };
     let objects = groups(&same, 1);
-    let diffs: Vec<(ClusterKind, Group)> = groups(&arrived, params.min_cells)
+    // Every Diff cluster next to an object counts, one cell included: a 1 m/s car moves two
+    // 0.5 m cells a scan, and the one-cell tolerance leaves it a one-cell Diff cluster. Only
+    // the pairing of clusters without an object (below) needs `min_cells`.
+    let diffs: Vec<(ClusterKind, Group)> = groups(&arrived, 1)
         .into_iter()
         .map(|g| (ClusterKind::Arrived, g))
         .chain(
-            groups(&vacated, params.min_cells)
+            groups(&vacated, 1)
                 .into_iter()
                 .map(|g| (ClusterKind::Vacated, g)),
         )
@@ -204,7 +208,8 @@ pub(crate) fn motion_clusters(
                 };
                 out.push(group.into_cluster(scan, kind, Association::AdjacentObject, v));
             }
-            None => unmatched.push((kind, group)),
+            None if group.centres.len() >= params.min_cells => unmatched.push((kind, group)),
+            None => {}
         }
     }
     // Stationary objects: Same clusters without a Diff cluster next to them.

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::motion_clusters::motion_clusters;
 use crate::scan_cells::ScanCells;
 use crate::{
-    ClusterKind, FieldRaster, MotionCluster, MotionClusterParams, OccupancyError,
+    ClusterKind, FieldRaster, MotionAccuracy, MotionCluster, MotionClusterParams, OccupancyError,
     OccupancySequence, Result,
 };
 
@@ -80,6 +80,8 @@ pub struct MotionMap {
     pub error_points: usize,
     /// What the regressors learned, one line.
     pub summary: String,
+    /// Υ against the training run's actors, on the lanes and off them.
+    pub accuracy: MotionAccuracy,
     min_error_mps: f64,
 }
 
@@ -191,14 +193,17 @@ impl MotionMap {
             describe("Υy", &vy),
             describe("ε", &error)
         );
-        Ok(Self {
+        let mut map = Self {
             clusters,
             raster,
             velocity_points: velocity_samples.len(),
             error_points: errors.len(),
             summary,
+            accuracy: MotionAccuracy::default(),
             min_error_mps: params.min_error_mps,
-        })
+        };
+        map.accuracy = MotionAccuracy::of(&map, training, params.clusters.cell_m);
+        Ok(map)
     }
 }
 

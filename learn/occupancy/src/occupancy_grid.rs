@@ -45,6 +45,8 @@ impl MapMethod for OccupancyGridMethod {
                 self.cell_m,
                 grid.counts.len()
             ),
+            solver: None,
+            temporal_lengthscales: Vec::new(),
         })
     }
 }

@@ -35,6 +35,8 @@ pub struct SampleParams {
     /// Thinning of each scan's samples to a budget, for dense scans (a 3-D lidar's height
     /// slice); `None` keeps every sample (a planar scanner's scans).
     pub thinning: Option<Thinning>,
+    /// Whether the scans before the query scan give free samples too (else only their returns).
+    pub past_free: bool,
 }
 
 impl Default for SampleParams {
@@ -44,6 +46,7 @@ impl Default for SampleParams {
             stop_short_m: 0.5,
             seed: 7,
             thinning: None,
+            past_free: true,
         }
     }
 }
@@ -77,8 +80,11 @@ pub fn window_samples(
     params: &SampleParams,
 ) -> (Vec<OccupancySample>, usize) {
     let (mut kept, mut drawn) = (Vec::new(), 0);
-    for scan in scans {
-        let samples = scan_samples(scan, params);
+    for (i, scan) in scans.iter().enumerate() {
+        let mut samples = scan_samples(scan, params);
+        if !params.past_free && i + 1 < scans.len() {
+            samples.retain(|s| s.occupied);
+        }
         drawn += samples.len();
         match &params.thinning {
             Some(thinning) => {
