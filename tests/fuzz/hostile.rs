@@ -99,7 +99,9 @@ fn fifos_and_devices_as_inputs_are_refused_without_blocking() {
         assert!(err.contains(&shown), "{err}");
         let err = GpModel::load(path).unwrap_err().to_string();
         assert!(err.contains("not a regular file"), "{err}");
-        let err = patchflow_dataset::Dataset::open(path).unwrap_err().to_string();
+        let err = patchflow_dataset::Dataset::open(path)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains(&shown), "{err}");
     }
 }

@@ -308,7 +308,9 @@ impl GpModel {
             reason,
         };
         if !meta.is_file() {
-            return Err(refuse("not a regular file (a folder, pipe or device)".into()));
+            return Err(refuse(
+                "not a regular file (a folder, pipe or device)".into(),
+            ));
         }
         if len > MAX_GP_MODEL_BYTES {
             return Err(refuse(format!(

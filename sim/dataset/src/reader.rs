@@ -275,7 +275,11 @@ fn read_poses(path: &Path) -> Result<Vec<Pose>> {
         .enumerate()
         .map(|(i, line)| {
             parse_kitti_pose(line).ok_or_else(|| {
-                DatasetError::corrupt(path, format!("line {}: not a finite 3 x 4 pose", i + 1))
+                DatasetError::corrupt(path, format!(
+                        "line {}: not a 3 x 4 pose (12 finite numbers, a rotation, a translation within ±{} m)",
+                        i + 1,
+                        crate::MAX_COORDINATE_M
+                    ))
             })
         })
         .collect()
