@@ -54,7 +54,8 @@ pub fn export_flow(
             let mut velocities = vec![[f32::NAN; 3]; sweep.len()];
             for (i, point) in features[0].points().iter().enumerate() {
                 let [vx, vy] = velocity(&features[0], &motion, readout, i);
-                if !(vx.hypot(vy) <= MAX_FLOW_MPS) {
+                let speed = vx.hypot(vy);
+                if !speed.is_finite() || speed > MAX_FLOW_MPS {
                     return Err(EvalError::BadObservation {
                         situation: info.name.clone(),
                         scan: index,

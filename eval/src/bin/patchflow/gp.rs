@@ -161,7 +161,7 @@ fn refuse_astronomical_inputs(
         if let Some((col, v)) = values
             .iter()
             .enumerate()
-            .find(|(_, v)| !(v.abs() <= MAX_GP_INPUT))
+            .find(|(_, v)| !v.is_finite() || v.abs() > MAX_GP_INPUT)
         {
             anyhow::bail!(
                 "{}: data row {}: column '{}' = {v} is beyond ±{MAX_GP_INPUT:e}, where a GP's distances overflow; no prediction written",
