@@ -46,7 +46,8 @@ pub use semantic::{PointLabel, SemanticClass};
 pub use sensor_info::{SensorInfo, SensorKind};
 pub use static_obstacle::StaticObstacle;
 pub use sweep::Sweep;
-pub use writer::{SequenceWriter, sha256_hex};
+pub use sweep_integrity::sha256_hex;
+pub use writer::SequenceWriter;
 pub use written_files::remove_written_files;
 
 /// Farthest a pose translation or object centre may lie from the world origin, metres: 1,000 km,

@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 use crate::manifest::read_marker;
 use crate::pose::parse_kitti_pose;
 use crate::record_files::read_lines;
-use crate::sweep_integrity::{SweepFiles, check_sweep_digests, read_sweep_files};
-use crate::writer::{ESTIMATED_POSES, sweep_path};
+use crate::sweep_integrity::{SweepFiles, check_sweep_digests, read_sweep_files, sweep_path};
+use crate::writer::ESTIMATED_POSES;
 use crate::{DatasetError, MAX_SWEEPS, Manifest, Pose, Result, SequenceInfo, Sweep};
 
 /// An opened dataset folder.
