@@ -125,3 +125,14 @@ impl ObjectTruth {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn an_object_faster_than_any_road_user_is_refused() {
+        let mut sweep = crate::reader::tests::sample_sweep(0);
+        sweep.objects[0].velocity_mps = [1e300, 0.0, 0.0];
+        let reason = sweep.objects[0].problem().unwrap();
+        assert!(reason.contains("m/s"), "{reason}");
+    }
+}
