@@ -14,6 +14,10 @@ use patchflow_learn::{MergeRule, MotionEstimator, ScanMotion, ScanStream, SweepF
 use crate::error::EvalError;
 use crate::method::GpReadout;
 
+/// Fastest flow a prediction may give, m/s: far above any road user; a model predicting more
+/// (or a non-finite value) is broken, and its export is refused rather than written.
+pub const MAX_FLOW_MPS: f64 = 1000.0;
+
 /// Writes the flow of every sweep of every sequence of `dataset` into `out` (the same layout);
 /// returns the number of sweeps written. `on_sweep` is called once per sweep.
 pub fn export_flow(
@@ -50,6 +54,18 @@ pub fn export_flow(
             let mut velocities = vec![[f32::NAN; 3]; sweep.len()];
             for (i, point) in features[0].points().iter().enumerate() {
                 let [vx, vy] = velocity(&features[0], &motion, readout, i);
+                let speed = vx.hypot(vy);
+                if !speed.is_finite() || speed > MAX_FLOW_MPS {
+                    return Err(EvalError::BadObservation {
+                        situation: info.name.clone(),
+                        scan: index,
+                        reason: format!(
+                            "the model predicts a speed of {} m/s at point {} (more than {MAX_FLOW_MPS} m/s, or not a number): the model file is broken; no flow file written for this sweep",
+                            vx.hypot(vy),
+                            point.index
+                        ),
+                    });
+                }
                 velocities[point.index] = [vx as f32, vy as f32, 0.0];
             }
             write(index, &velocities)?;
@@ -118,6 +134,49 @@ mod tests {
             .chunks_exact(4)
             .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
             .collect()
+    }
+
+    #[test]
+    fn a_model_predicting_astronomical_speeds_is_refused_naming_the_sweep() {
+        let dir = tempfile::tempdir().unwrap();
+        let data = dataset(&dir.path().join("data"), &[0.4]);
+        let params = EstimatorParams {
+            gp: GpKind::Spgp,
+            features: FeatureParams {
+                half_extent_m: 20.0,
+                ..FeatureParams::default()
+            },
+            samples: 60,
+            pseudo_inputs: 5,
+            max_iters: 5,
+            ..EstimatorParams::default()
+        };
+        let model = dir.path().join("m.json");
+        MotionEstimator::train(&data, &params)
+            .unwrap()
+            .save(&model)
+            .unwrap();
+        // A speed GP whose targets were standardised around 1e200 m/s.
+        let mut json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
+        json["speed"]["target_transform"]["mean"] = serde_json::json!([1e200]);
+        std::fs::write(&model, serde_json::to_vec(&json).unwrap()).unwrap();
+        let estimator = MotionEstimator::load(&model).unwrap();
+        let out = dir.path().join("flow");
+        let err = export_flow(
+            &data,
+            &estimator,
+            GpReadout::Merged(MergeRule::All),
+            &out,
+            &|| {},
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.contains("track0, scan 1") && err.contains("m/s"),
+            "{err}"
+        );
+        assert!(!out.join("sequences/track0/flow/000001.bin").exists());
     }
 
     #[test]

@@ -101,7 +101,7 @@ fn a_corrupt_model_file_is_named_in_the_error() {
         "--model",
         model.to_str().unwrap(),
         "--data",
-        dir.path().to_str().unwrap(),
+        dir.path().join("data").to_str().unwrap(),
         "--out",
         dir.path().join("r").to_str().unwrap(),
     ]);
@@ -211,7 +211,7 @@ fn a_gp_model_given_to_evaluate_is_refused_as_not_an_estimator() {
         "--model",
         model.to_str().unwrap(),
         "--data",
-        dir.path().to_str().unwrap(),
+        dir.path().join("data").to_str().unwrap(),
         "--out",
         dir.path().join("r").to_str().unwrap(),
     ]);
@@ -252,4 +252,47 @@ fn thesis_training_writes_a_model_without_mirror_images_or_speed_alignment_error
     let default = model_of("default.json", &[]);
     assert_eq!(default["training"]["mirror_images"], true);
     assert_eq!(default["features"]["speed_jitter_deg"], 25.0);
+}
+
+#[test]
+fn no_command_writes_over_its_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("D");
+    std::fs::create_dir_all(data.join("sequences")).unwrap();
+    std::fs::write(data.join("manifest.json"), "{\"mine\": 1}").unwrap();
+    let (d, manifest) = (data.to_str().unwrap(), data.join("manifest.json"));
+    let m = manifest.to_str().unwrap();
+    let model = dir.path().join("model.json");
+    std::fs::write(&model, "{}").unwrap();
+    let mo = model.to_str().unwrap();
+    for args in [
+        vec!["train", "--data", d, "--out", m],
+        vec!["features", "--data", d, "--out", m],
+        vec!["flow", "--data", d, "--model", mo, "--out", d],
+        vec!["evaluate", "--data", d, "--model", mo, "--out", d],
+        vec!["cv", "--data", d, "--out", d],
+        vec!["occupancy", "--data", d, "--out", d],
+        vec!["show", "--data", d, "--out", &format!("{d}/x.png")],
+        vec!["gp", "predict", "--model", mo, "--csv", m, "--out", mo],
+    ] {
+        let output = patchflow(&args);
+        assert_clean_failure(&output, &["--out", "the input"]);
+    }
+    assert_eq!(std::fs::read_to_string(&manifest).unwrap(), "{\"mine\": 1}");
+    assert_eq!(std::fs::read_to_string(&model).unwrap(), "{}");
+}
+
+#[test]
+fn an_out_that_is_an_existing_file_is_named_in_words() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("report");
+    std::fs::write(&file, "x").unwrap();
+    let output = patchflow(&[
+        "cv",
+        "--data",
+        dir.path().join("data").to_str().unwrap(),
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert_clean_failure(&output, &["is an existing file, not a folder"]);
 }

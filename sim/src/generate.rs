@@ -7,12 +7,10 @@ use patchflow_dataset::{
 };
 
 use crate::error::{Result, SimError};
+use crate::memory_budget::check_memory;
 use crate::output_folder::{check_manifest_is_ours, check_sequence_folder};
 use crate::provenance::{Provenance, provenance};
-use crate::scenario::{
-    EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, gigabytes,
-    sweep_memory_bytes,
-};
+use crate::scenario::{EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario};
 pub use crate::shard::Shard;
 use crate::simulation::Simulation;
 
@@ -177,30 +175,6 @@ pub fn generate_dataset(
     let manifest = Manifest::scan(&options.out)?;
     manifest.write(&options.out)?;
     Ok(manifest)
-}
-
-/// Refuses a scenario whose sweep needs more memory than the machine has available.
-fn check_memory(scenario: &Scenario) -> Result<()> {
-    let needed = sweep_memory_bytes(scenario);
-    match available_memory_bytes() {
-        Some(available) if needed > available => Err(SimError::Options(format!(
-            "scenario {:?}: one sweep of {} × {} rays and the world it is cast into need about {} of memory, but the machine has {} available",
-            scenario.name,
-            scenario.lidar.channels,
-            scenario.lidar.azimuth_steps,
-            gigabytes(needed),
-            gigabytes(available)
-        ))),
-        _ => Ok(()),
-    }
-}
-
-/// Memory the machine has available (Linux `MemAvailable`); `None` where it cannot be read.
-fn available_memory_bytes() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib.saturating_mul(1024))
 }
 
 /// Generates (or completes) one sequence, holding its folder's lock: a finished sequence of the

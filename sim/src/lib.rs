@@ -14,6 +14,7 @@ mod generate;
 mod ground_contact_tests;
 mod kitti_names;
 mod lidar;
+mod memory_budget;
 mod motion;
 mod output_folder;
 mod pose_error;
@@ -33,6 +34,7 @@ pub use generate::{
 };
 pub use kitti_names::write_kitti_names;
 pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
+pub use memory_budget::{MemoryBudget, memory_budget};
 pub use motion::{MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory};
 pub use patchflow_dataset as dataset;
 pub use scenario::{

@@ -11,6 +11,7 @@
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
 mod datasets;
+mod hostile;
 mod models;
 mod mutate;
 mod scenarios;

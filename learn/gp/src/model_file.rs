@@ -296,10 +296,28 @@ impl GpModel {
 
     /// Reads a model written by [`GpModel::save`].
     pub fn load(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|source| GpError::Io {
+        let io = |source| GpError::Io {
             path: path.to_path_buf(),
             source,
-        })?;
+        };
+        // Checked before opening: a FIFO would block the read, a device never end it.
+        let meta = std::fs::metadata(path).map_err(io)?;
+        let len = meta.len();
+        let refuse = |reason: String| GpError::Model {
+            path: path.to_path_buf(),
+            reason,
+        };
+        if !meta.is_file() {
+            return Err(refuse(
+                "not a regular file (a folder, pipe or device)".into(),
+            ));
+        }
+        if len > MAX_GP_MODEL_BYTES {
+            return Err(refuse(format!(
+                "too large ({len} bytes, limit {MAX_GP_MODEL_BYTES})"
+            )));
+        }
+        let bytes = std::fs::read(path).map_err(io)?;
         let value: serde_json::Value =
             serde_json::from_slice(&bytes).map_err(|e| GpError::Model {
                 path: path.to_path_buf(),
@@ -308,6 +326,9 @@ impl GpModel {
         Self::from_json_value(value, path)
     }
 }
+
+/// Largest GP model file read: 512 MiB, as for a motion model of three GPs.
+const MAX_GP_MODEL_BYTES: u64 = 512 << 20;
 
 #[cfg(test)]
 #[path = "model_file_tests.rs"]

@@ -39,15 +39,21 @@ pub use folder_lock::{FolderLock, LOCK_FILE};
 pub use input_file::check_input_file;
 pub use limits::{MAX_POINTS_PER_SWEEP, MAX_SWEEPS, read_limited};
 pub use manifest::{FORMAT_NAME, FORMAT_VERSION, Manifest, SequenceInfo};
-pub use object::{ActorClass, ObjectTruth};
+pub use object::{ActorClass, MAX_OBJECT_SPEED_MPS, ObjectTruth};
 pub use pose::{format_kitti_pose, parse_kitti_pose};
 pub use reader::{Dataset, SequenceReader};
 pub use semantic::{PointLabel, SemanticClass};
 pub use sensor_info::{SensorInfo, SensorKind};
 pub use static_obstacle::StaticObstacle;
 pub use sweep::Sweep;
-pub use writer::{SequenceWriter, sha256_hex};
+pub use sweep_integrity::sha256_hex;
+pub use writer::SequenceWriter;
 pub use written_files::remove_written_files;
+
+/// Farthest a pose translation or object centre may lie from the world origin, metres: 1,000 km,
+/// far beyond any scene, and where f32 sensor-frame points still resolve centimetres after
+/// subtracting the pose.
+pub const MAX_COORDINATE_M: f64 = 1e6;
 
 /// Rigid transform type used for every pose (`world_from_sensor` and friends), f64 in the world frame.
 pub type Pose = nalgebra::Isometry3<f64>;

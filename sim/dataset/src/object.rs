@@ -69,6 +69,9 @@ pub struct ObjectTruth {
     pub point_count: u32,
 }
 
+/// Fastest an object may move, m/s: far above any road user (a record car is below 150 m/s).
+pub const MAX_OBJECT_SPEED_MPS: f64 = 1000.0;
+
 impl ObjectTruth {
     /// What is wrong with this record, if anything: an id of 0 (the static world's instance) or
     /// a value that is not finite.
@@ -92,11 +95,44 @@ impl ObjectTruth {
             ]);
         let finite = values.clone().all(|v| v.is_finite());
         let sized = self.size_m.iter().all(|v| *v > 0.0) && self.speed_mps >= 0.0;
+        let velocity = self.velocity_mps.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if finite && (velocity > MAX_OBJECT_SPEED_MPS || self.speed_mps > MAX_OBJECT_SPEED_MPS) {
+            return Some(format!(
+                "object {} ({:?}) moves at {} m/s, more than the {MAX_OBJECT_SPEED_MPS} m/s any road user reaches",
+                self.id,
+                self.name,
+                velocity.max(self.speed_mps)
+            ));
+        }
+        let far = self
+            .centre_m
+            .iter()
+            .any(|v| v.abs() > crate::MAX_COORDINATE_M);
+        if finite && far {
+            return Some(format!(
+                "object {} ({:?}) is centred {:?} m from the origin, beyond the ±{} m a dataset spans",
+                self.id,
+                self.name,
+                self.centre_m,
+                crate::MAX_COORDINATE_M
+            ));
+        }
         (!finite || !sized).then(|| {
             format!(
                 "object {} ({:?}) has a value that is not finite, a size that is not positive or a negative speed",
                 self.id, self.name
             )
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn an_object_faster_than_any_road_user_is_refused() {
+        let mut sweep = crate::reader::tests::sample_sweep(0);
+        sweep.objects[0].velocity_mps = [1e300, 0.0, 0.0];
+        let reason = sweep.objects[0].problem().unwrap();
+        assert!(reason.contains("m/s"), "{reason}");
     }
 }

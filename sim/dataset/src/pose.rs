@@ -28,6 +28,12 @@ pub fn parse_kitti_pose(line: &str) -> Option<Pose> {
     if values.len() != 12 || values.iter().any(|v| !v.is_finite()) {
         return None;
     }
+    if [values[3], values[7], values[11]]
+        .iter()
+        .any(|t| t.abs() > crate::MAX_COORDINATE_M)
+    {
+        return None;
+    }
     let m = Matrix3::new(
         values[0], values[1], values[2], values[4], values[5], values[6], values[8], values[9],
         values[10],

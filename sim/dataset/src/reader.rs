@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 use crate::manifest::read_marker;
 use crate::pose::parse_kitti_pose;
 use crate::record_files::read_lines;
-use crate::sweep_integrity::{SweepFiles, check_sweep_digests, read_sweep_files};
-use crate::writer::{ESTIMATED_POSES, sweep_path};
+use crate::sweep_integrity::{SweepFiles, check_sweep_digests, read_sweep_files, sweep_path};
+use crate::writer::ESTIMATED_POSES;
 use crate::{DatasetError, MAX_SWEEPS, Manifest, Pose, Result, SequenceInfo, Sweep};
 
 /// An opened dataset folder.
@@ -275,7 +275,11 @@ fn read_poses(path: &Path) -> Result<Vec<Pose>> {
         .enumerate()
         .map(|(i, line)| {
             parse_kitti_pose(line).ok_or_else(|| {
-                DatasetError::corrupt(path, format!("line {}: not a finite 3 x 4 pose", i + 1))
+                DatasetError::corrupt(path, format!(
+                        "line {}: not a 3 x 4 pose (12 finite numbers, a rotation, a translation within ±{} m)",
+                        i + 1,
+                        crate::MAX_COORDINATE_M
+                    ))
             })
         })
         .collect()

@@ -378,3 +378,18 @@ fn a_missing_sweep_is_reported_by_the_index_asked_for() {
         .to_string();
     assert!(err.contains("sweep 99") && err.contains("0 to 0"), "{err}");
 }
+
+#[test]
+fn a_pose_translated_astronomically_far_is_refused_naming_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    write_sequence(dir.path(), &[sample_sweep(0), sample_sweep(1)]);
+    let poses = dir.path().join("sequences/seq/poses.txt");
+    let text = std::fs::read_to_string(&poses).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let mut values: Vec<String> = lines[1].split_whitespace().map(String::from).collect();
+    values[3] = "1e300".into();
+    lines[1] = values.join(" ");
+    std::fs::write(&poses, lines.join("\n") + "\n").unwrap();
+    let err = open_err(dir.path());
+    assert!(err.contains("poses.txt") && err.contains("line 2"), "{err}");
+}

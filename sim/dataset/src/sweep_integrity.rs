@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use crate::limits::{MAX_JSON_BYTES, read_limited};
 use crate::record_files::{read_f32s, read_u16s, read_words};
 use crate::sweep_checks::check_objects;
-use crate::writer::sweep_path;
+use sha2::{Digest, Sha256};
+
 use crate::{DatasetError, ObjectTruth, PointLabel, Result};
 
 /// The files of one sweep as read and checked, before poses and stamps are attached.
@@ -74,7 +75,7 @@ pub(crate) fn sweep_digests(dir: &Path, i: u32) -> Result<BTreeMap<String, Strin
             continue;
         }
         let bytes = read_limited(&path, crate::limits::MAX_SWEEP_FILE_BYTES)?;
-        digests.insert(folder.to_owned(), crate::sha256_hex(&bytes));
+        digests.insert(folder.to_owned(), sha256_hex(&bytes));
     }
     Ok(digests)
 }
@@ -92,7 +93,7 @@ pub(crate) fn check_sweep_digests(
             continue;
         };
         let bytes = read_limited(&path, crate::limits::MAX_SWEEP_FILE_BYTES)?;
-        if crate::sha256_hex(&bytes) != *wanted {
+        if sha256_hex(&bytes) != *wanted {
             return Err(DatasetError::corrupt(
                 &path,
                 format!(
@@ -103,4 +104,30 @@ pub(crate) fn check_sweep_digests(
         }
     }
     Ok(())
+}
+
+/// SHA-256 of `bytes` as 64 lower-case hex digits (what `sha256sum` prints).
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// `dir/folder/NNNNNN.ext`.
+pub(crate) fn sweep_path(dir: &Path, folder: &str, index: u32, ext: &str) -> PathBuf {
+    dir.join(folder).join(format!("{index:06}.{ext}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scenario_hash_is_what_sha256sum_prints() {
+        assert_eq!(
+            sha256_hex(b"abc"),
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+    }
 }

@@ -4,13 +4,13 @@
 
 use std::path::{Path, PathBuf};
 
-use sha2::{Digest, Sha256};
-
 use crate::atomic_file::write_atomic;
 use crate::limits::{MAX_TEXT_BYTES, read_limited};
 use crate::manifest::{read_marker, write_json};
 use crate::pose::format_kitti_pose;
-use crate::sweep_integrity::{SWEEP_FILE_KINDS, read_sweep_files, sweep_digests};
+use crate::sweep_integrity::{
+    SWEEP_FILE_KINDS, read_sweep_files, sha256_hex, sweep_digests, sweep_path,
+};
 use crate::{
     DatasetError, FORMAT_NAME, FORMAT_VERSION, Pose, Result, SensorInfo, SequenceInfo,
     StaticObstacle, Sweep,
@@ -240,31 +240,5 @@ impl SequenceWriter {
 
     pub(crate) fn sweep_path(&self, folder: &str, index: u32, ext: &str) -> PathBuf {
         sweep_path(&self.dir, folder, index, ext)
-    }
-}
-
-/// SHA-256 of `bytes` as 64 lower-case hex digits (what `sha256sum` prints).
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    Sha256::digest(bytes)
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
-}
-
-/// `dir/folder/NNNNNN.ext`.
-pub(crate) fn sweep_path(dir: &Path, folder: &str, index: u32, ext: &str) -> PathBuf {
-    dir.join(folder).join(format!("{index:06}.{ext}"))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_scenario_hash_is_what_sha256sum_prints() {
-        assert_eq!(
-            sha256_hex(b"abc"),
-            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
-        );
     }
 }

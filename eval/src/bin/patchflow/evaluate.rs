@@ -60,6 +60,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The pseudo-inputs the model's GPs actually have (the most of the three; a sparse GP takes
+/// no more than its samples, so `--pseudo 100000` on 100 samples uses 100).
+pub fn pseudo_inputs_used(estimator: &MotionEstimator) -> usize {
+    estimator
+        .gps()
+        .iter()
+        .map(|gp| gp.fit_report().m)
+        .max()
+        .unwrap_or(0)
+}
+
 /// What produced the numbers: the model files as given, each model's training seed and data.
 fn provenance(
     paths: &[PathBuf],
@@ -75,7 +86,8 @@ fn provenance(
                 "gp": e.gp_kind().to_string(),
                 "seed": training.seed,
                 "samples": training.samples,
-                "pseudo_inputs": training.pseudo_inputs,
+                "pseudo_inputs": pseudo_inputs_used(e),
+                "pseudo_inputs_requested": training.pseudo_inputs,
                 "training_sequences": training.sequences,
             })
         })

@@ -117,14 +117,59 @@ fn predict(a: PredictArgs) -> anyhow::Result<()> {
     let model = GpModel::load(&a.model)?;
     let table = Table::read(&a.csv, Columns::Only(model.input_names()))?;
     let x = table.select(model.input_names())?;
-    let csv = model
+    refuse_astronomical_inputs(&x, model.input_names(), &a.csv)?;
+    let prediction = model
         .predict(&x)
-        .with_context(|| format!("predicting at {}", a.csv.display()))?
-        .to_csv();
+        .with_context(|| format!("predicting at {}", a.csv.display()))?;
+    let broken = (0..prediction.mean.len()).find(|&i| {
+        let (m, v, vy) = (
+            prediction.mean[i],
+            prediction.var_latent[i],
+            prediction.var_y[i],
+        );
+        !(m.is_finite() && v.is_finite() && vy.is_finite() && v > 0.0 && vy > 0.0)
+    });
+    if let Some(i) = broken {
+        anyhow::bail!(
+            "{}: data row {}: the GP gives mean {}, variance {} there: the input is too far from the training data for double precision; no prediction written",
+            a.csv.display(),
+            i + 1,
+            prediction.mean[i],
+            prediction.var_latent[i]
+        );
+    }
+    let csv = prediction.to_csv();
     match a.out {
         Some(path) => std::fs::write(&path, csv)
             .with_context(|| format!("{}: cannot write", path.display()))?,
         None => print!("{csv}"),
+    }
+    Ok(())
+}
+
+/// Largest input magnitude a GP is asked about: beyond it squared distances overflow (1e100 squared
+/// is 1e200, summed over the columns still finite), and the prediction would be meaningless.
+const MAX_GP_INPUT: f64 = 1e100;
+
+/// Refuses a test input that is not finite or beyond [`MAX_GP_INPUT`], naming row and column.
+fn refuse_astronomical_inputs(
+    x: &nalgebra::DMatrix<f64>,
+    names: &[String],
+    csv: &std::path::Path,
+) -> anyhow::Result<()> {
+    for (row, values) in x.row_iter().enumerate() {
+        if let Some((col, v)) = values
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !v.is_finite() || v.abs() > MAX_GP_INPUT)
+        {
+            anyhow::bail!(
+                "{}: data row {}: column '{}' = {v} is beyond ±{MAX_GP_INPUT:e}, where a GP's distances overflow; no prediction written",
+                csv.display(),
+                row + 1,
+                names.get(col).map_or("?", String::as_str)
+            );
+        }
     }
     Ok(())
 }
@@ -255,5 +300,32 @@ mod tests {
         let msg = format!("{err:#}");
         assert!(msg.contains("huge.csv") && msg.contains("'a'"), "{msg}");
         assert!(!out.exists(), "no model file on error");
+    }
+
+    #[test]
+    fn gp_predict_refuses_inputs_far_beyond_double_precision_instead_of_variance_zero() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let csv = write_csv(dir.path(), "train.csv", 25, false);
+        let model = dir.path().join("m.json");
+        fit(FitArgs {
+            kind: "full".into(),
+            ..fit_args(csv, model.clone())
+        })
+        .expect("fits");
+        let test = dir.path().join("far.csv");
+        std::fs::write(&test, "a,b\n1,1\n1e308,0\n").expect("writes");
+        let out = dir.path().join("p.csv");
+        let err = predict(PredictArgs {
+            model,
+            csv: test,
+            out: Some(out.clone()),
+        })
+        .expect_err("1e308 is refused");
+        let msg = err.to_string();
+        assert!(
+            msg.contains("far.csv: data row 2") && msg.contains("'a'"),
+            "{msg}"
+        );
+        assert!(!out.exists());
     }
 }

@@ -110,7 +110,8 @@ pub fn resolve(path: &Path) -> anyhow::Result<PathBuf> {
                         path.display()
                     );
                 }
-                let (Some(parent), Some(last)) = (existing.parent(), existing.components().last())
+                let (Some(parent), Some(last)) =
+                    (existing.parent(), existing.components().next_back())
                 else {
                     return Ok(absolute);
                 };

@@ -154,7 +154,8 @@ pub fn print_summary(estimator: &MotionEstimator) {
         "gp": estimator.gp_kind().name(),
         "samples": t.samples,
         "pool": t.pool_size,
-        "pseudo": t.pseudo_inputs,
+        "pseudo": crate::evaluate::pseudo_inputs_used(estimator),
+        "pseudo_requested": t.pseudo_inputs,
         "seed": t.seed,
         "seconds": t.seconds,
     });
