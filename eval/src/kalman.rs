@@ -331,7 +331,9 @@ mod tests {
         };
         kf.update_velocity(&measured).unwrap();
         let e = kf.estimate().unwrap();
-        assert!((e.velocity_xy_mps[0] - 6.0).abs() < 0.01 && (e.velocity_xy_mps[1] - 2.0).abs() < 0.01);
+        assert!(
+            (e.velocity_xy_mps[0] - 6.0).abs() < 0.01 && (e.velocity_xy_mps[1] - 2.0).abs() < 0.01
+        );
     }
 
     #[test]

@@ -82,7 +82,10 @@ impl LearnedTrackers {
     ) -> Result<BTreeMap<Method, Vec<Option<ClusterFlow>>>, EvalError> {
         let gp_kf = self.step_kf(scan, learned)?;
         let gp_icp = self.step_icp(scan, learned, icp_wanted)?;
-        Ok(BTreeMap::from([(Method::GpKf, gp_kf), (Method::GpIcp, gp_icp)]))
+        Ok(BTreeMap::from([
+            (Method::GpKf, gp_kf),
+            (Method::GpIcp, gp_icp),
+        ]))
     }
 
     /// GP-KF's part of [`Self::step`] (call it before [`Self::step_icp`] on each scan).
@@ -111,9 +114,9 @@ impl LearnedTrackers {
             })
             .collect();
         let centroids: Vec<[f64; 2]> = scan.clusters.iter().map(|c| c.centroid_xy).collect();
-        let tracks = self
-            .tracker
-            .step_measured(scan.scan, scan.stamp_secs, &centroids, &velocities)?;
+        let tracks =
+            self.tracker
+                .step_measured(scan.scan, scan.stamp_secs, &centroids, &velocities)?;
         Ok(tracks
             .iter()
             .enumerate()
@@ -122,8 +125,8 @@ impl LearnedTrackers {
                     return Some(AT_REST);
                 }
                 let track = self.tracker.track((*id)?)?;
-                let trusted = track.status == TrackStatus::Confirmed
-                    || track.filter.velocity_updates() > 0;
+                let trusted =
+                    track.status == TrackStatus::Confirmed || track.filter.velocity_updates() > 0;
                 trusted
                     .then(|| track.filter.estimate())
                     .flatten()

@@ -102,6 +102,9 @@ fn a_box_decided_static_gets_zero_flow_from_both() {
 fn without_a_classifier_gp_icp_still_finds_the_parked_car_at_rest() {
     // The GP's wrong 3 m/s starts ICP 0.3 m off; the centroid start finds the parked car at rest.
     let steps = run(4, false);
-    let v = steps[3][&Method::GpIcp][1].unwrap().estimate().velocity_xy_mps;
+    let v = steps[3][&Method::GpIcp][1]
+        .unwrap()
+        .estimate()
+        .velocity_xy_mps;
     assert!(v[0].hypot(v[1]) < 1e-6, "{v:?}");
 }

@@ -96,9 +96,7 @@ pub use baseline_params::BaselineParams;
 pub use baselines::{BaselineMethod, run_baseline};
 pub use icp::{IcpAlignment, IcpParams, align_icp, align_icp_from};
 pub use kalman::{ConstantVelocityKalman, KalmanParams};
-pub use rigid_motion::{
-    RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from,
-};
+pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from};
 pub use tracker::{MultiTargetTracker, TrackerParams};
 pub use velocity_measurement::{VelocityFloors, VelocityMeasurement};
 

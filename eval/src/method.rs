@@ -298,7 +298,10 @@ mod tests {
         assert_eq!(Method::Icp.label(), "ICP (oracle)");
         assert_eq!(Method::IcpAuto.label(), "ICP-AUTO");
         assert!(Method::GpKf.is_learned() && !Method::KfAuto.is_learned());
-        assert_eq!(Method::gp_decided(GpKind::SpgpHet).name(), "SPGP-HET-ALL+MOS");
+        assert_eq!(
+            Method::gp_decided(GpKind::SpgpHet).name(),
+            "SPGP-HET-ALL+MOS"
+        );
     }
 
     #[test]

@@ -219,9 +219,7 @@ fn evaluate_scan(
     let gp_kf = trackers.learned.step_kf(&observation, &learned)?;
     timing.gp_kf_secs = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let gp_icp = trackers
-        .learned
-        .step_icp(&observation, &learned, &wanted)?;
+    let gp_icp = trackers.learned.step_icp(&observation, &learned, &wanted)?;
     timing.gp_icp_secs = start.elapsed().as_secs_f64();
     let learned_flows = BTreeMap::from([(Method::GpKf, gp_kf), (Method::GpIcp, gp_icp)]);
     // Scene flow of every method on every scored point, and every actor.

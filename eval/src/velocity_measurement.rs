@@ -43,7 +43,10 @@ impl VelocityFloors {
     /// Checks that both floors are positive and finite.
     pub fn validate(&self) -> Result<(), EvalError> {
         for (name, value) in [
-            ("VelocityFloors.min_heading_std_rad", self.min_heading_std_rad),
+            (
+                "VelocityFloors.min_heading_std_rad",
+                self.min_heading_std_rad,
+            ),
             ("VelocityFloors.min_speed_std_mps", self.min_speed_std_mps),
         ] {
             if !(value > 0.0 && value.is_finite()) {

@@ -207,7 +207,13 @@ pub fn run_bench(
     // 7. The realism study (issue #10): the situations at every rung, the same models.
     let mut realism = None;
     stage("realism study", &mut || {
-        realism = Some(realism_in_bench(plan, &report, &estimators, Some(&moving), out)?);
+        realism = Some(realism_in_bench(
+            plan,
+            &report,
+            &estimators,
+            Some(&moving),
+            out,
+        )?);
         Ok(())
     })?;
     // 8. Occupancy maps of the DGPOM paper's T-junction (its Section 3.1, Table 1, Figure 6); the

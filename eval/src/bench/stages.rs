@@ -160,11 +160,17 @@ pub fn evaluate_with_bar(
     let bar = progress_bar(total, "evaluating scans");
     let lines = ProgressLines::new("scans evaluated");
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let result = evaluate_dataset(dataset, estimators, &BaselineParams::default(), moving, &|| {
-        bar.inc(1);
-        let done = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        lines.update(done, total as usize);
-    });
+    let result = evaluate_dataset(
+        dataset,
+        estimators,
+        &BaselineParams::default(),
+        moving,
+        &|| {
+            bar.inc(1);
+            let done = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            lines.update(done, total as usize);
+        },
+    );
     bar.finish_and_clear();
     result
 }

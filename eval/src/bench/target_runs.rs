@@ -258,8 +258,14 @@ mod tests {
         };
         let estimator = MotionEstimator::train(&dataset, &params).unwrap();
         let estimators = [estimator];
-        let whole =
-            evaluate_dataset(&dataset, &estimators, &BaselineParams::default(), None, &|| {}).unwrap();
+        let whole = evaluate_dataset(
+            &dataset,
+            &estimators,
+            &BaselineParams::default(),
+            None,
+            &|| {},
+        )
+        .unwrap();
         let runs = [estimators.to_vec(), estimators.to_vec()];
         let targets = evaluate_targets(&dataset, &runs).unwrap();
         assert_eq!(targets.len(), 2, "one result per run");
@@ -294,7 +300,11 @@ mod tests {
             without_learned_tracking(&with.situations),
             without_learned_tracking(&whole.situations)
         );
-        assert!(with.situations[0].methods[&Method::GpKf].iter().any(Option::is_some));
+        assert!(
+            with.situations[0].methods[&Method::GpKf]
+                .iter()
+                .any(Option::is_some)
+        );
         assert!(
             with.situations[0].methods[&Method::IcpAuto]
                 .iter()

@@ -212,8 +212,7 @@ fn flow_table(md: &mut String, title: &str, methods: &BTreeMap<Method, SceneFlow
 /// The methods ranked by three-way EPE, best first (ties and missing scores in method order),
 /// the oracle upper bounds after them: they read the association from the truth.
 fn ranked(methods: &BTreeMap<Method, SceneFlowMetrics>) -> Vec<(Method, SceneFlowMetrics)> {
-    let mut rows: Vec<(Method, SceneFlowMetrics)> =
-        methods.iter().map(|(m, s)| (*m, *s)).collect();
+    let mut rows: Vec<(Method, SceneFlowMetrics)> = methods.iter().map(|(m, s)| (*m, *s)).collect();
     rows.sort_by(|(a, x), (b, y)| {
         let key = |s: &SceneFlowMetrics| s.epe_threeway_m.unwrap_or(f64::INFINITY);
         a.is_oracle()

@@ -96,7 +96,10 @@ fn train_for(
     let train = generate(plan, &tracks, setting, out, "train")?;
     let features = setting.features();
     let set = sample_patches(&train, &features, plan.samples, plan.seed)?;
-    let bar = spinner(&format!("fitting the moving classifier ({})", setting.key()));
+    let bar = spinner(&format!(
+        "fitting the moving classifier ({})",
+        setting.key()
+    ));
     let moving = MovingClassifier::train(
         &train,
         &features,

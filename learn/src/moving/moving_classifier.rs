@@ -114,7 +114,10 @@ impl MovingClassifier {
         let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
         rows.shuffle(&mut rng);
         let (moving, still): (Vec<_>, Vec<_>) = rows.into_iter().partition(|(_, m)| *m);
-        let n = moving.len().min(still.len()).min(params.max_rows.max(2) / 2);
+        let n = moving
+            .len()
+            .min(still.len())
+            .min(params.max_rows.max(2) / 2);
         let mut rows: Vec<([f64; 6], bool)> = moving.into_iter().take(n).collect();
         rows.extend(still.into_iter().take(n));
         let moving_rows = rows.iter().filter(|(_, moving)| *moving).count();

@@ -73,7 +73,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             ..patchflow_learn::MovingParams::default()
         },
     )
-    .with_context(|| format!("training the moving classifier on {}", dataset.root().display()))?;
+    .with_context(|| {
+        format!(
+            "training the moving classifier on {}",
+            dataset.root().display()
+        )
+    })?;
     let moving_path = args.out.with_file_name(patchflow_learn::MOVING_FILE_NAME);
     moving.save(&moving_path)?;
     println!("wrote {}", moving_path.display());
