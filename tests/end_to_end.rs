@@ -51,9 +51,10 @@ fn a_small_bench_goes_through_generate_train_cv_evaluate_and_report() {
         stages.lock().unwrap().push(t.stage.clone())
     })
     .unwrap();
-    // The six stages of one seed (training fits every seed), the second seed's targets, the
-    // figures, and the realism study (the situations at every rung, issue #10).
-    assert_eq!(stages.lock().unwrap().len(), 9);
+    // The six stages of one seed (training fits every seed), the moving classifier (issue 27),
+    // the second seed's targets, the figures, and the realism study (the situations at every
+    // rung, issue #10).
+    assert_eq!(stages.lock().unwrap().len(), 10);
     assert!(
         !out.join("data").exists(),
         "the datasets are deleted once used without keep_data"

@@ -21,8 +21,9 @@ use serde::{Deserialize, Serialize};
 use crate::moving_iou::MovingIou;
 use crate::scene_point::FlowClass;
 
-/// Dynamic above this true speed (Argoverse 2: 0.05 m per 0.1 s).
-pub const DYNAMIC_SPEED_MPS: f64 = 0.5;
+/// Dynamic above this true speed (Argoverse 2: 0.05 m per 0.1 s); kept beside the IoU counts.
+pub use crate::moving_iou::DYNAMIC_SPEED_MPS;
+
 /// Speed buckets of the normalised EPE: 49 up to 1 m per sweep, one above.
 pub const SPEED_BUCKETS: usize = 50;
 

@@ -64,7 +64,10 @@ fn report_md_has_heading_and_speed_tables_with_the_thesis_numbers_labelled() {
     assert!(md.contains("Hess 2008 RMSE"));
     // Thesis Table 4.6, ICP: RMSE 33.76, ME 12.93, in the ICP row of situation1.
     let section = &md[md.find("## situation1").unwrap()..];
-    let icp_row = section.lines().find(|l| l.starts_with("| ICP |")).unwrap();
+    let icp_row = section
+        .lines()
+        .find(|l| l.starts_with("| ICP (oracle) |"))
+        .unwrap();
     assert!(icp_row.ends_with("| 33.76 | 12.93 |"), "{icp_row}");
     assert!(md.contains("## Summary") && md.contains("## Timing") && md.contains("## Notes"));
     assert!(md.contains("synthetic results for a test"));
