@@ -6,7 +6,6 @@ use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 use crate::{
     ClusterEstimate, ClusterMotion, Gaussian, MIN_OBJECT_POINTS, MergeRule, SweepFeatures,
 };
-use nalgebra::DMatrix;
 use patchflow_dataset::{Pose, SequenceWriter, Sweep};
 
 /// A car at `speed_mps` driving at `heading_rad` past a sensor at the origin; `sweeps` sweeps.
@@ -137,9 +136,21 @@ fn reference_estimate(
         .iter()
         .map(|&xy| features.patch_at(xy, features.bearing_at(xy)))
         .collect();
-    let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
-    let [sin_gp, cos_gp, speed_gp] = estimator.gps();
-    let (sin, cos) = (sin_gp.predict(&x).unwrap(), cos_gp.predict(&x).unwrap());
+    // Each regression called on this cluster's rows alone (its projection and noise GP, if any,
+    // applied as one call does).
+    let flat = |patches: &[crate::Patch]| -> Vec<f64> {
+        patches
+            .iter()
+            .flat_map(|p| p.values.iter().copied())
+            .collect()
+    };
+    let x = flat(&patches);
+    let n = [positions.len()];
+    let [sin_gp, cos_gp, speed_gp] = estimator.regressors();
+    let (sin, cos) = (
+        sin_gp.predict_row_groups(&x, &n).unwrap(),
+        cos_gp.predict_row_groups(&x, &n).unwrap(),
+    );
     let votes: Vec<HeadingVote> = positions
         .iter()
         .enumerate()
@@ -157,8 +168,7 @@ fn reference_estimate(
             .iter()
             .map(|&xy| features.patch_at(xy, heading.heading_rad))
             .collect();
-        let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
-        let speed = speed_gp.predict(&x).unwrap();
+        let speed = speed_gp.predict_row_groups(&flat(&patches), &n).unwrap();
         let predictions: Vec<Gaussian> = (0..positions.len())
             .map(|k| Gaussian {
                 mean: speed.mean[k],
