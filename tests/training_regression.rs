@@ -9,16 +9,6 @@
 use patchflow_eval::{CvGp, CvParams, cross_validate};
 use patchflow_learn::{EstimatorParams, FeatureKind, MotionEstimator, Sample, SampleSet};
 
-// Placeholder bounds, replaced by measured values below.
-const HELD_OUT_IDEAL_DEFAULT_DEG: f64 = 1e9;
-const HELD_OUT_IDEAL_DEFAULT_MPS: f64 = 1e9;
-const HELD_OUT_URBAN_DEFAULT_DEG: f64 = 1e9;
-const HELD_OUT_URBAN_DEFAULT_MPS: f64 = 1e9;
-const HELD_OUT_IDEAL_THESIS_DEG: f64 = 1e9;
-const HELD_OUT_IDEAL_THESIS_MPS: f64 = 1e9;
-const HELD_OUT_URBAN_THESIS_DEG: f64 = 1e9;
-const HELD_OUT_URBAN_THESIS_MPS: f64 = 1e9;
-
 /// Re-recorded when training began to use mirror images and jittered speed alignments
 /// (2026-11-22, second session): measured 27.68° with seed 5 (seeds 6 and 7: 25.26°, 27.85°).
 /// Before that change: 9.75°; this scene's cars all pass on one side, which a lopsided training
@@ -150,13 +140,17 @@ fn check_held_out(scene: &str, params: &EstimatorParams, bounds: (f64, f64)) {
     );
 }
 
-/// Bounds of the default estimator's held-out errors (heading °, speed m/s), `ideal` and
-/// `urban`: measured values plus a margin (see the tests' output for the figures).
-const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (HELD_OUT_IDEAL_DEFAULT_DEG, HELD_OUT_IDEAL_DEFAULT_MPS);
-const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (HELD_OUT_URBAN_DEFAULT_DEG, HELD_OUT_URBAN_DEFAULT_MPS);
-/// The same for the thesis preset.
-const THESIS_HELD_OUT_IDEAL: (f64, f64) = (HELD_OUT_IDEAL_THESIS_DEG, HELD_OUT_IDEAL_THESIS_MPS);
-const THESIS_HELD_OUT_URBAN: (f64, f64) = (HELD_OUT_URBAN_THESIS_DEG, HELD_OUT_URBAN_THESIS_MPS);
+/// Bounds of the default estimator's held-out errors (heading °, speed m/s) on `ideal` and
+/// `urban` (seed 5, 400 training and 200 test samples, 20 pseudo-inputs, 60 iterations). Measured
+/// 2026-12-03 with the most-likely noise GP on: 48.61°/1.209 m/s and 55.59°/1.136 m/s; without it
+/// (the previous default) 26.49°/1.231 and 50.91°/1.049 — on this small one-sided scene the noise
+/// GP's refit costs per-sample heading accuracy, while on the urban situations' targets it gains
+/// (docs/estimator.md). Held-out samples are drawn ones only, no mirror images.
+const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (53.0, 1.35);
+const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (61.0, 1.27);
+/// The thesis preset's: measured 16.24°/1.008 m/s on `ideal`, 21.11°/0.418 m/s on `urban`.
+const THESIS_HELD_OUT_IDEAL: (f64, f64) = (18.5, 1.15);
+const THESIS_HELD_OUT_URBAN: (f64, f64) = (24.0, 0.50);
 
 #[test]
 fn the_default_estimator_stays_within_its_held_out_bounds_on_both_rungs() {

@@ -43,6 +43,7 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
             "zero-mean" => p.zero_mean = true,
             "centred" => p.zero_mean = false,
             "mlhgp" => p.most_likely_noise = true,
+            "no-mlhgp" => p.most_likely_noise = false,
             "no-mirror" => p.mirror_images = false,
             other if other.starts_with("pls") => p.projection_dims = other[3..].parse()?,
             other if other.starts_with('x') => factor = other[1..].parse()?,
@@ -74,7 +75,7 @@ fn main() -> Result<(), Failure> {
         ..EstimatorParams::default()
     };
     let names: Vec<String> = get("variants")
-        .unwrap_or("default,thesis,zero-mean,pls20,mlhgp,pls20+mlhgp")
+        .unwrap_or("no-mlhgp,default,thesis")
         .split(',')
         .map(str::to_owned)
         .collect();

@@ -246,11 +246,14 @@ fn thesis_training_writes_a_model_without_mirror_images_or_speed_alignment_error
         let text = std::fs::read_to_string(&model).unwrap();
         serde_json::from_str::<serde_json::Value>(&text).unwrap()
     };
-    let thesis = model_of("thesis.json", &["--thesis-training"]);
+    let thesis = model_of("thesis.json", &["--preset", "thesis"]);
     assert_eq!(thesis["training"]["mirror_images"], false);
+    assert_eq!(thesis["training"]["zero_mean"], true);
+    assert_eq!(thesis["training"]["most_likely_noise"], false);
     assert_eq!(thesis["features"]["speed_jitter_deg"], 0.0);
     let default = model_of("default.json", &[]);
     assert_eq!(default["training"]["mirror_images"], true);
+    assert_eq!(default["training"]["most_likely_noise"], true);
     assert_eq!(default["features"]["speed_jitter_deg"], 25.0);
 }
 

@@ -50,14 +50,14 @@ impl<K: Kernel> GpObjective<K> {
             params.kernel().clone(),
             params.start_pseudo_inputs(),
         )?;
-        if let Some(z) = params.start_pseudo_inputs() {
-            if z.ncols() != data.dims() {
-                return Err(GpError::InvalidParams(format!(
-                    "starting pseudo-inputs have {} columns, the inputs {}",
-                    z.ncols(),
-                    data.dims()
-                )));
-            }
+        if let Some(z) = params.start_pseudo_inputs()
+            && z.ncols() != data.dims()
+        {
+            return Err(GpError::InvalidParams(format!(
+                "starting pseudo-inputs have {} columns, the inputs {}",
+                z.ncols(),
+                data.dims()
+            )));
         }
         let moving = params.optimise_pseudo_inputs() && kind != GpKind::Full;
         if moving && data.extra.is_some() {

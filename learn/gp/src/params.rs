@@ -217,10 +217,10 @@ impl<K: Kernel> GpParams<K> {
                 return bad("noise weights must be positive and finite");
             }
         }
-        if let Some(z) = &self.start_pseudo_inputs {
-            if self.kind == GpKind::Full || z.nrows() == 0 || z.iter().any(|v| !v.is_finite()) {
-                return bad("starting pseudo-inputs need a sparse GP kind and finite rows");
-            }
+        if let Some(z) = &self.start_pseudo_inputs
+            && (self.kind == GpKind::Full || z.nrows() == 0 || z.iter().any(|v| !v.is_finite()))
+        {
+            return bad("starting pseudo-inputs need a sparse GP kind and finite rows");
         }
         Ok(GpValidParams(self.clone()))
     }

@@ -79,12 +79,12 @@ pub fn kmeans(x: &DMatrix<f64>, k: usize, seed: u64) -> DMatrix<f64> {
             sums.set_row(a, &row);
             counts[a] += 1;
         }
-        for c in 0..k {
-            if counts[c] == 0 {
+        for (c, &count) in counts.iter().enumerate() {
+            if count == 0 {
                 centres.set_row(c, &x.row(farthest.1));
                 changed = true;
             } else {
-                let mean = sums.row(c) / counts[c] as f64;
+                let mean = sums.row(c) / count as f64;
                 centres.set_row(c, &mean);
             }
         }

@@ -226,10 +226,10 @@ impl MotionEstimator {
         for (gp, extra) in gps.into_iter().zip(extras) {
             let mut r = Regressor::plain(GpModel::from_json_value(with_timing(gp), path)?);
             if let Some(extra) = extra {
-                if let Some(p) = &extra.projection {
-                    if !p.is_consistent() {
-                        return Err(model_err("an inconsistent PLS projection".into()));
-                    }
+                if let Some(p) = &extra.projection
+                    && !p.is_consistent()
+                {
+                    return Err(model_err("an inconsistent PLS projection".into()));
                 }
                 r.projection = extra.projection;
                 if let Some(noise) = extra.noise_gp {
@@ -304,12 +304,12 @@ impl MotionEstimator {
                     projected_names(p.dims)
                 }
             };
-            if let Some(noise) = &r.noise {
-                if noise.gp.input_names() != names.as_slice() {
-                    return Err(format!(
-                        "the {target} noise GP reads other inputs than its GP"
-                    ));
-                }
+            if let Some(noise) = &r.noise
+                && noise.gp.input_names() != names.as_slice()
+            {
+                return Err(format!(
+                    "the {target} noise GP reads other inputs than its GP"
+                ));
             }
             if gp.kind() != self.gp {
                 return Err(format!(

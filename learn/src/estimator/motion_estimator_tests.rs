@@ -6,7 +6,6 @@ use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 use crate::{
     ClusterEstimate, ClusterMotion, Gaussian, MIN_OBJECT_POINTS, MergeRule, SweepFeatures,
 };
-use nalgebra::DMatrix;
 use patchflow_dataset::{Pose, SequenceWriter, Sweep};
 
 /// A car at `speed_mps` driving at `heading_rad` past a sensor at the origin; `sweeps` sweeps.
@@ -137,9 +136,21 @@ fn reference_estimate(
         .iter()
         .map(|&xy| features.patch_at(xy, features.bearing_at(xy)))
         .collect();
-    let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
-    let [sin_gp, cos_gp, speed_gp] = estimator.gps();
-    let (sin, cos) = (sin_gp.predict(&x).unwrap(), cos_gp.predict(&x).unwrap());
+    // Each regression called on this cluster's rows alone (its projection and noise GP, if any,
+    // applied as one call does).
+    let flat = |patches: &[crate::Patch]| -> Vec<f64> {
+        patches
+            .iter()
+            .flat_map(|p| p.values.iter().copied())
+            .collect()
+    };
+    let x = flat(&patches);
+    let n = [positions.len()];
+    let [sin_gp, cos_gp, speed_gp] = estimator.regressors();
+    let (sin, cos) = (
+        sin_gp.predict_row_groups(&x, &n).unwrap(),
+        cos_gp.predict_row_groups(&x, &n).unwrap(),
+    );
     let votes: Vec<HeadingVote> = positions
         .iter()
         .enumerate()
@@ -157,8 +168,7 @@ fn reference_estimate(
             .iter()
             .map(|&xy| features.patch_at(xy, heading.heading_rad))
             .collect();
-        let x = DMatrix::from_fn(patches.len(), crate::PATCH_LEN, |r, c| patches[r].values[c]);
-        let speed = speed_gp.predict(&x).unwrap();
+        let speed = speed_gp.predict_row_groups(&flat(&patches), &n).unwrap();
         let predictions: Vec<Gaussian> = (0..positions.len())
             .map(|k| Gaussian {
                 mean: speed.mean[k],
@@ -265,6 +275,34 @@ fn a_saved_model_loads_and_predicts_identically() {
     estimator.save(&path).unwrap();
     let loaded = MotionEstimator::load(&path).unwrap();
     assert_eq!(loaded.feature_params(), estimator.feature_params());
+    assert_eq!(
+        estimate_for(&loaded, 0.5, 5.0),
+        estimate_for(&estimator, 0.5, 5.0)
+    );
+}
+
+#[test]
+fn a_saved_model_with_pls_projections_and_noise_gps_loads_and_predicts_identically() {
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = write_dataset(dir.path(), &[(0.5, 5.0), (-1.5, 7.0), (2.5, 4.0)]);
+    let params = EstimatorParams {
+        samples: 100,
+        pseudo_inputs: 8,
+        max_iters: 15,
+        projection_dims: 4,
+        most_likely_noise: true,
+        ..small_params()
+    };
+    let estimator = MotionEstimator::train(&dataset, &params).unwrap();
+    assert!(
+        estimator
+            .regressors()
+            .iter()
+            .all(|r| { r.projection.as_ref().is_some_and(|p| p.dims == 4) && r.noise.is_some() })
+    );
+    let path = dir.path().join("model.json");
+    estimator.save(&path).unwrap();
+    let loaded = MotionEstimator::load(&path).unwrap();
     assert_eq!(
         estimate_for(&loaded, 0.5, 5.0),
         estimate_for(&estimator, 0.5, 5.0)
