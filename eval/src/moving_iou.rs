@@ -24,7 +24,7 @@ pub struct MovingIou {
     pub false_negatives: u64,
 }
 
-/// Whether a displacement over `dt_secs` is motion (more than [`DYNAMIC_SPEED_MPS`] × Δt in the
+/// Whether a displacement over `dt_secs` is motion (more than `DYNAMIC_SPEED_MPS` (0.5 m/s) × Δt in the
 /// ground plane and height together).
 pub fn is_moving_displacement(displacement_m: [f64; 3], dt_secs: f64) -> bool {
     let [x, y, z] = displacement_m;

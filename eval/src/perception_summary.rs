@@ -62,7 +62,7 @@ pub struct PerceptionSummary {
     /// GP-ICP on the hypotheses.
     pub gp_icp: Spread,
     /// The whole learned perception with one estimator: features, its GP step, the classifier,
-    /// GP-KF and GP-ICP ([`ScanTiming::learned_scan_secs`]).
+    /// GP-KF and GP-ICP (`ScanTiming::learned_scan_secs`).
     pub learned_scan: Spread,
 }
 
