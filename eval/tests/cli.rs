@@ -299,3 +299,84 @@ fn an_out_that_is_an_existing_file_is_named_in_words() {
     ]);
     assert_clean_failure(&output, &["is an existing file, not a folder"]);
 }
+
+/// Exit 2 (clap's usage error), no panic, the refused value and every valid value named.
+fn assert_refused_listing(output: &Output, refused: &str, valid: &[&str]) {
+    let err = stderr(output);
+    assert_eq!(output.status.code(), Some(2), "stderr: {err}");
+    assert!(!err.contains("panicked"), "panic: {err}");
+    assert!(err.contains("invalid value"), "{err}");
+    assert!(err.contains(&format!("'{refused}'")), "{err}");
+    assert!(err.contains("possible values"), "{err}");
+    for value in valid {
+        assert!(err.contains(value), "stderr lacks {value:?}: {err}");
+    }
+}
+
+#[test]
+fn a_misspelt_gp_kind_is_refused_with_the_valid_kinds() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("model.json");
+    let output = patchflow(&[
+        "train",
+        "--data",
+        dir.path().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--gp",
+        "spgp-hte",
+    ]);
+    assert_refused_listing(&output, "spgp-hte", &["spgp", "spgp-het", "full"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_misspelt_feature_is_refused_with_the_valid_features() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f.csv");
+    let output = patchflow(&[
+        "features",
+        "--data",
+        dir.path().to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--feature",
+        "gabour",
+    ]);
+    assert_refused_listing(&output, "gabour", &["patch", "gabor"]);
+}
+
+#[test]
+fn a_misspelt_gp_fit_kind_is_refused_with_the_valid_kinds() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("train.csv");
+    write_csv(&csv);
+    let out = dir.path().join("gp.json");
+    let output = patchflow(&[
+        "gp",
+        "fit",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--kind",
+        "sparse",
+    ]);
+    assert_refused_listing(&output, "sparse", &["spgp", "spgp-het", "full"]);
+}
+
+#[test]
+fn an_unknown_study_is_refused_with_the_known_studies() {
+    let output = patchflow(&["study", "colour"]);
+    assert_refused_listing(&output, "colour", &["realism", "rate", "channels", "cell"]);
+}
+
+#[test]
+fn the_help_opens_with_patchflows_own_description() {
+    let output = patchflow(&["--help"]);
+    assert!(output.status.success());
+    let help = String::from_utf8_lossy(&output.stdout);
+    let first = help.lines().next().unwrap_or_default();
+    assert!(first.contains("lidar"), "first line: {first}");
+    assert!(!first.contains("ICP and Kalman"), "first line: {first}");
+}

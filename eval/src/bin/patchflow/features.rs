@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::choices::{AlignChoice, FeatureChoice};
 use crate::output_guard::{Input, OutputKind, check_output};
 use anyhow::Context;
 use patchflow_dataset::Dataset;
@@ -17,8 +18,8 @@ pub struct Args {
     #[arg(long)]
     pub out: PathBuf,
     /// Feature kind: `patch` (242 map values) or `gabor` (16 filter responses).
-    #[arg(long, default_value = "patch")]
-    pub feature: String,
+    #[arg(long, value_enum, default_value_t = FeatureChoice::Patch)]
+    pub feature: FeatureChoice,
     /// Map prior for unobserved cells.
     #[arg(long, default_value_t = 0.5)]
     pub prior: f64,
@@ -29,22 +30,14 @@ pub struct Args {
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Patch alignment: `bearing` (heading features) or `heading` (speed features, true heading).
-    #[arg(long, default_value = "bearing")]
-    pub align: String,
+    #[arg(long, value_enum, default_value_t = AlignChoice::Bearing)]
+    pub align: AlignChoice,
 }
 
 /// Runs `patchflow features`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let kind = match args.feature.as_str() {
-        "patch" => FeatureKind::Patch,
-        "gabor" => FeatureKind::Gabor,
-        other => anyhow::bail!("--feature must be patch or gabor, not {other:?}"),
-    };
-    let align = match args.align.as_str() {
-        "bearing" => Alignment::Bearing,
-        "heading" => Alignment::Heading,
-        other => anyhow::bail!("--align must be bearing or heading, not {other:?}"),
-    };
+    let kind: FeatureKind = args.feature.into();
+    let align: Alignment = args.align.into();
     check_output(
         &args.out,
         OutputKind::File,

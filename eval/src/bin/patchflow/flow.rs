@@ -7,8 +7,9 @@ use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::progress::progress_bar;
 use patchflow_eval::{GpReadout, export_flow};
-use patchflow_learn::{MergeRule, MotionEstimator};
+use patchflow_learn::MotionEstimator;
 
+use crate::choices::ReadoutChoice;
 use crate::output_guard::{Input, OutputKind, check_output};
 
 /// Arguments of `patchflow flow`.
@@ -26,8 +27,8 @@ pub struct Args {
     pub out: PathBuf,
     /// How clusters move their points: `all` or `best` (the merged estimate, thesis 3.1.4), or
     /// `point` (each point its own prediction).
-    #[arg(long, default_value = "all")]
-    pub readout: String,
+    #[arg(long, value_enum, default_value_t = ReadoutChoice::All)]
+    pub readout: ReadoutChoice,
 }
 
 /// Runs `patchflow flow`.
@@ -40,12 +41,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             Input::new("--model", &args.model),
         ],
     )?;
-    let readout = match args.readout.as_str() {
-        "all" => GpReadout::Merged(MergeRule::All),
-        "best" => GpReadout::Merged(MergeRule::Best),
-        "point" => GpReadout::PerPoint,
-        other => anyhow::bail!("unknown readout '{other}' (expected all, best or point)"),
-    };
+    let readout: GpReadout = args.readout.into();
     let estimator = MotionEstimator::load(&args.model)
         .with_context(|| format!("loading model {}", args.model.display()))?;
     let dataset = Dataset::open(&args.data)?;

@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use crate::choices::RealismChoice;
 use crate::output_guard::{Input, OutputKind, check_output};
 use patchflow_eval::stages::generate_with_progress;
 use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard, write_kitti_names};
@@ -23,8 +24,8 @@ pub struct Args {
     pub shard: Option<String>,
     /// Realism rung for every scenario (`ideal`, `urban`, `harsh`), replacing the one each file
     /// names (default: the file's own, `urban` if it names none); knobs a file sets alone still apply.
-    #[arg(long, value_parser = parse_realism)]
-    pub realism: Option<Realism>,
+    #[arg(long, value_enum)]
+    pub realism: Option<RealismChoice>,
     /// Delete and regenerate the sequences this run covers (without it, a sequence written by
     /// another seed, scenario text or version is refused, never mixed in).
     #[arg(long)]
@@ -34,12 +35,6 @@ pub struct Args {
     /// number, e.g. `kiss_icp_pipeline --dataloader kitti --sequence 3 OUT/kitti`.
     #[arg(long)]
     pub kitti_names: bool,
-}
-
-fn parse_realism(name: &str) -> Result<Realism, String> {
-    Realism::parse(name).ok_or_else(|| {
-        format!("unknown realism rung {name:?}: expected one of ideal, urban, harsh")
-    })
 }
 
 /// Runs `patchflow generate`.
@@ -71,7 +66,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         out: args.out.clone(),
         seed: args.seed,
         shard,
-        realism: args.realism,
+        realism: args.realism.map(Realism::from),
         overwrite: args.overwrite,
     };
     let manifest = generate_with_progress(&sources, &options)?;

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use patchflow_learn::{GpKind, GpModel, GpParams};
 
+use crate::choices::GpChoice;
 use crate::csv_table::{Columns, Table};
 use crate::output_guard::{Input, OutputKind, check_output};
 
@@ -33,8 +34,8 @@ struct FitArgs {
     #[arg(long)]
     out: PathBuf,
     /// `full`, `spgp` or `spgp-het`.
-    #[arg(long, default_value = "spgp")]
-    kind: String,
+    #[arg(long, value_enum, default_value_t = GpChoice::Spgp)]
+    kind: GpChoice,
     /// Number of pseudo-inputs.
     #[arg(long, default_value_t = 100)]
     pseudo: usize,
@@ -76,7 +77,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 fn fit(a: FitArgs) -> anyhow::Result<()> {
     check_output(&a.out, OutputKind::File, &[Input::new("--csv", &a.csv)])?;
-    let kind: GpKind = a.kind.parse()?;
+    let kind: GpKind = a.kind.into();
     let ignore: Vec<String> = a
         .ignore
         .iter()
@@ -194,7 +195,7 @@ mod tests {
         let fit_args = |ignore: Option<&str>| FitArgs {
             csv: train.clone(),
             out: model.clone(),
-            kind: "spgp-het".into(),
+            kind: GpChoice::SpgpHet,
             pseudo: 5,
             iters: 20,
             seed: 1,
@@ -229,7 +230,7 @@ mod tests {
         FitArgs {
             csv,
             out,
-            kind: "spgp".into(),
+            kind: GpChoice::Spgp,
             pseudo: 4,
             iters: 15,
             seed: 3,
@@ -308,7 +309,7 @@ mod tests {
         let csv = write_csv(dir.path(), "train.csv", 25, false);
         let model = dir.path().join("m.json");
         fit(FitArgs {
-            kind: "full".into(),
+            kind: GpChoice::Full,
             ..fit_args(csv, model.clone())
         })
         .expect("fits");

@@ -2,7 +2,7 @@
 //! arguments, calls one library function and prints; no algorithm lives here.
 
 mod bench;
-mod common;
+mod choices;
 mod csv_table;
 mod cv;
 mod evaluate;
@@ -21,7 +21,7 @@ use clap::{Parser, Subcommand};
 
 /// Simulated lidar traffic, difference-map patches and sparse heteroscedastic GPs for motion estimation.
 #[derive(Debug, Parser)]
-#[command(name = "patchflow", version, about, long_about = None)]
+#[command(name = "patchflow", version, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

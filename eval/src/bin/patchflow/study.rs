@@ -5,10 +5,14 @@
 
 use std::path::PathBuf;
 
-use patchflow_eval::{BenchPlan, StudyFactor, StudyPlan, merge_study, run_study};
+use patchflow_eval::{BenchPlan, Method, StudyFactor, StudyPlan, merge_study, run_study};
 use patchflow_sim::Shard;
 
+use crate::choices::StudyChoice;
 use crate::output_guard::{OutputKind, check_output};
+
+/// The methods each finished point prints: the default GP and the two oracle baselines.
+const READOUT_METHODS: [Method; 3] = [Method::SpgpHetAll, Method::Kf, Method::Icp];
 
 /// Arguments of `patchflow study`.
 #[derive(Debug, clap::Args)]
@@ -16,7 +20,8 @@ pub struct Args {
     /// The study: `realism` (the five situations at each rung, trained on `urban`), `rate`
     /// (5, 10, 20 Hz), `channels` (16, 32, 64, 128) or `cell` (map cells of 0.05, 0.10, 0.20 m;
     /// patches of 11 × 11 cells).
-    pub name: String,
+    #[arg(value_enum)]
+    pub name: StudyChoice,
     /// Output folder (default `results/study-NAME`).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -37,7 +42,7 @@ pub struct Args {
 
 /// Runs `patchflow study`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let factor = StudyFactor::parse(&args.name)?;
+    let factor = StudyFactor::from(args.name);
     let bench = if args.quick {
         BenchPlan::quick()
     } else {
@@ -59,10 +64,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             None => Shard::ALL,
         };
         run_study(&plan, &out, shard, &|point| {
-            let line: Vec<String> = ["SPGP-HET-ALL", "KF", "ICP"]
+            let line: Vec<String> = READOUT_METHODS
                 .iter()
                 .filter_map(|m| {
-                    let s = point.pooled.get(*m)?;
+                    let s = point.pooled.get(m.name())?;
                     Some(format!(
                         "{m} {}° / {} m/s",
                         s.heading_rmse_deg.map_or("-".into(), |v| format!("{v:.1}")),

@@ -7,7 +7,7 @@ use patchflow_dataset::Dataset;
 use patchflow_eval::progress::progress_bar;
 use patchflow_learn::{EstimatorParams, FeatureParams, MotionEstimator};
 
-use crate::common::{parse_feature, parse_gp};
+use crate::choices::{FeatureChoice, GpChoice, PresetChoice};
 use crate::output_guard::{Input, OutputKind, check_output};
 
 /// Arguments of `patchflow train`.
@@ -20,11 +20,11 @@ pub struct Args {
     #[arg(long)]
     pub out: PathBuf,
     /// GP kind: `spgp`, `spgp-het` or `full`.
-    #[arg(long, default_value = "spgp-het")]
-    pub gp: String,
+    #[arg(long, value_enum, default_value_t = GpChoice::SpgpHet)]
+    pub gp: GpChoice,
     /// Feature kind: `patch` or `gabor`.
-    #[arg(long, default_value = "patch")]
-    pub feature: String,
+    #[arg(long, value_enum, default_value_t = FeatureChoice::Patch)]
+    pub feature: FeatureChoice,
     /// Map prior for unobserved cells.
     #[arg(long, default_value_t = 0.5)]
     pub prior: f64,
@@ -40,8 +40,8 @@ pub struct Args {
     /// `default` or `thesis`: the thesis' protocol exactly (no mirror images, speed patches
     /// aligned to the exact true heading, GPs with a zero mean function; the list of the
     /// default's deviations is `EstimatorParams`' doc and README's "The estimator's defaults").
-    #[arg(long, default_value = "default")]
-    pub preset: String,
+    #[arg(long, value_enum, default_value_t = PresetChoice::Default)]
+    pub preset: PresetChoice,
     /// Same as `--preset thesis` (kept for older scripts).
     #[arg(long, hide = true)]
     pub thesis_training: bool,
@@ -65,10 +65,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         OutputKind::File,
         &[Input::new("--data", &args.data)],
     )?;
-    let base = match (args.preset.as_str(), args.thesis_training) {
-        ("thesis", _) | (_, true) => EstimatorParams::thesis(),
-        ("default", false) => EstimatorParams::default(),
-        (other, _) => anyhow::bail!("unknown preset '{other}' (expected default or thesis)"),
+    let base = match (args.preset, args.thesis_training) {
+        (PresetChoice::Thesis, _) | (_, true) => EstimatorParams::thesis(),
+        (PresetChoice::Default, false) => EstimatorParams::default(),
     };
     let base = EstimatorParams {
         projection_dims: args.projection_dims.unwrap_or(base.projection_dims),
@@ -77,8 +76,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ..base
     };
     let params = EstimatorParams {
-        gp: parse_gp(&args.gp)?,
-        feature: parse_feature(&args.feature)?,
+        gp: args.gp.into(),
+        feature: args.feature.into(),
         features: FeatureParams {
             prior: args.prior,
             ..base.features.clone()
