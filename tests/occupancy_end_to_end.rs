@@ -233,7 +233,7 @@ fn a_one_hertz_3d_lidar_is_mapped_through_the_height_slice_and_a_ten_hertz_one_i
     };
     let scores =
         patchflow_occupancy::evaluate_sequence(&sequence, &methods, &params, &|_, _| {}).unwrap();
-    let m = &scores.methods["GPOM-RD"];
+    let m = &scores.methods[&patchflow_occupancy::MapMethodId::GpomRd];
     assert!(m.training_points_per_map[0] <= 4 * 300);
     assert!(m.drawn_points_per_map[0] > m.training_points_per_map[0]);
     let auc = m.auc_by_query_scan[&3].unwrap();

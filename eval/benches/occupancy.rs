@@ -55,12 +55,12 @@ fn bench_one_map(c: &mut Criterion) {
         let output = method.map(&window, &grid.points_m).expect("maps");
         println!(
             "{}: {} training points, {} query points; {}",
-            method.name(),
+            method.id().name(),
             output.training_points,
             grid.len(),
             output.summary
         );
-        group.bench_function(method.name(), |b| {
+        group.bench_function(method.id().name(), |b| {
             b.iter(|| method.map(black_box(&window), black_box(&grid.points_m)))
         });
     }

@@ -80,7 +80,7 @@ fn ahead_entry(a: &AheadScores) -> AheadEntry {
         auc_by_start: a.auc.clone(),
         auc_mean: stats.iter().map(|s| s.0).collect(),
         auc_std: stats.iter().map(|s| s.1).collect(),
-        method: a.method.clone(),
+        method: a.method.to_string(),
         seconds_ahead: a.seconds_ahead.clone(),
         start_scans: a.start_scans.clone(),
     }
@@ -183,8 +183,11 @@ pub fn occupancy_json(report: &OccupancyReport) -> Result<String, EvalError> {
                     .methods
                     .iter()
                     .map(|(name, m)| {
-                        let cpu = report.cpu_seconds.get(&s.name).and_then(|c| c.get(name));
-                        (name.clone(), method_entry(s, m, cpu))
+                        let cpu = report
+                            .cpu_seconds
+                            .get(&s.name)
+                            .and_then(|c| c.get(name.name()));
+                        (name.to_string(), method_entry(s, m, cpu))
                     })
                     .collect(),
                 motion_map: report.motion_maps.get(&s.name).map(|m| motion_map_entry(m)),

@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use patchflow_occupancy::{
-    AheadScores, ClusterKind, DgpomParams, MotionField, MotionMap, SequenceScores,
+    AheadScores, ClusterKind, DgpomParams, MapMethodId, MotionField, MotionMap, SequenceScores,
 };
 
 use super::fit_tables::{solver_table, temporal_table};
@@ -16,19 +16,19 @@ use super::plot_dgpom::{ahead_file_name, motion_map_file_name};
 use super::{OccupancyReport, plot::figure_file_name};
 
 /// Method order in tables: the paper's (DGPOM, GPOM ℜ^D, GPOM ℜ^{D+1}), then the grid, then others.
-const ORDER: [&str; 4] = ["DGPOM", "GPOM-RD", "GPOM-RD1", "GRID"];
+const ORDER: [MapMethodId; 4] = MapMethodId::ALL;
 
 /// Label of one of our methods in the tables.
-fn label(method: &str) -> String {
+fn label(method: MapMethodId) -> String {
     match PAPER_TABLE_1.iter().find(|row| row.method == method) {
         Some(row) => format!("{} (ours, `{method}`)", row.label),
-        None if method == "GRID" => "occupancy grid (ours, `GRID`)".to_owned(),
+        None if method == MapMethodId::Grid => "occupancy grid (ours, `GRID`)".to_owned(),
         None => format!("`{method}` (ours)"),
     }
 }
 
-fn ordered(scores: &SequenceScores) -> Vec<&str> {
-    let mut names: Vec<&str> = scores.methods.keys().map(String::as_str).collect();
+fn ordered(scores: &SequenceScores) -> Vec<MapMethodId> {
+    let mut names: Vec<MapMethodId> = scores.methods.keys().copied().collect();
     names.sort_by_key(|n| (ORDER.iter().position(|o| o == n).unwrap_or(ORDER.len()), *n));
     names
 }
@@ -102,7 +102,7 @@ fn auc_table(md: &mut String, scores: &SequenceScores, observed_by: &str) {
     // The paper's order (DGPOM, GPOM ℜ^D, GPOM ℜ^{D+1}), each of our rows above the paper's;
     // the paper's rows are there even for methods we did not run.
     for method in ORDER {
-        if let Some(m) = scores.methods.get(method) {
+        if let Some(m) = scores.methods.get(&method) {
             let cells: Vec<Option<f64>> = scans
                 .iter()
                 .map(|t| m.auc_by_query_scan.get(t).copied().flatten())
@@ -118,7 +118,7 @@ fn auc_table(md: &mut String, scores: &SequenceScores, observed_by: &str) {
         }
     }
     for method in ordered(scores).into_iter().filter(|m| !ORDER.contains(m)) {
-        let m = &scores.methods[method];
+        let m = &scores.methods[&method];
         let cells: Vec<Option<f64>> = scans
             .iter()
             .map(|t| m.auc_by_query_scan.get(t).copied().flatten())
@@ -175,7 +175,7 @@ fn timing_table(
         "One map (fit and prediction over the query points), per method; training points after thinning, and drawn before it (the same where nothing is thinned):\n\n| method | seconds per map (mean, wall) | CPU seconds per map (mean) | slowest map (s, wall) | training points per map (mean) | drawn per map (mean) | fit (last map) |\n|---|---|---|---|---|---|---|"
     );
     for method in ordered(scores) {
-        let Some(m) = scores.methods.get(method) else {
+        let Some(m) = scores.methods.get(&method) else {
             continue;
         };
         let slowest = m.seconds_per_map.iter().copied().fold(0.0, f64::max);
@@ -183,7 +183,7 @@ fn timing_table(
             md,
             "| `{method}` | {:.3} | {} | {:.3} | {:.0} | {:.0} | {} |",
             m.mean_seconds_per_map(),
-            cpu.and_then(|c| c.get(method))
+            cpu.and_then(|c| c.get(method.name()))
                 .map_or("–".to_owned(), |c| format!("{:.2}", super::json::mean(c))),
             slowest,
             m.mean_training_points(),
@@ -261,19 +261,19 @@ fn ahead_section(md: &mut String, scenario: &str, ahead: &AheadScores) {
 /// Where DGPOM's AUC falls below a GPOM's, with DGPOM's fit at those query times (the done-when
 /// of issue #12 asks the report to say why, from the data).
 fn dgpom_against_gpom(md: &mut String, scores: &SequenceScores) {
-    let Some(dgpom) = scores.methods.get("DGPOM") else {
+    let Some(dgpom) = scores.methods.get(&MapMethodId::Dgpom) else {
         return;
     };
     let scans: Vec<usize> = dgpom.auc_by_query_scan.keys().copied().collect();
     let mut below = Vec::new();
     for (i, &t) in scans.iter().enumerate() {
         let ours = dgpom.auc_by_query_scan[&t].unwrap_or(f64::NAN);
-        let beaten_by: Vec<String> = ["GPOM-RD", "GPOM-RD1"]
+        let beaten_by: Vec<String> = [MapMethodId::GpomRd, MapMethodId::GpomRd1]
             .iter()
             .filter_map(|name| {
                 let other = scores
                     .methods
-                    .get(*name)?
+                    .get(name)?
                     .auc_by_query_scan
                     .get(&t)?
                     .as_ref()?;

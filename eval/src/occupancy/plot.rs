@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use patchflow_occupancy::{MapFigure, SequenceScores};
+use patchflow_occupancy::{MapFigure, MapMethodId, SequenceScores};
 use plotters::prelude::*;
 
 use crate::error::EvalError;
@@ -20,14 +20,14 @@ const FREE: RGBColor = RGBColor(236, 236, 236);
 const BEAM: RGBColor = RGBColor(220, 30, 30);
 
 /// The figure's file name for one scenario and method.
-pub(crate) fn figure_file_name(scenario: &str, method: &str) -> String {
-    format!("occupancy_{scenario}_{}.png", method.to_lowercase())
+pub(crate) fn figure_file_name(scenario: &str, method: MapMethodId) -> String {
+    format!("occupancy_{scenario}_{}.png", method.name().to_lowercase())
 }
 
 /// Draws Figure 6 of `method` on `scores`' kept query times to `path`.
 pub fn plot_occupancy_figure(
     scores: &SequenceScores,
-    method: &str,
+    method: MapMethodId,
     path: &Path,
 ) -> Result<(), EvalError> {
     ensure_font(path)?;
@@ -38,7 +38,7 @@ pub fn plot_occupancy_figure(
     let figures: Vec<&MapFigure> = scores
         .figures
         .iter()
-        .filter(|f| f.maps.contains_key(method))
+        .filter(|f| f.maps.contains_key(&method))
         .collect();
     if figures.is_empty() {
         return Err(EvalError::BadResult {
@@ -55,7 +55,7 @@ pub fn plot_occupancy_figure(
         .map_err(|e| err(&e))?;
     let panels = body.split_evenly((3, figures.len()));
     for (column, figure) in figures.iter().enumerate() {
-        let map = &figure.maps[method];
+        let map = &figure.maps[&method];
         let t = figure.scan.stamp_secs;
         let truth: Vec<f64> = figure
             .truth

@@ -39,8 +39,8 @@ pub fn write_occupancy_report(
     write_atomic(&files.markdown, occupancy_markdown(report).as_bytes())?;
     for scores in &report.scenarios {
         for method in scores.methods.keys() {
-            let path = plots_dir.join(figure_file_name(&scores.name, method));
-            plot_occupancy_figure(scores, method, &path)?;
+            let path = plots_dir.join(figure_file_name(&scores.name, *method));
+            plot_occupancy_figure(scores, *method, &path)?;
             files.plots.push(path);
         }
     }

@@ -116,7 +116,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         .map(|m| m.as_ref())
         .filter(|m| {
             only.as_ref()
-                .is_none_or(|o| o.split(',').any(|n| n == m.name()))
+                .is_none_or(|o| o.split(',').any(|n| n == m.id().name()))
         })
         .collect();
     let mut params = OccupancyParams::default();

@@ -13,8 +13,8 @@ use patchflow_gp::{MotionAdapted, PlsClassifier, PlsParams};
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    GpSolver, MapMethod, MapOutput, MotionMap, OccupancyError, Result, SampleParams, ScanWindow,
-    window_samples,
+    GpSolver, MapMethod, MapMethodId, MapOutput, MotionMap, OccupancyError, Result, SampleParams,
+    ScanWindow, window_samples,
 };
 
 /// Settings of DGPOM (the motion map is learned separately and shared).
@@ -150,7 +150,7 @@ impl DgpomMethod {
 
     fn degenerate(&self, scan: usize, reason: String) -> OccupancyError {
         OccupancyError::Degenerate {
-            method: "DGPOM".into(),
+            method: MapMethodId::Dgpom.name().into(),
             scan,
             reason,
         }
@@ -158,8 +158,8 @@ impl DgpomMethod {
 }
 
 impl MapMethod for DgpomMethod {
-    fn name(&self) -> &str {
-        "DGPOM"
+    fn id(&self) -> MapMethodId {
+        MapMethodId::Dgpom
     }
 
     fn map(&self, window: &ScanWindow<'_>, points_m: &[[f64; 2]]) -> Result<MapOutput> {

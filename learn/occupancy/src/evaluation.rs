@@ -8,8 +8,8 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use crate::{
-    MapMethod, MapOutput, OccupancyError, OccupancyParams, OccupancySequence, PlanarScan,
-    QueryGrid, Result, ScanWindow, roc_auc,
+    MapMethod, MapMethodId, MapOutput, OccupancyError, OccupancyParams, OccupancySequence,
+    PlanarScan, QueryGrid, Result, ScanWindow, roc_auc,
 };
 
 /// One method's scores over the query scans.
@@ -61,7 +61,7 @@ pub struct MapFigure {
     /// The scan at the query time (its beams are drawn over the truth).
     pub scan: PlanarScan,
     /// Each method's map, by method name.
-    pub maps: BTreeMap<String, MapOutput>,
+    pub maps: BTreeMap<MapMethodId, MapOutput>,
 }
 
 /// Every method's scores on one sequence.
@@ -76,7 +76,7 @@ pub struct SequenceScores {
     /// Occupied query points per query scan (truth).
     pub occupied_points: BTreeMap<usize, usize>,
     /// Scores by method name.
-    pub methods: BTreeMap<String, MethodScores>,
+    pub methods: BTreeMap<MapMethodId, MethodScores>,
     /// The maps kept for figures.
     pub figures: Vec<MapFigure>,
 }
@@ -107,7 +107,7 @@ pub fn evaluate_sequence(
             .occupied_points
             .insert(t, scan.figure.truth.iter().filter(|&&o| o).count());
         for (name, (auc, seconds, output)) in &scan.maps {
-            let entry = scores.methods.entry(name.clone()).or_default();
+            let entry = scores.methods.entry(*name).or_default();
             entry.auc_by_query_scan.insert(t, *auc);
             entry.seconds_per_map.push(*seconds);
             entry.training_points_per_map.push(output.training_points);
@@ -136,7 +136,7 @@ pub fn evaluate_sequence(
 struct QueryScanScores {
     query_scan: usize,
     query_secs: f64,
-    maps: BTreeMap<String, (Option<f64>, f64, MapOutput)>,
+    maps: BTreeMap<MapMethodId, (Option<f64>, f64, MapOutput)>,
     figure: MapFigure,
 }
 
@@ -185,8 +185,8 @@ fn score_query_scan(
         let seconds = start.elapsed().as_secs_f64();
         // Score: ROC AUC of the probability of occupancy against the truth (Table 1).
         let auc = roc_auc(&output.probability, &truth);
-        on_map(method.name(), t);
-        maps.insert(method.name().to_owned(), (auc, seconds, output));
+        on_map(method.id().name(), t);
+        maps.insert(method.id(), (auc, seconds, output));
     }
     Ok(QueryScanScores {
         query_scan: t,

@@ -11,8 +11,8 @@ use patchflow_gp::{PlsParams, Shape, Stationary};
 use serde::{Deserialize, Serialize};
 
 use crate::{
-    GpSolver, MapMethod, MapOutput, OccupancyError, OccupancySample, Result, SampleParams,
-    ScanWindow, window_samples,
+    GpSolver, MapMethod, MapMethodId, MapOutput, OccupancyError, OccupancySample, Result,
+    SampleParams, ScanWindow, window_samples,
 };
 
 /// Which inputs a GPOM sees.
@@ -82,10 +82,10 @@ impl GpomMethod {
 }
 
 impl MapMethod for GpomMethod {
-    fn name(&self) -> &str {
+    fn id(&self) -> MapMethodId {
         match self.space {
-            GpomSpace::Space => "GPOM-RD",
-            GpomSpace::SpaceTime => "GPOM-RD1",
+            GpomSpace::Space => MapMethodId::GpomRd,
+            GpomSpace::SpaceTime => MapMethodId::GpomRd1,
         }
     }
 
@@ -93,7 +93,7 @@ impl MapMethod for GpomMethod {
         self.samples.validate()?;
         let scan = window.query_scan().map_or(0, |s| s.index);
         let degenerate = |reason: String| OccupancyError::Degenerate {
-            method: self.name().to_owned(),
+            method: self.id().name().to_owned(),
             scan,
             reason,
         };

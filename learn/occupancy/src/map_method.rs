@@ -5,7 +5,7 @@
 //! (a motion-adapted kernel with a learned velocity field) implements it as one more method,
 //! learned beforehand from a training run and carried inside the method value.
 
-use crate::{PlanarScan, Result};
+use crate::{MapMethodId, PlanarScan, Result};
 
 /// The scans one map is built from.
 #[derive(Debug, Clone, Copy)]
@@ -45,8 +45,8 @@ pub struct MapOutput {
 
 /// A way of building occupancy maps (GRID, GPOM-RD, GPOM-RD1, DGPOM).
 pub trait MapMethod: Send + Sync {
-    /// The method's name in reports (`GRID`, `GPOM-RD`, `GPOM-RD1`, `DGPOM`).
-    fn name(&self) -> &str;
+    /// The method's id, whose name reports show (`GRID`, `GPOM-RD`, `GPOM-RD1`, `DGPOM`).
+    fn id(&self) -> MapMethodId;
 
     /// Builds the map of `window` and predicts at `points_m` (world frame) at the window's query
     /// time: one map, fit and prediction, the unit the evaluation times.

@@ -6,7 +6,7 @@
 
 use std::collections::HashMap;
 
-use crate::{MapMethod, MapOutput, OccupancyError, PlanarScan, Result, ScanWindow};
+use crate::{MapMethod, MapMethodId, MapOutput, OccupancyError, PlanarScan, Result, ScanWindow};
 
 /// The occupancy grid as a map method.
 #[derive(Debug, Clone, PartialEq)]
@@ -22,8 +22,8 @@ impl Default for OccupancyGridMethod {
 }
 
 impl MapMethod for OccupancyGridMethod {
-    fn name(&self) -> &str {
-        "GRID"
+    fn id(&self) -> MapMethodId {
+        MapMethodId::Grid
     }
 
     fn map(&self, window: &ScanWindow<'_>, points_m: &[[f64; 2]]) -> Result<MapOutput> {

@@ -9,7 +9,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{MapMethod, OccupancyError, OccupancySequence, QueryGrid, Result, ScanWindow, roc_auc};
+use crate::{
+    MapMethod, MapMethodId, OccupancyError, OccupancySequence, QueryGrid, Result, ScanWindow,
+    roc_auc,
+};
 
 /// Which predictions ahead are scored.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -37,10 +40,10 @@ impl Default for AheadParams {
 }
 
 /// The AUC at each time since the last observation, over the start times.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct AheadScores {
     /// The method.
-    pub method: String,
+    pub method: MapMethodId,
     /// The start scans that were scored.
     pub start_scans: Vec<usize>,
     /// Per horizon (0, 1, … scans ahead): the time since the last observation, seconds (mean
@@ -88,7 +91,7 @@ pub fn evaluate_ahead(
         });
     }
     let mut scores = AheadScores {
-        method: method.name().to_owned(),
+        method: method.id(),
         start_scans: starts.clone(),
         seconds_ahead: vec![0.0; params.horizon_scans + 1],
         auc: vec![Vec::new(); params.horizon_scans + 1],
@@ -142,8 +145,10 @@ mod tests {
     #[test]
     fn mean_and_std_are_taken_over_the_start_times_of_each_horizon() {
         let scores = AheadScores {
+            method: MapMethodId::Dgpom,
+            start_scans: Vec::new(),
+            seconds_ahead: Vec::new(),
             auc: vec![vec![0.9, 0.7], vec![0.6]],
-            ..AheadScores::default()
         };
         let ms = scores.mean_std();
         assert!((ms[0].0 - 0.8).abs() < 1e-12 && (ms[0].1 - 0.1).abs() < 1e-12);

@@ -1,22 +1,16 @@
 //! `patchflow cv`: K-fold cross-validation tables after thesis Tables 4.1 to 4.4.
 
-use std::path::PathBuf;
-
 use patchflow_dataset::Dataset;
 use patchflow_eval::stages::{collect_samples_with_bar, cross_validate_with_bar};
 use patchflow_eval::{CvParams, write_cv_report};
 
-use crate::output_guard::{Input, OutputKind, check_output};
+use crate::common::DataAndReport;
 
 /// Arguments of `patchflow cv`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Dataset folder.
-    #[arg(long)]
-    pub data: PathBuf,
-    /// Report folder to write.
-    #[arg(long)]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub io: DataAndReport,
     /// Number of folds.
     #[arg(long, default_value_t = 5)]
     pub folds: usize,
@@ -24,19 +18,15 @@ pub struct Args {
 
 /// Runs `patchflow cv`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    check_output(
-        &args.out,
-        OutputKind::Folder,
-        &[Input::new("--data", &args.data)],
-    )?;
-    let dataset = Dataset::open(&args.data)?;
+    args.io.check_output(&[])?;
+    let dataset = Dataset::open(&args.io.data)?;
     let params = CvParams {
         folds: args.folds,
         ..CvParams::default()
     };
     let sets = collect_samples_with_bar(&dataset, &params.priors, params.samples, params.seed)?;
     let report = cross_validate_with_bar(&sets, &params)?;
-    write_cv_report(&report, &args.out)?;
-    println!("wrote {}", args.out.join("cv.md").display());
+    write_cv_report(&report, &args.io.out)?;
+    println!("wrote {}", args.io.out.join("cv.md").display());
     Ok(())
 }

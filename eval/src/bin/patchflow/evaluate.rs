@@ -10,27 +10,30 @@ use patchflow_eval::{
 };
 use patchflow_learn::{MOVING_FILE_NAME, MotionEstimator, MovingClassifier};
 
-use crate::output_guard::{Input, OutputKind, check_output};
+use crate::common::DataAndReport;
+use crate::output_guard::Input;
 
 /// Arguments of `patchflow evaluate`.
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("data", |a| a.help(
+    "Dataset folder holding the situations (sequences with an actor marked `target`)"
+)))]
 pub struct Args {
     /// Trained model file (from `patchflow train`); repeat to compare several (e.g. SPGP and SPGP-HET).
     #[arg(long, required = true)]
     pub model: Vec<PathBuf>,
-    /// Dataset folder holding the situations (sequences with an actor marked `target`).
-    #[arg(long)]
-    pub data: PathBuf,
-    /// Report folder to write.
-    #[arg(long)]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub io: DataAndReport,
 }
 
 /// Runs `patchflow evaluate`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let mut inputs = vec![Input::new("--data", &args.data)];
-    inputs.extend(args.model.iter().map(|m| Input::new("--model", m)));
-    check_output(&args.out, OutputKind::Folder, &inputs)?;
+    let models: Vec<Input<'_>> = args
+        .model
+        .iter()
+        .map(|m| Input::new("--model", m))
+        .collect();
+    args.io.check_output(&models)?;
     let estimators = args
         .model
         .iter()
@@ -47,11 +50,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         None
     };
-    let dataset = Dataset::open(&args.data)?;
+    let dataset = Dataset::open(&args.io.data)?;
     let mut report = evaluate_with_bar(&dataset, &estimators, moving.as_ref())?;
     let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
-    report.scene_figures = write_dataset_scene_figures(&dataset, &names, &args.out.join("plots"))?;
-    let files = write_report(&report, &args.out)?;
+    report.scene_figures =
+        write_dataset_scene_figures(&dataset, &names, &args.io.out.join("plots"))?;
+    let files = write_report(&report, &args.io.out)?;
     add_to_metrics(&files.metrics_json, provenance(&args.model, &estimators))?;
     if let Some(all) = PerceptionSummary::of_scenes(&report.scenes).last() {
         println!("perception: {}", all.line());

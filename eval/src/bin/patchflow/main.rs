@@ -3,6 +3,7 @@
 
 mod bench;
 mod choices;
+mod common;
 mod csv_table;
 mod cv;
 mod evaluate;

@@ -3,24 +3,21 @@
 //! scored by ROC AUC against exact truth; writes `occupancy.json`, `occupancy.md` and
 //! `plots/occupancy_*.png`.
 
-use std::path::PathBuf;
-
 use patchflow_dataset::Dataset;
 use patchflow_eval::stages::occupancy_with_bar;
 use patchflow_eval::{OccupancyReport, write_occupancy_report};
 use patchflow_occupancy::{AheadParams, OccupancyParams};
 
-use crate::output_guard::{Input, OutputKind, check_output};
+use crate::common::DataAndReport;
 
 /// Arguments of `patchflow occupancy`.
 #[derive(Debug, clap::Args)]
+#[command(mut_arg("data", |a| a.help(
+    "Dataset folder holding planar-scanner sequences (e.g. `generate dgpom_tjunction`)"
+)))]
 pub struct Args {
-    /// Dataset folder holding planar-scanner sequences (e.g. `generate dgpom_tjunction`).
-    #[arg(long)]
-    pub data: PathBuf,
-    /// Report folder to write.
-    #[arg(long)]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub io: DataAndReport,
     /// Seed of the free-space samples drawn along the beams.
     #[arg(long, default_value_t = 7)]
     pub seed: u64,
@@ -28,19 +25,15 @@ pub struct Args {
 
 /// Runs `patchflow occupancy`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    check_output(
-        &args.out,
-        OutputKind::Folder,
-        &[Input::new("--data", &args.data)],
-    )?;
-    let dataset = Dataset::open(&args.data)?;
+    args.io.check_output(&[])?;
+    let dataset = Dataset::open(&args.io.data)?;
     let report = occupancy_with_bar(
         &dataset,
         args.seed,
         &OccupancyParams::default(),
         &AheadParams::default(),
     )?;
-    let files = write_occupancy_report(&report, &args.out)?;
+    let files = write_occupancy_report(&report, &args.io.out)?;
     print_table(&report);
     println!(
         "wrote {} and {} plots",
