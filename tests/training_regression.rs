@@ -7,7 +7,7 @@
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
 use patchflow_eval::{CvGp, CvParams, cross_validate};
-use patchflow_learn::{EstimatorParams, FeatureKind, MotionEstimator, Sample, SampleSet};
+use patchflow_learn::{EstimatorParams, FeatureKind, MotionEstimator, SampleSet, TrainingSample};
 
 /// Re-recorded when training began to use mirror images and jittered speed alignments
 /// (2026-11-22, second session): measured 27.68° with seed 5 (seeds 6 and 7: 25.26°, 27.85°).
@@ -91,7 +91,7 @@ fn held_out_errors(scene: &str, params: &EstimatorParams) -> (f64, f64) {
     };
     let test = &set.samples[cut..];
     let model = MotionEstimator::fit_samples(&train, params).unwrap();
-    let rows = |pick: fn(&Sample) -> &Vec<f64>| -> Vec<f64> {
+    let rows = |pick: fn(&TrainingSample) -> &Vec<f64>| -> Vec<f64> {
         test.iter().flat_map(|s| pick(s).iter().copied()).collect()
     };
     let [sin, cos, speed] = model.regressors();

@@ -87,7 +87,7 @@ pub fn cross_validate_samples(
         let mirrored = params.mirror_images.then(|| set.mirror_images());
         for feature in [CvFeature::Patch, CvFeature::Gabor] {
             let fold_data = |set: &SampleSet| -> Result<FoldData, EvalError> {
-                let target = |f: fn(&patchflow_learn::Sample) -> f64| {
+                let target = |f: fn(&patchflow_learn::TrainingSample) -> f64| {
                     DVector::from_iterator(set.samples.len(), set.samples.iter().map(f))
                 };
                 Ok(FoldData {

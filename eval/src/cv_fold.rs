@@ -43,7 +43,7 @@ pub(crate) fn features_of(
     set: &SampleSet,
     feature: CvFeature,
     gabor: &GaborBank,
-    pick: impl Fn(&patchflow_learn::Sample) -> &Vec<f64>,
+    pick: impl Fn(&patchflow_learn::TrainingSample) -> &Vec<f64>,
 ) -> Result<DMatrix<f64>, EvalError> {
     let d = match feature {
         CvFeature::Patch => FeatureKind::Patch.names().len(),

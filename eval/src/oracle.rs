@@ -5,14 +5,14 @@
 use std::collections::BTreeMap;
 
 use patchflow_dataset::Sweep;
-use patchflow_learn::{Scan, SweepFeatures};
+use patchflow_learn::{FeaturedSweep, SweepFeatures};
 
 use crate::error::EvalError;
 use crate::observation::{ActorCluster, ClusterObservation, ScanObservation};
 use crate::truth_at_scan::TruthAtScan;
 
 /// The clusters of a scan and, from the labels, which cluster holds most of each actor's points.
-pub(crate) fn observe(scan: &Scan, features: &SweepFeatures) -> ScanObservation {
+pub(crate) fn observe(scan: &FeaturedSweep, features: &SweepFeatures) -> ScanObservation {
     let clusters = features
         .clusters()
         .iter()
@@ -66,7 +66,7 @@ pub(crate) fn target_cluster(features: &SweepFeatures, sweep: &Sweep) -> Option<
 
 /// The target's truth at a scan: velocity, range, and the points of its cluster.
 pub(crate) fn target_at(
-    scan: &Scan,
+    scan: &FeaturedSweep,
     features: &SweepFeatures,
     situation: &str,
 ) -> Result<TruthAtScan, EvalError> {

@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use patchflow_dataset::SequenceReader;
 use patchflow_learn::{
-    ClusterEstimate, ClusterMotion, FeatureParams, MotionEstimator, MovingClassifier, Scan,
-    ScanMotion, ScanStream, SweepFeatures,
+    ClusterEstimate, ClusterMotion, FeatureParams, FeaturedSweep, MotionEstimator,
+    MovingClassifier, ScanMotion, ScanStream, SweepFeatures,
 };
 
 use crate::baseline_params::BaselineParams;
@@ -104,7 +104,7 @@ pub fn evaluate_sequence(
     while let Some((index, sweep)) = stream.read_next()? {
         let cpu_start = process_cpu_secs();
         let features = stream.features_of(&sweep)?;
-        let scan = Scan {
+        let scan = FeaturedSweep {
             index,
             sweep,
             features,
@@ -145,7 +145,7 @@ pub fn evaluate_sequence(
 
 /// One scan: the estimators' whole-scan step, the target's estimate, the baselines, the scores.
 fn evaluate_scan(
-    scan: &Scan,
+    scan: &FeaturedSweep,
     cpu_start: Option<f64>,
     dt_secs: f64,
     (estimators, group_of, moving): (&[MotionEstimator], &[usize], Option<&MovingClassifier>),

@@ -10,7 +10,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::PathBuf;
 
 use patchflow_dataset::{Dataset, Sweep};
-use patchflow_learn::{FeatureKind, FeatureParams, HeightSlice, Sample, SampleSet};
+use patchflow_learn::{FeatureKind, FeatureParams, HeightSlice, SampleSet, TrainingSample};
 
 type Failure = Box<dyn std::error::Error>;
 
@@ -74,7 +74,7 @@ fn main() -> Result<(), Failure> {
         set.pool_size
     );
     // Samples grouped by sweep so each sweep pair is read once.
-    let mut by_sweep: BTreeMap<(String, u32), Vec<&Sample>> = BTreeMap::new();
+    let mut by_sweep: BTreeMap<(String, u32), Vec<&TrainingSample>> = BTreeMap::new();
     for s in &set.samples {
         by_sweep
             .entry((s.sequence.clone(), s.scan))

@@ -1,6 +1,10 @@
-//! The one error type of the learn crate.
+//! The one error type of the learn crate. File, model-file, parameter, data and numerical
+//! failures are the GP crate's [`GpError`] kinds, wrapped rather than copied; the constructors
+//! below build them for learn's own code.
 
-use std::path::PathBuf;
+use std::path::Path;
+
+use patchflow_gp::GpError;
 
 /// Errors of feature extraction, GP training and prediction, and model files.
 #[derive(Debug, thiserror::Error)]
@@ -8,45 +12,38 @@ pub enum LearnError {
     /// Reading a dataset failed (the message names the file).
     #[error(transparent)]
     Dataset(#[from] patchflow_dataset::DatasetError),
-    /// GP fitting, prediction or a GP model file failed (the message names the file).
+    /// A file, model-file, parameter, data or numerical failure, of the GP crate or of learn's
+    /// own code (the message names the file where there is one).
     #[error(transparent)]
-    Gp(#[from] patchflow_gp::GpError),
-    /// An operating-system error on a file.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file concerned.
-        path: PathBuf,
-        /// The underlying error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// A CSV or other input file has bad content.
-    #[error("{path}: line {line}: {reason}")]
-    Parse {
-        /// The file concerned.
-        path: PathBuf,
-        /// 1-based line number.
-        line: usize,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A model file is corrupt, of another kind, or of another version.
-    #[error("{path}: {reason}")]
-    Model {
-        /// The model file.
-        path: PathBuf,
-        /// What is wrong.
-        reason: String,
-    },
-    /// Parameters failed validation.
-    #[error("invalid parameters: {0}")]
-    InvalidParams(String),
-    /// The training data cannot be learned from (too few samples, non-finite values, ...).
-    #[error("degenerate training data: {0}")]
-    DegenerateData(String),
-    /// A factorisation failed even after the jitter retries.
-    #[error("numerical failure: {0}")]
-    Numerical(String),
+    Gp(#[from] GpError),
+}
+
+impl LearnError {
+    /// An operating-system error on `path`.
+    pub(crate) fn io(path: &Path, source: std::io::Error) -> Self {
+        Self::Gp(GpError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    /// A model file that is corrupt, of another kind, or of another version.
+    pub(crate) fn model(path: &Path, reason: String) -> Self {
+        Self::Gp(GpError::Model {
+            path: path.to_path_buf(),
+            reason,
+        })
+    }
+
+    /// Parameters that failed validation.
+    pub(crate) fn invalid_params(reason: String) -> Self {
+        Self::Gp(GpError::InvalidParams(reason))
+    }
+
+    /// Training data that cannot be learned from (too few samples, non-finite values, ...).
+    pub(crate) fn degenerate_data(reason: String) -> Self {
+        Self::Gp(GpError::DegenerateData(reason))
+    }
 }
 
 /// Result alias for the learn crate.

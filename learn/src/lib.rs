@@ -11,7 +11,7 @@
 //! | 2.2.1 single-link clusters | `features/cluster.rs`, `features/cluster_shape.rs` |
 //! | 2.2.2 map patches | `features/patch.rs` |
 //! | 2.2.3 Gabor responses | `features/gabor.rs` |
-//! | 3.1.1-3.1.2 training samples, importance sampling | `features/samples.rs`, `features/sampler.rs`, `features/sampling.rs` |
+//! | 3.1.1-3.1.2 training samples, importance sampling | `features/training_sample.rs`, `features/sample_set.rs`, `features/run_sampler.rs`, `features/importance_sampling.rs` |
 //! | 3.1.3 SPGP-HET objective | `patchflow-gp` (`learn/gp/src/fitc.rs`, `objective.rs`) |
 //! | 3.1.4 merge ALL / BEST | `estimator/merge.rs` |
 //! | Algorithm 3.1, the per-scan step | `estimator/scan_motion.rs` |
@@ -64,13 +64,13 @@ pub use features::{FeatureParams, FeatureValidParams, GaborParams, GroundMode};
 
 // ── One sweep's features (thesis Chapter 2) ─────────────────────────────────────────────────
 pub use features::{
-    ClusterShape, Clusters, FeatureKind, FeatureTiming, GaborBank, GridMap, GridWindow, GroundGrid,
-    HeightSlice, MIN_OBJECT_POINTS, PATCH_LEN, Patch, Scan, ScanStream, SlicedPoint, SweepFeatures,
-    synthetic, write_png,
+    ClusterShape, Clusters, FeatureKind, FeatureTiming, FeaturedSweep, GaborBank, GridMap,
+    GridWindow, GroundGrid, HeightSlice, MIN_OBJECT_POINTS, PATCH_LEN, Patch, ScanStream,
+    SlicedPoint, SweepFeatures, synthetic, write_png,
 };
 
 // ── Training samples (thesis 3.1.1-3.1.2) ───────────────────────────────────────────────────
-pub use features::{Alignment, Sample, SampleSet, importance_sample};
+pub use features::{Alignment, SampleSet, TrainingSample, importance_sample};
 
 // ── The motion estimator (thesis 3.1, Algorithm 3.1) ────────────────────────────────────────
 pub use estimator::{

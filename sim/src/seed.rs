@@ -2,20 +2,8 @@
 //! so any sweep can be produced on its own (exact resume) and the bytes do not depend on the
 //! number of threads.
 
-/// SplitMix64 finaliser: a bijective mix of 64 bits.
-pub(crate) fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-/// FNV-1a of a name: stable across platforms and Rust versions (unlike `DefaultHasher`).
-pub(crate) fn hash_name(name: &str) -> u64 {
-    name.bytes().fold(0xCBF2_9CE4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01B3)
-    })
-}
+/// SplitMix64 (a bijective mix of 64 bits) and FNV-1a of a name: the workspace's one copy.
+pub(crate) use patchflow_dataset::{fnv1a as hash_name, splitmix64 as mix};
 
 /// Key of one sweep's noise: all of its random draws derive from it.
 pub fn sweep_key(seed: u64, sequence: &str, sweep: u32) -> u64 {

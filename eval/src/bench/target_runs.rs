@@ -10,7 +10,8 @@ use std::collections::BTreeMap;
 
 use patchflow_dataset::{Dataset, SequenceReader};
 use patchflow_learn::{
-    ClusterEstimate, FeatureParams, MergeRule, MotionEstimator, MovingClassifier, Scan, ScanStream,
+    ClusterEstimate, FeatureParams, FeaturedSweep, MergeRule, MotionEstimator, MovingClassifier,
+    ScanStream,
 };
 use rayon::prelude::*;
 
@@ -122,7 +123,7 @@ fn evaluate_target(
     let mut stream = ScanStream::new(sequence, params)?;
     while let Some((index, sweep)) = stream.read_next()? {
         let features = stream.features_of(&sweep)?;
-        let scan = Scan {
+        let scan = FeaturedSweep {
             index,
             sweep,
             features,

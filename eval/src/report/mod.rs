@@ -31,6 +31,7 @@ pub(crate) use font::{FONT, ensure_font};
 pub use json::metrics_json;
 pub use map_view::write_map_figure;
 pub use metrics_extras::add_to_metrics;
+pub(crate) use plot::palette_colour;
 pub use scene_figure::{SceneFigures, write_dataset_scene_figures, write_scene_figures};
 #[cfg(test)]
 pub(crate) use synthetic::{synthetic_report, synthetic_situation};

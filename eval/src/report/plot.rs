@@ -42,7 +42,12 @@ const PALETTE: [RGBColor; 19] = [
 
 /// The colour of a method in every plot.
 pub(crate) fn colour_of(method: Method) -> RGBColor {
-    PALETTE[method.slot() % PALETTE.len()]
+    palette_colour(method.slot())
+}
+
+/// The `k`-th colour of the one palette of every plot (cycling).
+pub(crate) fn palette_colour(k: usize) -> RGBColor {
+    PALETTE[k % PALETTE.len()]
 }
 
 /// Seconds between scans: the situations' lidar turns at 10 Hz (SPEC §3).

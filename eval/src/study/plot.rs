@@ -6,25 +6,11 @@ use std::path::{Path, PathBuf};
 use plotters::prelude::*;
 
 use crate::error::EvalError;
-use crate::report::{FONT, create_dir, ensure_font};
+use crate::report::{FONT, create_dir, ensure_font, palette_colour};
 use crate::study::measures::{MEASURES, study_methods};
 use crate::study::study_report::StudyReport;
 
 const SIZE_PX: (u32, u32) = (900, 520);
-
-/// A colour per method slot (tab10 and two spares).
-const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(23, 190, 207),
-    RGBColor(44, 160, 44),
-    RGBColor(188, 189, 34),
-    RGBColor(214, 39, 40),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(127, 127, 127),
-    RGBColor(227, 119, 194),
-];
 
 /// Draws `plots/study_<name>_<measure>.png` for every measure; returns the files.
 pub(crate) fn plot_study(report: &StudyReport, dir: &Path) -> Result<Vec<PathBuf>, EvalError> {
@@ -103,7 +89,7 @@ fn draw(
         .draw()
         .map_err(|x| e(&x))?;
     for (k, (method, points)) in curves.iter().enumerate() {
-        let colour = PALETTE[k % PALETTE.len()];
+        let colour = palette_colour(k);
         chart
             .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
             .map_err(|x| e(&x))?

@@ -5,6 +5,7 @@
 //! random place within its stretch, so beams of one scan do not put their samples on common
 //! circles around the sensor.
 
+use patchflow_dataset::{GOLDEN_GAMMA, splitmix64_finalize};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
@@ -143,10 +144,7 @@ pub fn scan_samples(scan: &PlanarScan, params: &SampleParams) -> Vec<OccupancySa
 /// Seed of one beam's stream: a SplitMix64-style mix of the run seed, the scan and the beam, so
 /// a scan's samples do not depend on which other scans are drawn.
 fn stream_seed(seed: u64, scan: usize, beam: usize) -> u64 {
-    let mut z = seed ^ (scan as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ (beam as u64) << 32;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
+    splitmix64_finalize(seed ^ (scan as u64).wrapping_mul(GOLDEN_GAMMA) ^ (beam as u64) << 32)
 }
 
 #[cfg(test)]

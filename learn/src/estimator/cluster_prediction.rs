@@ -170,7 +170,7 @@ impl MotionEstimator {
                         kind => features.feature_of(&features.patch_at(xy, axis_rad), kind),
                     };
                     if values.len() != d {
-                        return Err(LearnError::DegenerateData(format!(
+                        return Err(LearnError::degenerate_data(format!(
                             "a {:?} feature row has {} values, expected {d}",
                             self.feature,
                             values.len()

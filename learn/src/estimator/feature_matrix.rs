@@ -14,7 +14,7 @@ pub fn rows_to_matrix<'a>(
     let mut x = DMatrix::zeros(n, d);
     for (r, row) in rows.enumerate() {
         if row.len() != d {
-            return Err(LearnError::DegenerateData(format!(
+            return Err(LearnError::degenerate_data(format!(
                 "feature row {r} has {} values, expected {d}",
                 row.len()
             )));

@@ -166,10 +166,7 @@ impl MotionEstimator {
             speed: without_timing(self.speed.gp.to_json_value()?),
             extras: self.extras_record()?,
         };
-        let model_err = |reason: String| LearnError::Model {
-            path: path.to_path_buf(),
-            reason,
-        };
+        let model_err = |reason: String| LearnError::model(path, reason);
         let mut bytes = serde_json::to_vec(&file).map_err(|e| model_err(e.to_string()))?;
         bytes.push(b'\n');
         patchflow_dataset::write_atomic(path, &bytes)?;
@@ -179,10 +176,7 @@ impl MotionEstimator {
     /// Reads a model written by [`MotionEstimator::save`]; another format or version, or a
     /// corrupt file, is an error naming the file.
     pub fn load(path: &Path) -> Result<Self> {
-        let model_err = |reason: String| LearnError::Model {
-            path: path.to_path_buf(),
-            reason,
-        };
+        let model_err = |reason: String| LearnError::model(path, reason);
         let bytes = patchflow_dataset::read_limited(path, MAX_MODEL_BYTES)?;
         let value: Value = serde_json::from_slice(&bytes)
             .map_err(|e| model_err(format!("not valid JSON: {e}")))?;

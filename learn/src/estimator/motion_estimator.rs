@@ -95,13 +95,13 @@ impl MotionEstimator {
     pub fn fit_checked(set: &SampleSet, params: &EstimatorValidParams) -> Result<Self> {
         let start = std::time::Instant::now();
         if set.kind != params.feature {
-            return Err(LearnError::InvalidParams(format!(
+            return Err(LearnError::invalid_params(format!(
                 "the samples carry {:?} features but the estimator parameters ask for {:?}",
                 set.kind, params.feature
             )));
         }
         if set.features != params.features {
-            return Err(LearnError::InvalidParams(format!(
+            return Err(LearnError::invalid_params(format!(
                 "the samples were drawn with feature parameters {:?} but the estimator parameters hold {:?}; draw them with EstimatorParams::features",
                 set.features, params.features
             )));
@@ -117,7 +117,7 @@ impl MotionEstimator {
             set
         };
         if set.samples.len() < 2 {
-            return Err(LearnError::DegenerateData(format!(
+            return Err(LearnError::degenerate_data(format!(
                 "{} training samples on moving actors; the dataset needs moving actors in the height slice",
                 set.samples.len()
             )));
@@ -206,7 +206,7 @@ impl MotionEstimator {
         if run_time == *self.features.params() {
             Ok(())
         } else {
-            Err(LearnError::InvalidParams(format!(
+            Err(LearnError::invalid_params(format!(
                 "features computed with {:?}, but the model was trained with {:?}; compute them with MotionEstimator::feature_params",
                 features.params(),
                 self.features.params()
@@ -245,3 +245,11 @@ impl MotionEstimator {
 #[cfg(test)]
 #[path = "motion_estimator_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "saved_model_tests.rs"]
+mod saved_model_tests;
+
+#[cfg(test)]
+#[path = "training_data_tests.rs"]
+mod training_data_tests;

@@ -1,4 +1,5 @@
-//! Tests of the motion estimator: training, the per-scan step, model files.
+//! Tests of the motion estimator: training and the per-scan step, and the fixtures (a car
+//! driving past, a small dataset, small parameters) the other estimator tests share.
 
 use super::*;
 use crate::estimator::merge::{HeadingVote, merge_heading, merge_scalar};
@@ -9,7 +10,7 @@ use crate::{
 use patchflow_dataset::{Pose, SequenceWriter, Sweep};
 
 /// A car at `speed_mps` driving at `heading_rad` past a sensor at the origin; `sweeps` sweeps.
-fn car_sweeps(heading_rad: f64, speed_mps: f64, sweeps: u32) -> Vec<Sweep> {
+pub(super) fn car_sweeps(heading_rad: f64, speed_mps: f64, sweeps: u32) -> Vec<Sweep> {
     let lidar = SyntheticLidar::with_resolution(24, 900);
     let start = [
         12.0 - 6.0 * heading_rad.cos(),
@@ -26,7 +27,7 @@ fn car_sweeps(heading_rad: f64, speed_mps: f64, sweeps: u32) -> Vec<Sweep> {
     out
 }
 
-fn write_dataset(root: &std::path::Path, tracks: &[(f64, f64)]) -> Dataset {
+pub(super) fn write_dataset(root: &std::path::Path, tracks: &[(f64, f64)]) -> Dataset {
     for (k, &(heading, speed)) in tracks.iter().enumerate() {
         let writer = SequenceWriter::open(root, &format!("track{k:02}")).unwrap();
         let sweeps = car_sweeps(heading, speed, 8);
@@ -42,7 +43,7 @@ fn write_dataset(root: &std::path::Path, tracks: &[(f64, f64)]) -> Dataset {
     Dataset::open(root).unwrap()
 }
 
-fn small_params() -> EstimatorParams {
+pub(super) fn small_params() -> EstimatorParams {
     EstimatorParams {
         gp: GpKind::Spgp,
         features: FeatureParams {
@@ -56,7 +57,11 @@ fn small_params() -> EstimatorParams {
     }
 }
 
-fn estimate_for(estimator: &MotionEstimator, heading_rad: f64, speed_mps: f64) -> ClusterEstimate {
+pub(super) fn estimate_for(
+    estimator: &MotionEstimator,
+    heading_rad: f64,
+    speed_mps: f64,
+) -> ClusterEstimate {
     let sweeps = car_sweeps(heading_rad, speed_mps, 4);
     let features =
         SweepFeatures::compute(&sweeps[2], &sweeps[3], estimator.feature_params()).unwrap();
@@ -90,7 +95,7 @@ fn a_trained_estimator_recovers_heading_and_speed_of_a_held_out_car() {
 }
 
 /// A quickly trained estimator (its accuracy does not matter where it is used).
-fn quick_estimator(dir: &std::path::Path) -> MotionEstimator {
+pub(super) fn quick_estimator(dir: &std::path::Path) -> MotionEstimator {
     let dataset = write_dataset(dir, &[(0.5, 5.0), (-1.5, 7.0), (2.5, 4.0)]);
     let params = EstimatorParams {
         samples: 100,
@@ -265,165 +270,6 @@ fn every_point_of_an_estimated_cluster_gets_its_own_heading_and_speed() {
         let [vx, vy] = point.velocity_xy_mps();
         assert!((vx.hypot(vy) - point.speed_mps).abs() < 1e-9);
     }
-}
-
-#[test]
-fn a_saved_model_loads_and_predicts_identically() {
-    let dir = tempfile::tempdir().unwrap();
-    let estimator = quick_estimator(dir.path());
-    let path = dir.path().join("model.json");
-    estimator.save(&path).unwrap();
-    let loaded = MotionEstimator::load(&path).unwrap();
-    assert_eq!(loaded.feature_params(), estimator.feature_params());
-    assert_eq!(
-        estimate_for(&loaded, 0.5, 5.0),
-        estimate_for(&estimator, 0.5, 5.0)
-    );
-}
-
-#[test]
-fn a_saved_model_with_pls_projections_and_noise_gps_loads_and_predicts_identically() {
-    let dir = tempfile::tempdir().unwrap();
-    let dataset = write_dataset(dir.path(), &[(0.5, 5.0), (-1.5, 7.0), (2.5, 4.0)]);
-    let params = EstimatorParams {
-        samples: 100,
-        pseudo_inputs: 8,
-        max_iters: 15,
-        projection_dims: 4,
-        most_likely_noise: true,
-        ..small_params()
-    };
-    let estimator = MotionEstimator::train(&dataset, &params).unwrap();
-    assert!(
-        estimator
-            .regressors()
-            .iter()
-            .all(|r| { r.projection.as_ref().is_some_and(|p| p.dims == 4) && r.noise.is_some() })
-    );
-    let path = dir.path().join("model.json");
-    estimator.save(&path).unwrap();
-    let loaded = MotionEstimator::load(&path).unwrap();
-    assert_eq!(
-        estimate_for(&loaded, 0.5, 5.0),
-        estimate_for(&estimator, 0.5, 5.0)
-    );
-}
-
-#[test]
-fn a_model_file_of_another_version_is_refused_naming_the_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("old.json");
-    std::fs::write(
-        &path,
-        r#"{"format": "patchflow-motion-model", "version": 0}"#,
-    )
-    .unwrap();
-    let err = MotionEstimator::load(&path).unwrap_err().to_string();
-    assert!(
-        err.contains("old.json") && err.contains("version 0"),
-        "{err}"
-    );
-}
-
-#[test]
-fn a_dataset_without_moving_actors_is_a_clear_error() {
-    let dir = tempfile::tempdir().unwrap();
-    let dataset = write_dataset(dir.path(), &[(0.0, 0.0)]);
-    let err = MotionEstimator::train(&dataset, &small_params()).unwrap_err();
-    assert!(
-        matches!(
-            err,
-            LearnError::DegenerateData(_) | LearnError::InvalidParams(_)
-        ),
-        "{err}"
-    );
-}
-
-#[test]
-fn mirror_images_double_the_rows_each_gp_is_fitted_to() {
-    let dir = tempfile::tempdir().unwrap();
-    let dataset = write_dataset(dir.path(), &[(0.4, 5.0)]);
-    let params = EstimatorParams {
-        max_iters: 5,
-        ..small_params()
-    };
-    let set = SampleSet::collect(
-        &dataset,
-        &params.features,
-        params.feature,
-        params.samples,
-        params.seed,
-    )
-    .unwrap();
-    let n = set.samples.len();
-    let with = MotionEstimator::fit_samples(&set, &params).unwrap();
-    let thesis = EstimatorParams {
-        mirror_images: false,
-        ..params
-    };
-    let without = MotionEstimator::fit_samples(&set, &thesis).unwrap();
-    assert!(with.gps().iter().all(|gp| gp.fit_report().n == 2 * n));
-    assert!(without.gps().iter().all(|gp| gp.fit_report().n == n));
-    assert_eq!(with.training().samples, n);
-    assert!(with.training().mirror_images && !without.training().mirror_images);
-}
-
-#[test]
-fn fit_samples_uses_the_first_params_samples_and_refuses_samples_drawn_otherwise() {
-    let dir = tempfile::tempdir().unwrap();
-    let dataset = write_dataset(dir.path(), &[(0.4, 5.0)]);
-    let params = EstimatorParams {
-        max_iters: 5,
-        ..small_params()
-    };
-    let set =
-        SampleSet::collect(&dataset, &params.features, params.feature, 300, params.seed).unwrap();
-    assert!(set.samples.len() > 20, "{} samples", set.samples.len());
-    let fewer = EstimatorParams {
-        samples: 20,
-        mirror_images: false,
-        ..params.clone()
-    };
-    let estimator = MotionEstimator::fit_samples(&set, &fewer).unwrap();
-    assert_eq!(estimator.training().samples, 20);
-    assert!(estimator.gps().iter().all(|gp| gp.fit_report().n == 20));
-    assert_eq!(estimator.feature_params(), &params.features);
-    let other_prior = EstimatorParams {
-        features: FeatureParams {
-            prior: 0.01,
-            ..params.features.clone()
-        },
-        ..fewer.clone()
-    };
-    let err = MotionEstimator::fit_samples(&set, &other_prior).unwrap_err();
-    assert!(err.to_string().contains("feature parameters"), "{err}");
-    let other_kind = EstimatorParams {
-        feature: FeatureKind::Gabor,
-        ..fewer
-    };
-    assert!(MotionEstimator::fit_samples(&set, &other_kind).is_err());
-}
-
-#[test]
-fn features_computed_with_other_parameters_than_the_models_are_refused() {
-    let dir = tempfile::tempdir().unwrap();
-    let dataset = write_dataset(dir.path(), &[(0.4, 5.0)]);
-    let params = EstimatorParams {
-        samples: 40,
-        max_iters: 5,
-        ..small_params()
-    };
-    let estimator = MotionEstimator::train(&dataset, &params).unwrap();
-    let sweeps = car_sweeps(0.4, 5.0, 4);
-    let other = FeatureParams {
-        half_extent_m: 15.0,
-        ..estimator.feature_params().clone()
-    };
-    let features = SweepFeatures::compute(&sweeps[2], &sweeps[3], &other).unwrap();
-    let err = estimator.estimate_features(&features).unwrap_err();
-    assert!(err.to_string().contains("trained with"), "{err}");
-    let same = SweepFeatures::compute(&sweeps[2], &sweeps[3], estimator.feature_params()).unwrap();
-    estimator.estimate_features(&same).unwrap();
 }
 
 #[test]

@@ -28,7 +28,7 @@ pub struct EstimatorParams {
     /// Importance-sampled training samples (thesis 3.1.2: 1,600).
     pub samples: usize,
     /// Also train on each sample's mirror image across its line of sight (2 × `samples` rows;
-    /// see `Sample::mirror_image`): balances the sides that right-hand traffic favours. `false`
+    /// see `TrainingSample::mirror_image`): balances the sides that right-hand traffic favours. `false`
     /// is the thesis' training set.
     pub mirror_images: bool,
     /// Pseudo-inputs per sparse GP (thesis 4.3: 100).
@@ -112,18 +112,18 @@ impl EstimatorParams {
 
     fn validate(&self) -> Result<()> {
         if self.samples < 10 {
-            return Err(LearnError::InvalidParams(format!(
+            return Err(LearnError::invalid_params(format!(
                 "samples must be at least 10, got {}",
                 self.samples
             )));
         }
         if self.gp != GpKind::Full && self.pseudo_inputs == 0 {
-            return Err(LearnError::InvalidParams(
+            return Err(LearnError::invalid_params(
                 "a sparse GP needs at least one pseudo-input".into(),
             ));
         }
         if self.max_iters == 0 {
-            return Err(LearnError::InvalidParams(
+            return Err(LearnError::invalid_params(
                 "max_iters must be at least 1".into(),
             ));
         }

@@ -31,7 +31,7 @@ impl Projection {
     pub fn fit(x: &DMatrix<f64>, y: &DVector<f64>, dims: usize) -> Result<Self> {
         let (n, d) = (x.nrows(), x.ncols());
         if n < 2 || d == 0 || dims == 0 || y.len() != n {
-            return Err(LearnError::InvalidParams(format!(
+            return Err(LearnError::invalid_params(format!(
                 "a PLS projection needs 2 or more rows, 1 or more columns and directions, and one \
                  target per row; got {n}×{d}, {dims} directions, {} targets",
                 y.len()
@@ -74,7 +74,7 @@ impl Projection {
             p_cols.push(p);
         }
         if w_cols.is_empty() {
-            return Err(LearnError::DegenerateData(
+            return Err(LearnError::degenerate_data(
                 "the PLS projection found no direction that covaries with the target (constant \
                  target or inputs)"
                     .into(),
@@ -87,7 +87,7 @@ impl Projection {
         // triangular, so it always inverts).
         let ptw = p.tr_mul(&w);
         let inv = ptw.try_inverse().ok_or_else(|| {
-            LearnError::DegenerateData("the PLS loadings are linearly dependent".into())
+            LearnError::degenerate_data("the PLS loadings are linearly dependent".into())
         })?;
         let mut r = w * inv;
         // Unit variance per score column on the training set.
@@ -119,7 +119,7 @@ impl Projection {
     pub fn apply_rows(&self, rows: &[f64]) -> Result<Vec<f64>> {
         let d = self.input_dims();
         if d == 0 || !rows.len().is_multiple_of(d) {
-            return Err(LearnError::InvalidParams(format!(
+            return Err(LearnError::invalid_params(format!(
                 "{} values are not whole rows of the projection's {d} inputs",
                 rows.len()
             )));

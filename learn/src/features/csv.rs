@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::Result;
-use crate::features::samples::SampleSet;
+use crate::features::sample_set::SampleSet;
 
 /// Which of a sample's two feature vectors goes into the CSV.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -77,7 +77,7 @@ fn quote(field: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::features::samples::tests::write_dataset;
+    use crate::features::sample_set::tests::write_dataset;
     use crate::{FeatureKind, FeatureParams};
     use patchflow_dataset::Dataset;
 

@@ -172,7 +172,7 @@ pub(crate) fn points_in_world(sweep: &Sweep) -> Result<Vec<[f64; 3]>> {
         .enumerate()
         .map(|(index, p)| {
             if !p.iter().all(|v| v.is_finite()) {
-                return Err(LearnError::DegenerateData(format!(
+                return Err(LearnError::degenerate_data(format!(
                     "sweep {}: point {index} is not finite",
                     sweep.index
                 )));

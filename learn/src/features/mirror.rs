@@ -16,8 +16,8 @@
 use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GABOR_FILTERS;
 use crate::features::patch::{PATCH_CELLS, PATCH_LEN, PATCH_SIDE, Patch};
-use crate::features::sample::Sample;
-use crate::features::samples::SampleSet;
+use crate::features::sample_set::SampleSet;
+use crate::features::training_sample::TrainingSample;
 
 impl Patch {
     /// The patch reflected across its reference axis: row `r` becomes row `10 − r` in both halves.
@@ -54,10 +54,10 @@ impl FeatureKind {
     }
 }
 
-impl Sample {
+impl TrainingSample {
     /// This sample in the world reflected across its line of sight (see the module docs).
-    pub fn mirror_image(&self, kind: FeatureKind) -> Sample {
-        Sample {
+    pub fn mirror_image(&self, kind: FeatureKind) -> TrainingSample {
+        TrainingSample {
             sin_rel: -self.sin_rel,
             heading_rad: 2.0 * self.bearing_rad - self.heading_rad,
             heading_features: kind.mirror(&self.heading_features),
@@ -186,7 +186,7 @@ mod tests {
 
     #[test]
     fn a_mirror_image_flips_the_sine_target_and_keeps_the_rest() {
-        let s = Sample {
+        let s = TrainingSample {
             sequence: "t".into(),
             scan: 3,
             point: 9,

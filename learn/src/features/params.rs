@@ -96,7 +96,7 @@ impl FeatureParams {
     /// Checks ranges; [`Self::check`] runs this once at the boundary, and every stage below
     /// takes the checked [`FeatureValidParams`](crate::FeatureValidParams).
     pub(crate) fn validate(&self) -> Result<()> {
-        let bad = |what: &str| Err(LearnError::InvalidParams(what.to_owned()));
+        let bad = |what: &str| Err(LearnError::invalid_params(what.to_owned()));
         let finite = [
             self.slice_min_m,
             self.slice_max_m,
@@ -236,7 +236,7 @@ impl GaborParams {
         if ok {
             Ok(())
         } else {
-            Err(LearnError::InvalidParams(
+            Err(LearnError::invalid_params(
                 "Gabor wavelength, sigma and gamma must be positive".into(),
             ))
         }

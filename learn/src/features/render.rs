@@ -122,7 +122,7 @@ fn box_corners(centre: [f64; 3], size: [f64; 3], yaw_rad: f64) -> [[f64; 2]; 4] 
 
 fn encode(canvas: &Canvas) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
-    let failed = |e: png::EncodingError| LearnError::DegenerateData(format!("PNG encoding: {e}"));
+    let failed = |e: png::EncodingError| LearnError::degenerate_data(format!("PNG encoding: {e}"));
     let mut encoder = png::Encoder::new(&mut bytes, canvas.width as u32, canvas.height as u32);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);

@@ -9,9 +9,10 @@ use patchflow_dataset::{SequenceReader, Sweep};
 use crate::features::slice::HeightSlice;
 use crate::{FeatureParams, FeatureValidParams, Result, SweepFeatures};
 
-/// One scan of a stream: the current sweep and its features for every parameter set asked for.
+/// One step of a [`ScanStream`]: the current sweep and its features for every parameter set
+/// asked for (named apart from the simulator's `Scan`, one sweep's raw per-point output).
 #[derive(Debug, Clone)]
-pub struct Scan {
+pub struct FeaturedSweep {
     /// Index of the current sweep in its sequence (at least 1: the first sweep has no predecessor).
     pub index: usize,
     /// The current sweep.
@@ -110,12 +111,12 @@ impl<'a> ScanStream<'a> {
         Ok(features)
     }
 
-    fn advance(&mut self) -> Result<Option<Scan>> {
+    fn advance(&mut self) -> Result<Option<FeaturedSweep>> {
         let Some((index, sweep)) = self.read_next()? else {
             return Ok(None);
         };
         let features = self.features_of(&sweep)?;
-        Ok(Some(Scan {
+        Ok(Some(FeaturedSweep {
             index,
             sweep,
             features,
@@ -124,7 +125,7 @@ impl<'a> ScanStream<'a> {
 }
 
 impl Iterator for ScanStream<'_> {
-    type Item = Result<Scan>;
+    type Item = Result<FeaturedSweep>;
 
     fn next(&mut self) -> Option<Self::Item> {
         match self.advance() {
@@ -175,7 +176,7 @@ mod tests {
         };
         let stream = ScanStream::new(&reader, vec![params.clone()]).unwrap();
         assert_eq!(stream.remaining(), 3);
-        let scans: Vec<Scan> = stream.map(Result::unwrap).collect();
+        let scans: Vec<FeaturedSweep> = stream.map(Result::unwrap).collect();
         assert_eq!(scans.iter().map(|s| s.index).collect::<Vec<_>>(), [1, 2, 3]);
         for scan in &scans {
             let prev = reader.read_sweep(scan.index - 1).unwrap();

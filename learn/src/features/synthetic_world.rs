@@ -3,7 +3,9 @@
 //! and let the rest through, scanned by the ideal [`SyntheticLidar`].
 
 use nalgebra::{Translation3, UnitQuaternion, Vector3};
-use patchflow_dataset::{ObjectTruth, PointLabel, Pose, SemanticClass, Sweep};
+use patchflow_dataset::{
+    GOLDEN_GAMMA, ObjectTruth, PointLabel, Pose, SemanticClass, Sweep, splitmix64_finalize,
+};
 
 use super::synthetic_canopy::SyntheticCanopy;
 use super::synthetic_ground::SyntheticGround;
@@ -207,12 +209,10 @@ fn objects(boxes: &[SceneBox], floors: &[f64], counts: &[u32]) -> Vec<ObjectTrut
 
 /// A deterministic number in [0, 1) from a ray and a canopy (SplitMix64 finaliser).
 fn unit_hash(ray: u64, canopy: u64) -> f64 {
-    let mut z = ray
-        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        .wrapping_add(canopy.wrapping_mul(0xD1B5_4A32_D192_ED03));
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^= z >> 31;
+    let z = splitmix64_finalize(
+        ray.wrapping_mul(GOLDEN_GAMMA)
+            .wrapping_add(canopy.wrapping_mul(0xD1B5_4A32_D192_ED03)),
+    );
     (z >> 11) as f64 / (1u64 << 53) as f64
 }
 

@@ -107,7 +107,7 @@ impl MovingClassifier {
     /// many static ones, drawn uniformly.
     pub fn fit(mut rows: Vec<([f64; 6], bool)>, params: &MovingParams) -> Result<Self> {
         if rows.iter().any(|(x, _)| x.iter().any(|v| !v.is_finite())) {
-            return Err(LearnError::DegenerateData(
+            return Err(LearnError::degenerate_data(
                 "a cluster's moving-classifier inputs are not finite".into(),
             ));
         }
@@ -122,7 +122,7 @@ impl MovingClassifier {
         rows.extend(still.into_iter().take(n));
         let moving_rows = rows.iter().filter(|(_, moving)| *moving).count();
         if moving_rows == 0 || moving_rows == rows.len() {
-            return Err(LearnError::DegenerateData(format!(
+            return Err(LearnError::degenerate_data(format!(
                 "{} clusters, {moving_rows} of them moving: the moving classifier needs both classes",
                 rows.len()
             )));
@@ -187,31 +187,16 @@ impl MovingClassifier {
             squashing: self.squashing,
             gp: self.gp.to_json_value()?,
         };
-        let model = |reason: String| LearnError::Model {
-            path: path.to_path_buf(),
-            reason,
-        };
+        let model = |reason: String| LearnError::model(path, reason);
         let mut bytes = serde_json::to_vec(&file).map_err(|e| model(e.to_string()))?;
         bytes.push(b'\n');
-        let tmp = path.with_extension("json.tmp");
-        let io = |source| LearnError::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        std::fs::write(&tmp, bytes).map_err(io)?;
-        std::fs::rename(&tmp, path).map_err(io)
+        Ok(patchflow_dataset::write_atomic(path, &bytes)?)
     }
 
     /// Reads a classifier written by [`Self::save`], checking format, version and inputs.
     pub fn load(path: &Path) -> Result<Self> {
-        let model = |reason: String| LearnError::Model {
-            path: path.to_path_buf(),
-            reason,
-        };
-        let bytes = std::fs::read(path).map_err(|source| LearnError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let model = |reason: String| LearnError::model(path, reason);
+        let bytes = std::fs::read(path).map_err(|source| LearnError::io(path, source))?;
         let value: serde_json::Value =
             serde_json::from_slice(&bytes).map_err(|e| model(format!("not JSON: {e}")))?;
         let format = value.get("format").and_then(|f| f.as_str()).unwrap_or("");

@@ -4,14 +4,25 @@
 
 use serde::{Deserialize, Serialize};
 
-/// What kind of range sensor wrote a sequence.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+/// What kind of range sensor wrote a sequence, or a scenario's `[lidar]` table describes (the
+/// simulator's scenario files use this type too).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SensorKind {
-    /// A spinning multi-beam lidar (columns over the full turn, rolling shutter).
+    /// A spinning multi-beam lidar (columns over the full turn, rolling shutter; HDL-64E-like),
+    /// the default.
+    #[default]
     Spinning,
-    /// A planar range scanner (one channel at 0°, beams over a field of view, one instant per scan).
+    /// A planar range scanner (one channel at 0°, beams over a field of view, one instant per scan;
+    /// SICK LMS291-like).
     Planar,
+}
+
+impl SensorKind {
+    /// True for the spinning lidar (the kind left out of resolved scenario files).
+    pub fn is_spinning(&self) -> bool {
+        *self == Self::Spinning
+    }
 }
 
 /// The beam pattern of a sequence's sensor, sensor frame (x forward, y left, z up).

@@ -3,7 +3,7 @@
 //! Velodyne, so the seam of a sweep lies behind the ego car as in KITTI; a planar scanner's
 //! columns are its beams over its field of view (`planar_scanner.rs`).
 
-use patchflow_dataset::{SensorInfo, SensorKind as DatasetSensorKind};
+use patchflow_dataset::SensorInfo;
 
 use super::planar_scanner::planar_azimuth_rad;
 use crate::scenario::{ElevationSpacing, LidarConfig, SensorKind};
@@ -59,10 +59,7 @@ pub fn sensor_info(config: &LidarConfig) -> SensorInfo {
         0.0
     };
     SensorInfo {
-        kind: match config.kind {
-            SensorKind::Spinning => DatasetSensorKind::Spinning,
-            SensorKind::Planar => DatasetSensorKind::Planar,
-        },
+        kind: config.kind,
         rate_hz: config.rate_hz,
         max_range_m: config.max_range_m,
         mount_height_m: config.mount_height_m,

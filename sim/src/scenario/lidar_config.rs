@@ -20,24 +20,8 @@ pub enum ElevationSpacing {
     Uniform,
 }
 
-/// Which range sensor the `[lidar]` table describes.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SensorKind {
-    /// A spinning multi-beam lidar (the default, HDL-64E-like).
-    #[default]
-    Spinning,
-    /// A planar range scanner: one channel at 0° elevation, `beams` beams over `fov_deg`
-    /// centred on the sensor's forward axis, each scan cast at one instant (SICK LMS291-like).
-    Planar,
-}
-
-impl SensorKind {
-    /// True for the spinning lidar (the kind left out of resolved scenario files).
-    pub fn is_spinning(&self) -> bool {
-        *self == Self::Spinning
-    }
-}
+/// Which range sensor the `[lidar]` table describes: the dataset's own type, one for both.
+pub use patchflow_dataset::SensorKind;
 
 /// Settings of the range sensor. Every field can be overridden in a scenario's `[lidar]` table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -5,11 +5,12 @@
 //! the opening on the way. One collider per building instead of a hundred pier and band boxes
 //! keeps the ray-cast tree small. Hits on glass report `FeatureId::Face(1)`, on wall `Face(0)`.
 
-use rapier3d::parry::bounding_volume::{Aabb, BoundingSphere};
-use rapier3d::parry::mass_properties::MassProperties;
+use rapier3d::parry::bounding_volume::Aabb;
 use rapier3d::parry::query::{PointProjection, PointQuery, Ray, RayCast, RayIntersection};
-use rapier3d::parry::shape::{FeatureId, Shape, ShapeType, TypedShape};
+use rapier3d::parry::shape::FeatureId;
 use rapier3d::prelude::{Real, Vector};
+
+use super::custom_shape::{CustomShape, impl_parry_shape};
 
 /// Feature id of a glass hit.
 pub const GLASS_FEATURE: FeatureId = FeatureId::Face(1);
@@ -174,43 +175,21 @@ impl PointQuery for FacadeShape {
     }
 }
 
-impl Shape for FacadeShape {
-    fn compute_local_aabb(&self) -> Aabb {
+impl CustomShape for FacadeShape {
+    fn local_aabb(&self) -> Aabb {
         Aabb::new(-self.half, self.half)
     }
 
-    fn compute_local_bounding_sphere(&self) -> BoundingSphere {
-        self.compute_local_aabb().bounding_sphere()
-    }
-
-    fn clone_dyn(&self) -> Box<dyn Shape> {
-        Box::new(self.clone())
-    }
-
-    fn scale_dyn(&self, _scale: Vector, _num_subdivisions: u32) -> Option<Box<dyn Shape>> {
-        None
-    }
-
-    fn mass_properties(&self, _density: Real) -> MassProperties {
-        MassProperties::default()
-    }
-
-    fn shape_type(&self) -> ShapeType {
-        ShapeType::Custom
-    }
-
-    fn as_typed_shape(&self) -> TypedShape<'_> {
-        TypedShape::Custom(self)
-    }
-
-    fn ccd_thickness(&self) -> Real {
+    fn ccd_thickness_m(&self) -> Real {
         self.half.min_element()
     }
 
-    fn ccd_angular_thickness(&self) -> Real {
+    fn ccd_angular_thickness_rad(&self) -> Real {
         std::f32::consts::FRAC_PI_2
     }
 }
+
+impl_parry_shape!(FacadeShape);
 
 #[cfg(test)]
 mod tests {

@@ -6,6 +6,7 @@
 
 mod body_shapes;
 mod clearance;
+mod custom_shape;
 mod facade;
 mod facade_shape;
 mod frontage;

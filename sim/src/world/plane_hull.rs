@@ -4,11 +4,12 @@
 //! wheels, trunks and poles several times the rest of a sweep; every non-box part of the street
 //! world (hulls, and cylinders as octagonal prisms) is one of these instead.
 
-use rapier3d::parry::bounding_volume::{Aabb, BoundingSphere};
-use rapier3d::parry::mass_properties::MassProperties;
+use rapier3d::parry::bounding_volume::Aabb;
 use rapier3d::parry::query::{PointProjection, PointQuery, Ray, RayCast, RayIntersection};
-use rapier3d::parry::shape::{FeatureId, Shape, ShapeType, TypedShape};
+use rapier3d::parry::shape::FeatureId;
 use rapier3d::prelude::{Real, Vector};
+
+use super::custom_shape::{CustomShape, impl_parry_shape};
 
 /// Sides of the prism standing in for a cylinder.
 const PRISM_SIDES: usize = 8;
@@ -157,47 +158,25 @@ impl PointQuery for PlaneHull {
     }
 }
 
-impl Shape for PlaneHull {
-    fn compute_local_aabb(&self) -> Aabb {
+impl CustomShape for PlaneHull {
+    fn local_aabb(&self) -> Aabb {
         self.aabb
     }
 
-    fn compute_local_bounding_sphere(&self) -> BoundingSphere {
-        self.aabb.bounding_sphere()
-    }
-
-    fn clone_dyn(&self) -> Box<dyn Shape> {
-        Box::new(self.clone())
-    }
-
-    fn scale_dyn(&self, _scale: Vector, _num_subdivisions: u32) -> Option<Box<dyn Shape>> {
-        None
-    }
-
-    fn mass_properties(&self, _density: Real) -> MassProperties {
-        MassProperties::default()
-    }
-
-    fn shape_type(&self) -> ShapeType {
-        ShapeType::Custom
-    }
-
-    fn as_typed_shape(&self) -> TypedShape<'_> {
-        TypedShape::Custom(self)
-    }
-
-    fn ccd_thickness(&self) -> Real {
+    fn ccd_thickness_m(&self) -> Real {
         self.aabb.half_extents().min_element()
     }
 
-    fn ccd_angular_thickness(&self) -> Real {
+    fn ccd_angular_thickness_rad(&self) -> Real {
         std::f32::consts::FRAC_PI_4
     }
 
-    fn is_convex(&self) -> bool {
+    fn convex(&self) -> bool {
         true
     }
 }
+
+impl_parry_shape!(PlaneHull);
 
 #[cfg(test)]
 mod tests {

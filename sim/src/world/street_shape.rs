@@ -8,11 +8,12 @@
 
 use std::sync::Arc;
 
-use rapier3d::parry::bounding_volume::{Aabb, BoundingSphere};
-use rapier3d::parry::mass_properties::MassProperties;
+use rapier3d::parry::bounding_volume::Aabb;
 use rapier3d::parry::query::{PointProjection, PointQuery, Ray, RayCast, RayIntersection};
-use rapier3d::parry::shape::{FeatureId, Shape, ShapeType, TypedShape};
+use rapier3d::parry::shape::FeatureId;
 use rapier3d::prelude::{Real, Vector};
+
+use super::custom_shape::{CustomShape, impl_parry_shape};
 
 use super::piece_grid::HitNormal;
 use super::{GroundField, PieceGrid};
@@ -205,40 +206,18 @@ impl PointQuery for StreetShape {
     }
 }
 
-impl Shape for StreetShape {
-    fn compute_local_aabb(&self) -> Aabb {
+impl CustomShape for StreetShape {
+    fn local_aabb(&self) -> Aabb {
         self.aabb
     }
 
-    fn compute_local_bounding_sphere(&self) -> BoundingSphere {
-        self.aabb.bounding_sphere()
-    }
-
-    fn clone_dyn(&self) -> Box<dyn Shape> {
-        Box::new(self.clone())
-    }
-
-    fn scale_dyn(&self, _scale: Vector, _num_subdivisions: u32) -> Option<Box<dyn Shape>> {
-        None
-    }
-
-    fn mass_properties(&self, _density: Real) -> MassProperties {
-        MassProperties::default()
-    }
-
-    fn shape_type(&self) -> ShapeType {
-        ShapeType::Custom
-    }
-
-    fn as_typed_shape(&self) -> TypedShape<'_> {
-        TypedShape::Custom(self)
-    }
-
-    fn ccd_thickness(&self) -> Real {
+    fn ccd_thickness_m(&self) -> Real {
         0.1
     }
 
-    fn ccd_angular_thickness(&self) -> Real {
+    fn ccd_angular_thickness_rad(&self) -> Real {
         0.1
     }
 }
+
+impl_parry_shape!(StreetShape);

@@ -11,6 +11,8 @@ use std::cmp::Ordering;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use patchflow_dataset::splitmix64;
+
 /// Draws `n` distinct indices of `weights`, each draw picking among the remaining items with
 /// probability proportional to its weight (Efraimidis and Spirakis 2006: key `ln(u) / w` per
 /// item, keep the `n` largest keys). Items of weight 0 (or a non-finite or negative weight) come
@@ -109,20 +111,8 @@ pub(crate) fn hashed_normal(seed: u64, parts: &[u64]) -> f64 {
     (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
 }
 
-/// FNV-1a hash of a name, to key draws by sequence name.
-pub(crate) fn name_hash(name: &str) -> u64 {
-    name.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
-
-/// One step of splitmix64 (Steele, Lea and Flood 2014).
-fn splitmix64(x: u64) -> u64 {
-    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
+/// FNV-1a hash of a name, to key draws by sequence name (the workspace's one copy).
+pub(crate) use patchflow_dataset::fnv1a as name_hash;
 
 #[cfg(test)]
 mod tests {

@@ -9,12 +9,12 @@ use patchflow_dataset::{SequenceReader, Sweep};
 use crate::features::difference_map::MapPair;
 use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GaborBank;
+use crate::features::importance_sampling::{DrawKey, hashed_normal, hashed_uniform, name_hash};
 use crate::features::patch::Patch;
-use crate::features::sample::Sample;
-use crate::features::sampling::{DrawKey, hashed_normal, hashed_uniform, name_hash};
 use crate::features::slice::HeightSlice;
 use crate::features::sweep_features::SweepFeatures;
 use crate::features::top_n::TopN;
+use crate::features::training_sample::TrainingSample;
 use crate::{FeatureParams, LearnError, Result};
 
 /// Consecutive sweep pairs of one sequence handled by one task: sequence number and the range of
@@ -26,7 +26,7 @@ type Position = (usize, u32, usize);
 /// The rank of a candidate in a draw.
 pub(crate) type Rank = (DrawKey, Reverse<Position>);
 /// How many candidates were seen and, per draw, the best of them so far.
-pub(crate) type Draws = (usize, Vec<TopN<Rank, Sample>>);
+pub(crate) type Draws = (usize, Vec<TopN<Rank, TrainingSample>>);
 
 /// Both tasks' candidate counts and, per prior, the `n` best of both.
 pub(crate) fn merge((na, a): Draws, (nb, b): Draws) -> Draws {
@@ -37,7 +37,7 @@ pub(crate) fn merge((na, a): Draws, (nb, b): Draws) -> Draws {
 }
 
 /// What every task of one collection shares.
-pub(crate) struct Sampler<'a> {
+pub(crate) struct RunSampler<'a> {
     pub(crate) readers: &'a [SequenceReader],
     pub(crate) params: &'a FeatureParams,
     /// The distinct priors, whose maps are built once per sweep pair.
@@ -48,7 +48,7 @@ pub(crate) struct Sampler<'a> {
     pub(crate) gabor: GaborBank,
 }
 
-impl Sampler<'_> {
+impl RunSampler<'_> {
     /// Offers every candidate of a run of sweep pairs to the draws.
     pub(crate) fn run(
         &self,
@@ -122,7 +122,7 @@ impl Sampler<'_> {
         let sweep = reader.read_sweep(t)?;
         let slice = HeightSlice::cut(&sweep, self.params).map_err(|e| {
             let file = reader.dir().join("velodyne").join(format!("{t:06}.bin"));
-            LearnError::DegenerateData(format!("{}: {e}", file.display()))
+            LearnError::degenerate_data(format!("{}: {e}", file.display()))
         })?;
         Ok((sweep, slice))
     }
@@ -150,9 +150,9 @@ fn sample_at(
     i: usize,
     (heading, weight): (&Patch, f64),
     seed: u64,
-    sampler: &Sampler<'_>,
+    sampler: &RunSampler<'_>,
     sequence: &str,
-) -> Option<Sample> {
+) -> Option<TrainingSample> {
     let kind = sampler.kind;
     let point = features.points()[i].index;
     let actor = curr.labels.get(point)?.instance();
@@ -166,7 +166,7 @@ fn sample_at(
             seed ^ SPEED_JITTER_STREAM,
             &[name_hash(sequence), u64::from(curr.index), point as u64],
         );
-    Some(Sample {
+    Some(TrainingSample {
         sequence: sequence.to_owned(),
         scan: curr.index,
         point,
@@ -187,7 +187,7 @@ fn sample_at(
 
 #[cfg(test)]
 mod tests {
-    use crate::features::samples::tests::write_dataset;
+    use crate::features::sample_set::tests::write_dataset;
     use crate::{FeatureKind, FeatureParams, SampleSet};
     use patchflow_dataset::Dataset;
 

@@ -8,9 +8,9 @@ use rayon::prelude::*;
 
 use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GaborBank;
-use crate::features::sample::Sample;
-use crate::features::sampler::{Rank, Run, Sampler, merge};
+use crate::features::run_sampler::{Rank, Run, RunSampler, merge};
 use crate::features::top_n::TopN;
+use crate::features::training_sample::TrainingSample;
 use crate::{FeatureParams, LearnError, Result};
 
 /// A set of importance-sampled training samples drawn from a whole dataset.
@@ -24,7 +24,7 @@ pub struct SampleSet {
     /// Number of candidate points the samples were drawn from.
     pub pool_size: usize,
     /// The samples, in dataset order (sequence name, sweep, point).
-    pub samples: Vec<Sample>,
+    pub samples: Vec<TrainingSample>,
 }
 
 /// Sweep pairs per task.
@@ -55,7 +55,7 @@ impl SampleSet {
     ) -> Result<Self> {
         let sets = Self::collect_priors(dataset, params, &[params.prior], kind, n, seed, progress)?;
         sets.into_iter().next().ok_or_else(|| {
-            LearnError::DegenerateData(format!("{}: no sample set", dataset.root().display()))
+            LearnError::degenerate_data(format!("{}: no sample set", dataset.root().display()))
         })
     }
 
@@ -134,7 +134,7 @@ impl SampleSet {
         let total: usize = runs.iter().map(|r| r.1.len()).sum();
         let done = AtomicUsize::new(0);
         let tick = || progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-        let sampler = Sampler {
+        let sampler = RunSampler {
             readers: &readers,
             params,
             priors: &priors,
@@ -148,7 +148,7 @@ impl SampleSet {
             .try_fold(empty, |draws, run| sampler.run(run, draws, &tick))
             .try_reduce(empty, |a, b| Ok(merge(a, b)))?;
         if pool_size == 0 {
-            return Err(LearnError::DegenerateData(format!(
+            return Err(LearnError::degenerate_data(format!(
                 "{}: no sliced point on a moving actor",
                 dataset.root().display()
             )));
@@ -157,7 +157,7 @@ impl SampleSet {
             .into_iter()
             .zip(draws)
             .map(|(draw, &(prior, _))| {
-                let mut kept: Vec<(Rank, Sample)> = draw.into_items().collect();
+                let mut kept: Vec<(Rank, TrainingSample)> = draw.into_items().collect();
                 // Dataset order (sequence, sweep, point).
                 kept.sort_unstable_by_key(|(rank, _)| (rank.1).0);
                 Self {

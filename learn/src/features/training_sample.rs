@@ -3,7 +3,7 @@
 
 /// One training sample: a sliced point on a moving actor at sweep `scan ≥ 1`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Sample {
+pub struct TrainingSample {
     /// Sequence name.
     pub sequence: String,
     /// Sweep index within the sequence.

@@ -1,0 +1,63 @@
+//! Tests of the motion estimator's model files: a saved model loads and predicts identically,
+//! with or without PLS projections and noise GPs, and another version is refused by name.
+
+use super::tests::{estimate_for, quick_estimator, small_params, write_dataset};
+use super::*;
+
+#[test]
+fn a_saved_model_loads_and_predicts_identically() {
+    let dir = tempfile::tempdir().unwrap();
+    let estimator = quick_estimator(dir.path());
+    let path = dir.path().join("model.json");
+    estimator.save(&path).unwrap();
+    let loaded = MotionEstimator::load(&path).unwrap();
+    assert_eq!(loaded.feature_params(), estimator.feature_params());
+    assert_eq!(
+        estimate_for(&loaded, 0.5, 5.0),
+        estimate_for(&estimator, 0.5, 5.0)
+    );
+}
+
+#[test]
+fn a_saved_model_with_pls_projections_and_noise_gps_loads_and_predicts_identically() {
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = write_dataset(dir.path(), &[(0.5, 5.0), (-1.5, 7.0), (2.5, 4.0)]);
+    let params = EstimatorParams {
+        samples: 100,
+        pseudo_inputs: 8,
+        max_iters: 15,
+        projection_dims: 4,
+        most_likely_noise: true,
+        ..small_params()
+    };
+    let estimator = MotionEstimator::train(&dataset, &params).unwrap();
+    assert!(
+        estimator
+            .regressors()
+            .iter()
+            .all(|r| { r.projection.as_ref().is_some_and(|p| p.dims == 4) && r.noise.is_some() })
+    );
+    let path = dir.path().join("model.json");
+    estimator.save(&path).unwrap();
+    let loaded = MotionEstimator::load(&path).unwrap();
+    assert_eq!(
+        estimate_for(&loaded, 0.5, 5.0),
+        estimate_for(&estimator, 0.5, 5.0)
+    );
+}
+
+#[test]
+fn a_model_file_of_another_version_is_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("old.json");
+    std::fs::write(
+        &path,
+        r#"{"format": "patchflow-motion-model", "version": 0}"#,
+    )
+    .unwrap();
+    let err = MotionEstimator::load(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("old.json") && err.contains("version 0"),
+        "{err}"
+    );
+}
