@@ -11,9 +11,9 @@ use std::fmt::Write as _;
 use patchflow_sim::Realism;
 
 use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::{MIN_SCORED_SPEED_MPS, heading_error_deg, rmse, score_method};
-use crate::result::SituationResult;
+use crate::methods::method::Method;
+use crate::scene::metrics::{MIN_SCORED_SPEED_MPS, heading_error_deg, rmse, score_method};
+use crate::scene::result::SituationResult;
 use crate::study::{Scores, StudyReport};
 
 /// Heading RMSE the GP estimator must stay under, degrees.

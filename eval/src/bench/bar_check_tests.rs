@@ -1,8 +1,8 @@
 //! Tests of the bar check: what kind of miss each pattern of errors is read as.
 
 use super::*;
-use crate::estimate::MotionEstimate;
-use crate::truth_at_scan::TruthAtScan;
+use crate::methods::estimate::MotionEstimate;
+use crate::scene::truth_at_scan::TruthAtScan;
 
 /// 20 scans of a car at 8 m/s heading 90°, 20 m away with 100 points; `estimate(k)` gives
 /// the held method's heading (degrees) and speed at scan k.

@@ -14,29 +14,29 @@ use rayon::prelude::*;
 
 use crate::bench::bar_check::{bar_entry, bar_markdown, bar_rows, ideal_scores};
 use crate::bench::notes::notes;
-use crate::bench::plan::BenchPlan;
-use crate::bench::run_files::{
-    append, insert_after_summary, model_file, remove_data, remove_empty_dir, run_entries,
-};
+use crate::bench::run_files::{append, insert_after_summary, model_file, run_entries};
 use crate::bench::seed_spread::SeedSpread;
-use crate::bench::short_tracks::shortened_tracks;
-use crate::bench::stages::{
+use crate::cv::cv_report::CvReport;
+use crate::error::EvalError;
+use crate::methods::method::Method;
+use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
+use crate::pipeline::data_folders::{remove_data, remove_empty_dir};
+use crate::pipeline::plan::BenchPlan;
+use crate::pipeline::progress::{StageTimer, progress_line, spinner};
+use crate::pipeline::short_tracks::shortened_tracks;
+use crate::pipeline::stages::{
     collect_draws_with_bar, collect_feature_draws_with_bar, cross_validate_with_bar,
     evaluate_with_bar, generate_with_progress, occupancy_with_bar,
 };
-use crate::bench::target_runs::evaluate_targets;
-use crate::cpu_time::load_average;
-use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::MethodMetrics;
-use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
-use crate::perception_summary::PerceptionSummary;
-use crate::progress::{StageTimer, StageTiming, progress_line, spinner};
+use crate::pipeline::target_runs::evaluate_targets;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::report::perception_summary::PerceptionSummary;
+use crate::report::stage_timing::StageTiming;
 use crate::report::{
-    CvReport, ReportFiles, add_to_metrics, write_cv_report, write_dataset_scene_figures,
-    write_report_scored,
+    ReportFiles, add_to_metrics, write_cv_report, write_dataset_scene_figures, write_report_scored,
 };
-use crate::result::BenchmarkReport;
+use crate::scene::cpu_time::load_average;
+use crate::scene::metrics::MethodMetrics;
 use crate::study::{realism_in_bench, realism_sections};
 
 /// What a benchmark run produced.

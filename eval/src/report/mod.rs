@@ -1,6 +1,8 @@
-//! Report writers: `metrics.json`, `tables.csv`, `report.md` and plots for the benchmark; `cv.json`
-//! and `cv.md` for cross-validation.
+//! The report: the benchmark's results as one value ([`BenchmarkReport`]) with the thesis' own
+//! numbers beside them, and its renderings: `metrics.json`, `tables.csv`, `report.md`,
+//! `perception.json` and plots for the benchmark; `cv.json` and `cv.md` for cross-validation.
 
+pub(crate) mod benchmark_report;
 mod birds_eye;
 mod breakdown;
 mod chart;
@@ -15,17 +17,20 @@ mod markdown;
 mod metrics_extras;
 mod object_plot;
 mod perception_markdown;
+pub(crate) mod perception_summary;
 mod plot;
 mod scene_figure;
 mod scene_markdown;
 mod scores;
+pub(crate) mod stage_timing;
 mod summary_plot;
 #[cfg(test)]
 mod synthetic;
+pub mod thesis_tables;
 mod world_chart;
 mod writer;
 
-pub use cv::{CvFeature, CvGp, CvReport, CvRow, write_cv_report};
+pub use cv::write_cv_report;
 pub(crate) use files::{create_dir, fmt_opt, write_atomic};
 pub(crate) use font::{FONT, ensure_font};
 pub use json::metrics_json;

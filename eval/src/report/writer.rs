@@ -7,17 +7,17 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use crate::error::EvalError;
-use crate::objects::ObjectScan;
-use crate::perception_summary::PerceptionSummary;
+use crate::report::benchmark_report::BenchmarkReport;
 use crate::report::csv::tables_csv;
 use crate::report::files::{create_dir, write_atomic};
 use crate::report::json::{metrics_text, metrics_value};
 use crate::report::markdown::report_markdown;
 use crate::report::object_plot::{ObjectAxis, plot_object_epe};
+use crate::report::perception_summary::PerceptionSummary;
 use crate::report::plot::{plot_heading, plot_speed};
 use crate::report::scores::ReportScores;
 use crate::report::summary_plot::plot_summary;
-use crate::result::BenchmarkReport;
+use crate::scene::objects::ObjectScan;
 
 /// The files a report consists of.
 #[derive(Debug, Clone, PartialEq, Eq)]
