@@ -7,7 +7,9 @@ mod bar_check;
 mod notes;
 mod run;
 mod run_files;
+mod run_report;
 mod seed_spread;
+mod training;
 
 pub use run::{BenchOutcome, run_bench};
 pub use seed_spread::{MethodSpread, SeedFigure, SeedSpread};

@@ -1,13 +1,9 @@
-//! The files a benchmark run writes or deletes beside the report writer's: the run's entries in
-//! `metrics.json` (seeds, model files, spread), sections added to `report.md`, the model files'
-//! names.
-
-use std::path::Path;
+//! What a benchmark run records beside the scores: its entries in `metrics.json` (seeds, model
+//! files, spread) and the model files' names.
 
 use patchflow_learn::GpKind;
 
 use crate::bench::seed_spread::SeedSpread;
-use crate::error::EvalError;
 use crate::pipeline::plan::BenchPlan;
 
 /// What `metrics.json` records of the run beside the scores: the training seeds, the model
@@ -27,26 +23,6 @@ pub(crate) fn run_entries(
     entries.insert("quick".into(), serde_json::json!(plan.quick));
     entries.insert("seed_spread".into(), spread.json());
     entries
-}
-
-/// Inserts `section` into the Markdown file at `path` before its second `## ` heading (right
-/// after the summary), or at its end.
-pub(crate) fn insert_after_summary(path: &Path, section: &str) -> Result<(), EvalError> {
-    let content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
-    let at = content
-        .match_indices("\n## ")
-        .nth(1)
-        .map_or(content.len(), |(i, _)| i + 1);
-    let text = format!("{}{section}\n{}", &content[..at], &content[at..]);
-    std::fs::write(path, text).map_err(|e| EvalError::io(path, e))
-}
-
-/// Appends `text` to the file at `path`, after a blank line.
-pub(crate) fn append(path: &Path, text: &str) -> Result<(), EvalError> {
-    let mut content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
-    content.push('\n');
-    content.push_str(text);
-    std::fs::write(path, content).map_err(|e| EvalError::io(path, e))
 }
 
 /// The model file of one GP kind and seed, relative to the output folder.

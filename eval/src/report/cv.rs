@@ -15,28 +15,30 @@ use crate::report::thesis_tables::{
 /// Writes `dir/cv.json` and `dir/cv.md`.
 pub fn write_cv_report(report: &CvReport, dir: &Path) -> Result<(), EvalError> {
     create_dir(dir)?;
+    let (json, markdown) = render_cv(report)?;
+    write_atomic(&dir.join("cv.json"), json.as_bytes())?;
+    write_atomic(&dir.join("cv.md"), markdown.as_bytes())
+}
+
+/// The text of `cv.json` and `cv.md`, rows sorted by feature, GP and prior.
+pub(crate) fn render_cv(report: &CvReport) -> Result<(String, String), EvalError> {
     let mut rows = report.rows.clone();
     rows.sort_by(|a, b| {
         (a.feature, a.gp)
             .cmp(&(b.feature, b.gp))
             .then(a.prior.total_cmp(&b.prior))
     });
-    let json_path = dir.join("cv.json");
     let value = serde_json::json!({
         "folds": report.folds,
         "rows": rows,
         "version": env!("CARGO_PKG_VERSION"),
     });
     let mut text = serde_json::to_string_pretty(&value).map_err(|source| EvalError::Json {
-        path: json_path.clone(),
+        path: "cv.json".into(),
         source,
     })?;
     text.push('\n');
-    write_atomic(&json_path, text.as_bytes())?;
-    write_atomic(
-        &dir.join("cv.md"),
-        cv_markdown(report.folds, &rows, &report.notes).as_bytes(),
-    )
+    Ok((text, cv_markdown(report.folds, &rows, &report.notes)))
 }
 
 fn find(rows: &[CvRow], feature: CvFeature, prior: f64, gp: CvGp) -> Option<&CvRow> {
