@@ -169,6 +169,9 @@ mod tests {
         );
         let scenes = synthetic_report_with_scenes();
         let rendered = ReportModel::new(&scenes).unwrap().render().unwrap();
-        assert!(rendered.perception_json.is_some_and(|t| t.ends_with("}\n")));
+        let text = rendered.perception_json.unwrap();
+        assert!(text.ends_with('\n'));
+        let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert!(value.as_array().is_some_and(|sequences| !sequences.is_empty()), "{value}");
     }
 }
