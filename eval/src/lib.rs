@@ -100,8 +100,8 @@ pub use study::{
 };
 
 // ── Baselines (thesis 3.2) ──────────────────────────────────────────────────────────────────
+pub use methods::baselines::baseline_method::{BaselineMethod, run_baseline};
 pub use methods::baselines::baseline_params::BaselineParams;
-pub use methods::baselines::baselines::{BaselineMethod, run_baseline};
 pub use methods::baselines::icp::{IcpAlignment, IcpParams, align_icp, align_icp_from};
 pub use methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
 pub use methods::baselines::rigid_motion::{

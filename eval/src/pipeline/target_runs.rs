@@ -15,8 +15,8 @@ use patchflow_learn::{
 use rayon::prelude::*;
 
 use crate::error::EvalError;
+use crate::methods::baselines::baseline_method::run_all_baselines;
 use crate::methods::baselines::baseline_params::BaselineParams;
-use crate::methods::baselines::baselines::run_all_baselines;
 use crate::methods::baselines::velocity_measurement::VelocityFloors;
 use crate::methods::estimate::MotionEstimate;
 use crate::methods::estimate::to_estimate;

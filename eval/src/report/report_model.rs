@@ -172,6 +172,11 @@ mod tests {
         let text = rendered.perception_json.unwrap();
         assert!(text.ends_with('\n'));
         let value: serde_json::Value = serde_json::from_str(&text).unwrap();
-        assert!(value.as_array().is_some_and(|sequences| !sequences.is_empty()), "{value}");
+        assert!(
+            value
+                .as_array()
+                .is_some_and(|sequences| !sequences.is_empty()),
+            "{value}"
+        );
     }
 }

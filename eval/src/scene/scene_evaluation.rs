@@ -12,9 +12,9 @@ use patchflow_learn::{
 };
 
 use crate::error::EvalError;
+use crate::methods::baselines::baseline_method::BaselineMethod;
 use crate::methods::baselines::baseline_params::BaselineParams;
 use crate::methods::baselines::baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
-use crate::methods::baselines::baselines::BaselineMethod;
 use crate::methods::baselines::velocity_measurement::VelocityFloors;
 use crate::methods::estimate::{MotionEstimate, to_estimate};
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};

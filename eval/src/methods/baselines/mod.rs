@@ -3,9 +3,9 @@
 //! forms over every cluster (`tracker` for KF-AUTO, `cluster_association` for ICP-AUTO), and the
 //! step that runs them all scan by scan (`baseline_step`, `baselines`).
 
+pub(crate) mod baseline_method;
 pub(crate) mod baseline_params;
 pub(crate) mod baseline_step;
-pub(crate) mod baselines;
 pub(crate) mod cluster_association;
 pub(crate) mod icp;
 pub(crate) mod kalman;
