@@ -3,6 +3,8 @@
 //! summary and at its end, top-level entries of `metrics.json`). It renders Markdown, JSON and
 //! CSV in one pass, so no file is patched after it is written.
 
+use std::collections::BTreeSet;
+
 use crate::error::EvalError;
 use crate::report::benchmark_report::BenchmarkReport;
 use crate::report::csv::tables_csv;
@@ -10,7 +12,6 @@ use crate::report::json::{metrics_text, metrics_value};
 use crate::report::markdown::report_markdown;
 use crate::report::perception_summary::PerceptionSummary;
 use crate::report::scores::ReportScores;
-use crate::report::writer::check_names;
 
 /// What a run adds to its report beside the scores.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -105,6 +106,31 @@ impl<'a> ReportModel<'a> {
         }
         out
     }
+}
+
+/// Situation names must be unique and usable as file names.
+fn check_names(report: &BenchmarkReport) -> Result<(), EvalError> {
+    let mut seen = BTreeSet::new();
+    for s in &report.situations {
+        let usable = !s.name.is_empty()
+            && !s.name.starts_with('.')
+            && s.name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
+        if !usable {
+            return Err(EvalError::BadResult {
+                situation: s.name.clone(),
+                reason: "a situation name must be letters, digits, '_', '-' or '.'".into(),
+            });
+        }
+        if !seen.insert(s.name.as_str()) {
+            return Err(EvalError::BadResult {
+                situation: s.name.clone(),
+                reason: "the situation appears twice".into(),
+            });
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -3,7 +3,6 @@
 //! `plots/<situation>_heading.png`, `plots/<situation>_speed.png`, `plots/summary_rmse.png` and, when sequences were
 //! evaluated as whole scenes, `plots/objects_epe_by_range.png` and `plots/objects_epe_by_points.png`.
 
-use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use crate::error::EvalError;
@@ -101,31 +100,6 @@ pub(crate) fn write_model(
         }
     }
     Ok(paths)
-}
-
-/// Situation names must be unique and usable as file names.
-pub(crate) fn check_names(report: &BenchmarkReport) -> Result<(), EvalError> {
-    let mut seen = BTreeSet::new();
-    for s in &report.situations {
-        let usable = !s.name.is_empty()
-            && !s.name.starts_with('.')
-            && s.name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
-        if !usable {
-            return Err(EvalError::BadResult {
-                situation: s.name.clone(),
-                reason: "a situation name must be letters, digits, '_', '-' or '.'".into(),
-            });
-        }
-        if !seen.insert(s.name.as_str()) {
-            return Err(EvalError::BadResult {
-                situation: s.name.clone(),
-                reason: "the situation appears twice".into(),
-            });
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]
