@@ -7,7 +7,7 @@
 //! Progress bars live in [`progress`], the thesis' published numbers in [`thesis_tables`], and
 //! the progress-bar wrappers of the benchmark's stages (for the binary) in [`stages`].
 //!
-//! The crate is in rooms, one concept each; a room imports only rooms below it in this list
+//! The crate is in rooms, one concept each; a room imports only rooms above it in this table
 //! (`tests/module_imports.rs` checks that no two rooms import each other):
 //!
 //! | room | what | thesis / paper |
