@@ -7,14 +7,20 @@
 //! Progress bars live in [`progress`], the thesis' published numbers in [`thesis_tables`], and
 //! the progress-bar wrappers of the benchmark's stages (for the binary) in [`stages`].
 //!
-//! | thesis / paper | file |
-//! |---|---|
-//! | 3.2 ICP baseline | `icp.rs`, `rigid_fit.rs`, `rigid_motion.rs` |
-//! | 3.2 Kalman filter baseline | `kalman.rs`, `tracker.rs` (KF-AUTO), `cluster_association.rs` (ICP-AUTO) |
-//! | 4.1 metrics (Eq. 4.1) | `metrics.rs`, `scene_flow.rs`, `objects.rs` |
-//! | 4.3 cross-validation (Tables 4.1-4.4) | `cross_validation.rs` |
-//! | 4.4 the five situations, scan by scan | `scene_evaluation.rs`, `baseline_step.rs` |
-//! | DGPOM Table 1, Figure 6 | `occupancy/` |
+//! The crate is in rooms, one concept each; a room imports only rooms above it in this table
+//! (`tests/module_imports.rs` checks that no two rooms import each other):
+//!
+//! | room | what | thesis / paper |
+//! |---|---|---|
+//! | `methods/` | the methods, their observations and estimates; `baselines/`, `learned/` | 3.2, issue 27 |
+//! | `scene/` | the per-scan scene scoring: truth, metrics (Eq. 4.1), scene flow, objects | 4.1, 4.4 |
+//! | `cv/` | cross-validation of the GP features | 4.3, Tables 4.1-4.4 |
+//! | `report/` | the results as one value and its renderings (JSON, CSV, Markdown, plots) | 4.4 |
+//! | `occupancy/` | the occupancy-map evaluation | DGPOM Table 1, Figure 6 |
+//! | `pipeline/` | the benchmark's stages with progress bars, and their plan | SPEC §7 |
+//! | `score/` | another method's predictions scored like the built-in ones | SPEC §7 |
+//! | `study/` | one factor varied, every method scored at each point | issue #10 |
+//! | `bench/` | the whole benchmark run, its report written once | SPEC §7 |
 //!
 //! The Kalman baseline on a cluster centroid moving at 3 m/s along +y, measured every 0.1 s:
 //!
@@ -32,74 +38,55 @@
 //! # Ok::<(), patchflow_eval::EvalError>(())
 //! ```
 
-mod baseline_params;
-mod baseline_step;
-mod baselines;
 mod bench;
-mod cluster_association;
-mod cpu_time;
-mod cross_validation;
-mod cv_fold;
-mod cv_params;
-mod dataset_evaluation;
+mod cv;
 mod error;
-mod estimate;
-mod flow_export;
-mod icp;
-mod kalman;
-mod learned_perception;
-mod learned_step;
-mod method;
-mod metrics;
-mod moving_iou;
-mod objects;
-mod observation;
+mod methods;
 mod occupancy;
-mod oracle;
-mod perception_summary;
-mod perception_timing;
-pub mod progress;
+mod pipeline;
 mod report;
-mod result;
-mod rigid_fit;
-mod rigid_motion;
-mod scan_scoring;
-mod scene_evaluation;
-mod scene_flow;
-mod scene_point;
+mod scene;
 mod score;
 mod study;
-pub mod thesis_tables;
-mod tracker;
-mod truth_at_scan;
-mod velocity_measurement;
 
 // ── The benchmark ──────────────────────────────────────────────────────────────────────────
-pub use bench::{
-    BENCH_SEED, BenchOutcome, BenchPlan, DENSE_TRAFFIC_TOML, MethodSpread,
-    QUICK_REALISM_SITUATIONS, QUICK_SWEEP_SHARE, SeedFigure, SeedSpread, run_bench,
-};
+pub use bench::{BenchOutcome, MethodSpread, SeedFigure, SeedSpread, run_bench};
 pub use error::EvalError;
+pub use pipeline::plan::{
+    BENCH_SEED, BenchPlan, DENSE_TRAFFIC_TOML, QUICK_REALISM_SITUATIONS, QUICK_SWEEP_SHARE,
+};
+
+/// Progress bars and stage timing for long commands.
+pub mod progress {
+    pub use crate::pipeline::progress::*;
+    pub use crate::report::stage_timing::StageTiming;
+}
+
+/// The thesis' published numbers (Hess 2008, real data), printed beside ours.
+pub use report::thesis_tables;
 
 /// The benchmark's stages one by one, each with its progress bar (the binary's `cv`,
 /// `evaluate`, `generate` and `occupancy` commands run them).
 pub mod stages {
-    pub use crate::bench::{
+    pub use crate::pipeline::stages::{
         collect_draws_with_bar, collect_samples_with_bar, cross_validate_with_bar,
-        evaluate_targets, evaluate_with_bar, generate_with_progress, occupancy_with_bar,
+        evaluate_with_bar, generate_with_progress, occupancy_with_bar,
     };
+    pub use crate::pipeline::target_runs::evaluate_targets;
 }
 
 // ── Methods, their estimates and scores (thesis 4.1, 4.4) ──────────────────────────────────
-pub use dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
-pub use estimate::MotionEstimate;
-pub use flow_export::export_flow;
-pub use learned_perception::{LearnedPerception, LearnedScan};
-pub use method::{CANONICAL_METHODS, GpReadout, Method};
-pub use metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
-pub use moving_iou::{MovingIou, is_moving_displacement};
-pub use perception_summary::PerceptionSummary;
-pub use result::{BenchmarkReport, SceneResult, SituationResult};
+pub use methods::estimate::MotionEstimate;
+pub use methods::learned::learned_perception::{LearnedPerception, LearnedScan};
+pub use methods::method::{CANONICAL_METHODS, GpReadout, Method};
+pub use pipeline::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
+pub use report::benchmark_report::BenchmarkReport;
+pub use report::perception_summary::PerceptionSummary;
+pub use scene::flow_export::export_flow;
+pub use scene::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
+pub use scene::moving_iou::{MovingIou, is_moving_displacement};
+pub use scene::result::{SceneResult, SituationResult};
+pub use scene::truth_at_scan::TruthAtScan;
 pub use score::{
     ExternalTally, MAX_PREDICTED_SPEED_MPS, MethodScores, MethodSource, MethodTally,
     PredictionFolder, ScoreFiles, ScoreReport, SequenceScores, score_predictions,
@@ -111,20 +98,22 @@ pub use study::{
     point_file, realism_in_bench, realism_sections, run_study, study_markdown, study_section,
     write_study,
 };
-pub use truth_at_scan::TruthAtScan;
 
 // ── Baselines (thesis 3.2) ──────────────────────────────────────────────────────────────────
-pub use baseline_params::BaselineParams;
-pub use baselines::{BaselineMethod, run_baseline};
-pub use icp::{IcpAlignment, IcpParams, align_icp, align_icp_from};
-pub use kalman::{ConstantVelocityKalman, KalmanParams};
-pub use rigid_motion::{RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from};
-pub use tracker::{MultiTargetTracker, TrackerParams};
-pub use velocity_measurement::{VelocityFloors, VelocityMeasurement};
+pub use methods::baselines::baseline_method::{BaselineMethod, run_baseline};
+pub use methods::baselines::baseline_params::BaselineParams;
+pub use methods::baselines::icp::{IcpAlignment, IcpParams, align_icp, align_icp_from};
+pub use methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
+pub use methods::baselines::rigid_motion::{
+    RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from,
+};
+pub use methods::baselines::tracker::{MultiTargetTracker, TrackerParams};
+pub use methods::baselines::velocity_measurement::{VelocityFloors, VelocityMeasurement};
 
 // ── Cross-validation (thesis 4.3) ───────────────────────────────────────────────────────────
-pub use cross_validation::{cross_validate, cross_validate_samples};
-pub use cv_params::CvParams;
+pub use cv::cross_validation::{cross_validate, cross_validate_samples};
+pub use cv::cv_params::CvParams;
+pub use cv::cv_report::{CvFeature, CvGp, CvReport, CvRow};
 
 // ── Occupancy maps (DGPOM paper, SPEC §5b) ──────────────────────────────────────────────────
 pub use occupancy::{
@@ -135,7 +124,6 @@ pub use occupancy::{
 
 // ── Reports ─────────────────────────────────────────────────────────────────────────────────
 pub use report::{
-    CvFeature, CvGp, CvReport, CvRow, ReportFiles, SceneFigures, add_to_metrics, metrics_json,
-    write_cv_report, write_dataset_scene_figures, write_map_figure, write_report,
-    write_scene_figures,
+    ReportFiles, SceneFigures, add_to_metrics, metrics_json, write_cv_report,
+    write_dataset_scene_figures, write_map_figure, write_report, write_scene_figures,
 };

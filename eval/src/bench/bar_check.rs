@@ -11,9 +11,10 @@ use std::fmt::Write as _;
 use patchflow_sim::Realism;
 
 use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::{MIN_SCORED_SPEED_MPS, heading_error_deg, rmse, score_method};
-use crate::result::SituationResult;
+use crate::methods::method::Method;
+use crate::report::SituationMetrics;
+use crate::scene::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, heading_error_deg, rmse};
+use crate::scene::result::SituationResult;
 use crate::study::{Scores, StudyReport};
 
 /// Heading RMSE the GP estimator must stay under, degrees.
@@ -63,18 +64,29 @@ pub struct BarRow {
     pub ideal: Option<Scores>,
 }
 
-/// Every situation with estimates of the held method, against the bar; `ideal` maps situation
-/// names to the held method's scores on the `ideal` rung.
-pub fn bar_rows(situations: &[SituationResult], ideal: &BTreeMap<String, Scores>) -> Vec<BarRow> {
+/// Every situation with estimates of the held method, against the bar; `scored` holds the
+/// report's metrics of each situation (scored once, read here), `ideal` maps situation names to
+/// the held method's scores on the `ideal` rung.
+pub fn bar_rows(
+    situations: &[SituationResult],
+    scored: &[SituationMetrics],
+    ideal: &BTreeMap<String, Scores>,
+) -> Vec<BarRow> {
     situations
         .iter()
-        .filter_map(|s| row(s, ideal.get(&s.name).cloned()))
+        .filter_map(|s| {
+            let (_, _, metrics) = scored.iter().find(|(name, _, _)| *name == s.name)?;
+            row(s, metrics.get(&HELD)?, ideal.get(&s.name).cloned())
+        })
         .collect()
 }
 
-fn row(situation: &SituationResult, ideal: Option<Scores>) -> Option<BarRow> {
+fn row(
+    situation: &SituationResult,
+    metrics: &MethodMetrics,
+    ideal: Option<Scores>,
+) -> Option<BarRow> {
     let estimates = situation.methods.get(&HELD)?;
-    let metrics = score_method(&situation.truth, estimates).ok()?;
     // Squared heading errors with what each scan was like.
     let mut scans = Vec::new();
     let mut speed_errors = Vec::new();

@@ -1,8 +1,8 @@
 //! Tests of the bar check: what kind of miss each pattern of errors is read as.
 
 use super::*;
-use crate::estimate::MotionEstimate;
-use crate::truth_at_scan::TruthAtScan;
+use crate::methods::estimate::MotionEstimate;
+use crate::scene::truth_at_scan::TruthAtScan;
 
 /// 20 scans of a car at 8 m/s heading 90°, 20 m away with 100 points; `estimate(k)` gives
 /// the held method's heading (degrees) and speed at scan k.
@@ -30,7 +30,8 @@ fn situation(estimate: impl Fn(usize) -> (f64, f64)) -> SituationResult {
 }
 
 fn only_row(s: &SituationResult) -> BarRow {
-    bar_rows(std::slice::from_ref(s), &BTreeMap::new()).remove(0)
+    let scored = [(s.name.clone(), s.scans, s.metrics().unwrap())];
+    bar_rows(std::slice::from_ref(s), &scored, &BTreeMap::new()).remove(0)
 }
 
 #[test]
@@ -100,4 +101,22 @@ fn the_ideal_rung_decides_between_world_and_training() {
     };
     assert!(bar_markdown(&[world], "urban").contains("the world breaks them here"));
     assert!(bar_markdown(&[training], "urban").contains("they miss it on `ideal` too"));
+}
+
+#[test]
+fn the_bar_reads_the_scores_it_is_given_instead_of_scoring_again() {
+    let s = situation(|_| (90.0, 8.0));
+    let mut metrics = s.metrics().unwrap();
+    let held = metrics.get_mut(&HELD).unwrap();
+    assert!(held.heading_rmse_deg.unwrap() < 1e-6);
+    held.heading_rmse_deg = Some(40.0);
+    let rows = bar_rows(
+        std::slice::from_ref(&s),
+        &[(s.name.clone(), s.scans, metrics)],
+        &BTreeMap::new(),
+    );
+    assert_eq!(rows[0].heading_rmse_deg, Some(40.0));
+    assert!(!rows[0].met, "40° is over the bar");
+    // A situation the report did not score has no row.
+    assert!(bar_rows(std::slice::from_ref(&s), &[], &BTreeMap::new()).is_empty());
 }

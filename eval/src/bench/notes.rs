@@ -2,7 +2,7 @@
 
 use patchflow_learn::{FeatureParams, MotionEstimator};
 
-use crate::bench::plan::BenchPlan;
+use crate::pipeline::plan::BenchPlan;
 
 /// The training tracks, and which share of their sweeps was simulated.
 fn training_tracks(plan: &BenchPlan) -> String {

@@ -6,38 +6,34 @@ use std::time::Instant;
 
 use patchflow_dataset::Dataset;
 use patchflow_learn::{
-    EstimatorParams, GpKind, MOVING_FILE_NAME, MotionEstimator, MovingClassifier, MovingParams,
-    SampleSet,
+    EstimatorParams, MOVING_FILE_NAME, MotionEstimator, MovingClassifier, MovingParams, SampleSet,
 };
-use patchflow_sim::{GenerateOptions, Realism, ScenarioSource, Shard};
-use rayon::prelude::*;
+use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
-use crate::bench::bar_check::{bar_entry, bar_markdown, bar_rows, ideal_scores};
 use crate::bench::notes::notes;
-use crate::bench::plan::BenchPlan;
-use crate::bench::run_files::{
-    append, insert_after_summary, model_file, remove_data, remove_empty_dir, run_entries,
-};
+use crate::bench::run_report::write_run_report;
 use crate::bench::seed_spread::SeedSpread;
-use crate::bench::short_tracks::shortened_tracks;
-use crate::bench::stages::{
+use crate::bench::training::{first, target_runs_with_thesis, train_seeds};
+use crate::cv::cv_report::CvReport;
+use crate::error::EvalError;
+use crate::methods::method::Method;
+use crate::occupancy::OccupancyReport;
+use crate::pipeline::data_folders::{remove_data, remove_empty_dir};
+use crate::pipeline::plan::BenchPlan;
+use crate::pipeline::progress::{StageTimer, progress_line, spinner};
+use crate::pipeline::short_tracks::shortened_tracks;
+use crate::pipeline::stages::{
     collect_draws_with_bar, collect_feature_draws_with_bar, cross_validate_with_bar,
     evaluate_with_bar, generate_with_progress, occupancy_with_bar,
 };
-use crate::bench::target_runs::evaluate_targets;
-use crate::cpu_time::load_average;
-use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::MethodMetrics;
-use crate::occupancy::{OccupancyReport, occupancy_section, write_occupancy_report};
-use crate::perception_summary::PerceptionSummary;
-use crate::progress::{StageTimer, StageTiming, progress_line, spinner};
-use crate::report::{
-    CvReport, ReportFiles, add_to_metrics, write_cv_report, write_dataset_scene_figures,
-    write_report_scored,
-};
-use crate::result::BenchmarkReport;
-use crate::study::{realism_in_bench, realism_sections};
+use crate::pipeline::target_runs::evaluate_targets;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::report::perception_summary::PerceptionSummary;
+use crate::report::stage_timing::StageTiming;
+use crate::report::{ReportFiles, write_dataset_scene_figures};
+use crate::scene::cpu_time::load_average;
+use crate::scene::metrics::MethodMetrics;
+use crate::study::realism_in_bench;
 
 /// What a benchmark run produced.
 #[derive(Debug, Clone)]
@@ -271,47 +267,29 @@ pub fn run_bench(
     if !plan.keep_data {
         remove_empty_dir(&data)?;
     }
-    // 9. The report, with the spread over the training seeds.
+    // 9. The report, built once and written once: the scores, the spread over the training
+    //    seeds, and (10.) the GP estimator against the README's bar, read from those scores.
     report.seed = Some(plan.seed);
     report.notes = notes(plan, &estimators, load);
     report.cv = Some(cv.clone());
     report.timings = timer.timings().to_vec();
-    let (files, scores) = write_report_scored(&report, out)?;
-    write_cv_report(&cv, out)?;
-    let mut runs = vec![report.situations.clone()];
-    runs.extend(further_targets);
-    let spread = SeedSpread::of(&seeds, &runs)?;
-    add_to_metrics(&files.metrics_json, run_entries(plan, &spread))?;
-    if seeds.len() > 1 {
-        insert_after_summary(&files.report_md, &spread.markdown())?;
-    }
-    if let Some(occupancy) = &occupancy {
-        write_occupancy_report(occupancy, out)?;
-        append(&files.report_md, &occupancy_section(occupancy))?;
-    }
-    if let Some(realism) = &realism {
-        append(&files.report_md, &realism_sections(realism, &cv, plan))?;
-    }
-    // 10. The GP estimator against the README's bar, and what the data says where it misses.
-    let bar = bar_rows(&report.situations, &ideal_scores(realism.as_ref()));
-    insert_after_summary(
-        &files.report_md,
-        &bar_markdown(&bar, Realism::default().name()),
+    let written = write_run_report(
+        plan,
+        &report,
+        &further_targets,
+        realism.as_ref(),
+        occupancy.as_ref(),
+        out,
     )?;
-    add_to_metrics(&files.metrics_json, bar_entry(&bar)?)?;
     let perception = PerceptionSummary::of_scenes(&report.scenes);
     Ok(BenchOutcome {
         report,
         cv,
-        files,
-        situation_metrics: scores
-            .situations
-            .into_iter()
-            .map(|(name, _, metrics)| (name, metrics))
-            .collect(),
+        files: written.files,
+        situation_metrics: written.situation_metrics,
         perception,
         occupancy,
-        spread,
+        spread: written.spread,
     })
 }
 
@@ -333,91 +311,4 @@ fn generate(sources: &[ScenarioSource], out: &Path, seed: u64) -> Result<Dataset
     };
     generate_with_progress(sources, &options)?;
     Ok(Dataset::open(out)?)
-}
-
-/// Trains one estimator per GP kind of the plan for each `(samples, seed)` draw, all fits in
-/// parallel (each is seeded on its own, so the models do not depend on the threads), and saves
-/// them to `out/models`; one vector per draw, GP kinds in plan order.
-fn train_seeds(
-    dataset: &Dataset,
-    draws: &[(&SampleSet, u64)],
-    thesis_draws: &[(&SampleSet, u64)],
-    plan: &BenchPlan,
-    out: &Path,
-) -> Result<(Vec<Vec<MotionEstimator>>, Vec<MotionEstimator>), EvalError> {
-    let models = out.join("models");
-    std::fs::create_dir_all(&models).map_err(|e| EvalError::io(&models, e))?;
-    // (draw, GP kind, thesis preset): every kind of the plan on the default's draws, SPGP-HET
-    // alone on the thesis preset's.
-    let mut fits: Vec<(usize, GpKind, bool)> = (0..draws.len())
-        .flat_map(|d| plan.gps.iter().map(move |&gp| (d, gp, false)))
-        .collect();
-    fits.extend((0..thesis_draws.len()).map(|d| (d, GpKind::SpgpHet, true)));
-    let spinner = spinner(&format!(
-        "fitting {} GPs ({} kinds × {} seeds × 3, and {} thesis-preset models)",
-        fits.len() * 3,
-        plan.gps.len(),
-        draws.len(),
-        thesis_draws.len()
-    ));
-    let fitted = fits
-        .par_iter()
-        .map(|&(d, gp, thesis)| {
-            let (set, seed) = if thesis { thesis_draws[d] } else { draws[d] };
-            let base = if thesis {
-                EstimatorParams::thesis()
-            } else {
-                plan.estimator.clone()
-            };
-            let params = EstimatorParams {
-                gp,
-                samples: plan.samples,
-                pseudo_inputs: plan.pseudo_inputs,
-                max_iters: plan.max_iters,
-                seed,
-                ..base
-            };
-            MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset))
-        })
-        .collect::<Result<Vec<_>, _>>();
-    spinner.finish_and_clear();
-    let mut runs: Vec<Vec<MotionEstimator>> = vec![Vec::new(); draws.len()];
-    let mut thesis_runs = Vec::new();
-    for ((d, gp, thesis), estimator) in fits.into_iter().zip(fitted?) {
-        if thesis {
-            let file = model_file(plan, gp, thesis_draws[d].1).replace(".json", "-thesis.json");
-            estimator.save(&out.join(file))?;
-            thesis_runs.push(estimator);
-        } else {
-            estimator.save(&out.join(model_file(plan, gp, draws[d].1)))?;
-            runs[d].push(estimator);
-        }
-    }
-    Ok((runs, thesis_runs))
-}
-
-/// The target runs of the further seeds with the thesis preset's models: the first seed's
-/// thesis model alone, then each further seed's models with its thesis model.
-fn target_runs_with_thesis(
-    further: &[Vec<MotionEstimator>],
-    thesis: &[MotionEstimator],
-) -> Vec<Vec<MotionEstimator>> {
-    let mut runs = Vec::with_capacity(further.len() + 1);
-    if let Some(first) = thesis.first() {
-        runs.push(vec![first.clone()]);
-    }
-    for (k, models) in further.iter().enumerate() {
-        let mut run = models.clone();
-        run.extend(thesis.get(k + 1).cloned());
-        runs.push(run);
-    }
-    runs
-}
-
-/// The first `n` samples of a set (samples are in dataset order, so this is itself a sample).
-fn first(set: &SampleSet, n: usize) -> SampleSet {
-    SampleSet {
-        samples: set.samples.iter().take(n).cloned().collect(),
-        ..set.clone()
-    }
 }

@@ -1,14 +1,10 @@
-//! The files a benchmark run writes or deletes beside the report writer's: the run's entries in
-//! `metrics.json` (seeds, model files, spread), sections added to `report.md`, the model files'
-//! names, and the datasets deleted once used.
-
-use std::path::Path;
+//! What a benchmark run records beside the scores: its entries in `metrics.json` (seeds, model
+//! files, spread) and the model files' names.
 
 use patchflow_learn::GpKind;
 
-use crate::bench::plan::BenchPlan;
 use crate::bench::seed_spread::SeedSpread;
-use crate::error::EvalError;
+use crate::pipeline::plan::BenchPlan;
 
 /// What `metrics.json` records of the run beside the scores: the training seeds, the model
 /// files (relative to the output folder, seed by seed) and the spread over the seeds.
@@ -27,46 +23,6 @@ pub(crate) fn run_entries(
     entries.insert("quick".into(), serde_json::json!(plan.quick));
     entries.insert("seed_spread".into(), spread.json());
     entries
-}
-
-/// Inserts `section` into the Markdown file at `path` before its second `## ` heading (right
-/// after the summary), or at its end.
-pub(crate) fn insert_after_summary(path: &Path, section: &str) -> Result<(), EvalError> {
-    let content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
-    let at = content
-        .match_indices("\n## ")
-        .nth(1)
-        .map_or(content.len(), |(i, _)| i + 1);
-    let text = format!("{}{section}\n{}", &content[..at], &content[at..]);
-    std::fs::write(path, text).map_err(|e| EvalError::io(path, e))
-}
-
-/// Deletes a dataset folder the run no longer needs (nothing if it is gone already).
-pub(crate) fn remove_data(dir: &Path) -> Result<(), EvalError> {
-    match std::fs::remove_dir_all(dir) {
-        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(EvalError::io(dir, e)),
-        _ => Ok(()),
-    }
-}
-
-/// Deletes a folder if it is empty.
-pub(crate) fn remove_empty_dir(dir: &Path) -> Result<(), EvalError> {
-    let empty = match std::fs::read_dir(dir) {
-        Ok(mut entries) => entries.next().is_none(),
-        Err(_) => false,
-    };
-    if empty {
-        std::fs::remove_dir(dir).map_err(|e| EvalError::io(dir, e))?;
-    }
-    Ok(())
-}
-
-/// Appends `text` to the file at `path`, after a blank line.
-pub(crate) fn append(path: &Path, text: &str) -> Result<(), EvalError> {
-    let mut content = std::fs::read_to_string(path).map_err(|e| EvalError::io(path, e))?;
-    content.push('\n');
-    content.push_str(text);
-    std::fs::write(path, content).map_err(|e| EvalError::io(path, e))
 }
 
 /// The model file of one GP kind and seed, relative to the output folder.

@@ -10,9 +10,9 @@ use std::fmt::Write as _;
 use serde::Serialize;
 
 use crate::error::EvalError;
-use crate::method::Method;
+use crate::methods::method::Method;
 use crate::report::fmt_opt;
-use crate::result::SituationResult;
+use crate::scene::result::SituationResult;
 
 /// One figure over the seeds.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -87,7 +87,7 @@ impl SeedSpread {
                     .map(|s| s.as_ref().and_then(|s| s.get(method)))
                     .collect();
                 let Some(per_seed) = per_seed else { continue };
-                let figure = |f: fn(&crate::metrics::MethodMetrics) -> Option<f64>| {
+                let figure = |f: fn(&crate::scene::metrics::MethodMetrics) -> Option<f64>| {
                     SeedFigure::of(per_seed.iter().map(|m| f(m)).collect())
                 };
                 methods.insert(

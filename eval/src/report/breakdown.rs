@@ -4,9 +4,9 @@
 
 use std::fmt::Write as _;
 
-use crate::metrics::{MIN_SCORED_SPEED_MPS, heading_error_deg, rmse};
-use crate::result::SituationResult;
-use crate::truth_at_scan::TruthAtScan;
+use crate::scene::metrics::{MIN_SCORED_SPEED_MPS, heading_error_deg, rmse};
+use crate::scene::result::SituationResult;
+use crate::scene::truth_at_scan::TruthAtScan;
 
 /// One breakdown: a title, column labels with the upper edge of each bin, and the scan's value.
 struct Breakdown {

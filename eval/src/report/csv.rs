@@ -5,7 +5,7 @@
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
-use crate::method::Method;
+use crate::methods::method::Method;
 use crate::report::scores::ReportScores;
 
 /// Header of `tables.csv`.

@@ -4,113 +4,41 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use serde::{Deserialize, Serialize};
-
+use crate::cv::cv_report::{CvFeature, CvGp, CvReport, CvRow};
 use crate::error::EvalError;
 use crate::report::files::{create_dir, fmt_opt, write_atomic};
-use crate::thesis_tables::{
+use crate::report::thesis_tables::{
     THESIS_CV_HEADING_LOW_VAR_RMSE_DEG, THESIS_CV_HEADING_RMSE_DEG,
     THESIS_CV_SPEED_LOW_VAR_RMSE_MPS, THESIS_CV_SPEED_RMSE_MPS,
 };
 
-/// Input feature of the GPs (thesis 2.2.2-2.2.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum CvFeature {
-    /// 242-value difference-map and reflection-map patches.
-    Patch,
-    /// 16 Gabor filter responses.
-    Gabor,
-}
-
-/// Which sparse GP (thesis 3.1.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
-pub enum CvGp {
-    /// SPGP / FITC.
-    #[serde(rename = "SPGP")]
-    Spgp,
-    /// SPGP with one noise variance per pseudo-input.
-    #[serde(rename = "SPGP-HET")]
-    SpgpHet,
-}
-
-impl CvGp {
-    fn name(self) -> &'static str {
-        match self {
-            Self::Spgp => "SPGP",
-            Self::SpgpHet => "SPGP-HET",
-        }
-    }
-}
-
-impl CvFeature {
-    fn name(self) -> &'static str {
-        match self {
-            Self::Patch => "patch",
-            Self::Gabor => "gabor",
-        }
-    }
-}
-
-/// One cross-validation configuration, averaged over the folds.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct CvRow {
-    /// Feature.
-    pub feature: CvFeature,
-    /// Map prior (0.01 or 0.5 in the thesis).
-    pub prior: f64,
-    /// GP.
-    pub gp: CvGp,
-    /// Heading RMSE over all test patches, degrees.
-    pub heading_rmse_deg: f64,
-    /// Heading RMSE over the low-variance test patches, degrees.
-    pub heading_rmse_low_var_deg: Option<f64>,
-    /// Speed RMSE over all test patches, m/s (the thesis only reports patch features, prior 0.5).
-    pub speed_rmse_mps: Option<f64>,
-    /// Speed RMSE over the low-variance test patches, m/s.
-    pub speed_rmse_low_var_mps: Option<f64>,
-    /// Test patches over all folds.
-    pub n_test: usize,
-    /// Low-variance test patches over all folds.
-    pub n_low_var: usize,
-}
-
-/// A cross-validation run.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct CvReport {
-    /// Number of folds.
-    pub folds: usize,
-    /// One row per configuration.
-    pub rows: Vec<CvRow>,
-    /// Notes for `cv.md`.
-    pub notes: Vec<String>,
-}
-
 /// Writes `dir/cv.json` and `dir/cv.md`.
 pub fn write_cv_report(report: &CvReport, dir: &Path) -> Result<(), EvalError> {
     create_dir(dir)?;
+    let (json, markdown) = render_cv(report)?;
+    write_atomic(&dir.join("cv.json"), json.as_bytes())?;
+    write_atomic(&dir.join("cv.md"), markdown.as_bytes())
+}
+
+/// The text of `cv.json` and `cv.md`, rows sorted by feature, GP and prior.
+pub(crate) fn render_cv(report: &CvReport) -> Result<(String, String), EvalError> {
     let mut rows = report.rows.clone();
     rows.sort_by(|a, b| {
         (a.feature, a.gp)
             .cmp(&(b.feature, b.gp))
             .then(a.prior.total_cmp(&b.prior))
     });
-    let json_path = dir.join("cv.json");
     let value = serde_json::json!({
         "folds": report.folds,
         "rows": rows,
         "version": env!("CARGO_PKG_VERSION"),
     });
     let mut text = serde_json::to_string_pretty(&value).map_err(|source| EvalError::Json {
-        path: json_path.clone(),
+        path: "cv.json".into(),
         source,
     })?;
     text.push('\n');
-    write_atomic(&json_path, text.as_bytes())?;
-    write_atomic(
-        &dir.join("cv.md"),
-        cv_markdown(report.folds, &rows, &report.notes).as_bytes(),
-    )
+    Ok((text, cv_markdown(report.folds, &rows, &report.notes)))
 }
 
 fn find(rows: &[CvRow], feature: CvFeature, prior: f64, gp: CvGp) -> Option<&CvRow> {

@@ -14,12 +14,12 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::MethodMetrics;
-use crate::objects::{ObjectGroup, ObjectMetrics};
+use crate::methods::method::Method;
+use crate::report::benchmark_report::BenchmarkReport;
 use crate::report::scores::ReportScores;
-use crate::result::BenchmarkReport;
-use crate::scene_flow::SceneFlowMetrics;
+use crate::scene::metrics::MethodMetrics;
+use crate::scene::objects::{ObjectGroup, ObjectMetrics};
+use crate::scene::scene_flow::SceneFlowMetrics;
 
 #[derive(Serialize)]
 struct MetricsFile {
@@ -271,7 +271,7 @@ mod tests {
         let mut report = synthetic_report();
         report.situations[0]
             .methods
-            .insert(crate::method::Method::IcpAuto, vec![None; 30]);
+            .insert(crate::methods::method::Method::IcpAuto, vec![None; 30]);
         let value = metrics_json_value(&report).unwrap();
         let m = &value["situations"]["situation1"]["methods"]["ICP-AUTO"];
         assert!(m["heading_rmse_deg"].is_null());

@@ -5,16 +5,16 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use crate::method::Method;
-use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
-use crate::perception_summary::PerceptionSummary;
+use crate::methods::method::Method;
+use crate::report::benchmark_report::BenchmarkReport;
 use crate::report::breakdown::breakdown_sections;
 use crate::report::files::fmt_opt;
 use crate::report::perception_markdown::perception_section;
+use crate::report::perception_summary::PerceptionSummary;
 use crate::report::scene_markdown::scene_sections;
 use crate::report::scores::{ReportScores, SituationMetrics};
-use crate::result::BenchmarkReport;
-use crate::thesis_tables::{thesis_row, thesis_situation};
+use crate::report::thesis_tables::{thesis_row, thesis_situation};
+use crate::scene::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics};
 
 /// The text of `report.md`.
 pub(crate) fn report_markdown(report: &BenchmarkReport, scores: &ReportScores) -> String {
@@ -158,7 +158,7 @@ fn situation_section(
             "",
         ),
     };
-    let thesis_cells = |row: Option<crate::thesis_tables::ThesisRow>| match thesis {
+    let thesis_cells = |row: Option<crate::report::thesis_tables::ThesisRow>| match thesis {
         Some(_) => format!(
             " {} | {} |",
             fmt_opt(row.map(|r| r.rmse), 2),

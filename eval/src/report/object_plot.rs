@@ -6,11 +6,11 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::MIN_SCORED_SPEED_MPS;
-use crate::objects::ObjectScan;
+use crate::methods::method::Method;
 use crate::report::chart::{Axes, Curve, Decor, draw};
 use crate::report::plot::{colour_of, is_variant};
+use crate::scene::metrics::MIN_SCORED_SPEED_MPS;
+use crate::scene::objects::ObjectScan;
 
 /// The methods drawn: one GP variant of each kind and readout, the baselines, zero flow.
 const DRAWN: [Method; 9] = [

@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use crate::perception_summary::PerceptionSummary;
+use crate::report::perception_summary::PerceptionSummary;
 
 /// Writes the perception section (nothing without timed scans).
 pub(crate) fn perception_section(md: &mut String, summaries: &[PerceptionSummary]) {

@@ -12,9 +12,9 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use crate::error::EvalError;
-use crate::method::Method;
+use crate::methods::method::Method;
 use crate::report::chart::{Axes, Curve, Decor, draw};
-use crate::result::SituationResult;
+use crate::scene::result::SituationResult;
 use patchflow_dataset::wrap_angle_rad;
 
 /// Colour per canonical method slot (tab10), then a few spares.
@@ -173,7 +173,7 @@ fn decor(situation: &SituationResult) -> Decor {
 
 fn method_curves(
     situation: &SituationResult,
-    value: impl Fn(usize, &crate::estimate::MotionEstimate) -> f64,
+    value: impl Fn(usize, &crate::methods::estimate::MotionEstimate) -> f64,
 ) -> Vec<Curve> {
     situation
         .methods

@@ -4,11 +4,11 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use crate::method::Method;
-use crate::objects::{MIN_OBJECT_POINTS, ObjectGroup, ObjectMetrics};
+use crate::methods::method::Method;
 use crate::report::files::fmt_opt;
 use crate::report::scores::ReportScores;
-use crate::scene_flow::SceneFlowMetrics;
+use crate::scene::objects::{MIN_OBJECT_POINTS, ObjectGroup, ObjectMetrics};
+use crate::scene::scene_flow::SceneFlowMetrics;
 
 /// Writes the whole-scene sections (nothing if no sequence was evaluated as a whole scene).
 pub(crate) fn scene_sections(md: &mut String, scores: &ReportScores) {

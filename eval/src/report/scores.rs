@@ -5,11 +5,11 @@
 use std::collections::BTreeMap;
 
 use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::MethodMetrics;
-use crate::objects::{ObjectGroup, ObjectMetrics, ObjectScan, score_objects};
-use crate::result::BenchmarkReport;
-use crate::scene_flow::{SceneFlowMetrics, SceneFlowTally};
+use crate::methods::method::Method;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::scene::metrics::MethodMetrics;
+use crate::scene::objects::{ObjectGroup, ObjectMetrics, ObjectScan, score_objects};
+use crate::scene::scene_flow::{SceneFlowMetrics, SceneFlowTally};
 
 /// Metrics of every situation with a target, in report order: (name, scans, method → metrics).
 pub(crate) type SituationMetrics = (String, usize, BTreeMap<Method, MethodMetrics>);

@@ -7,11 +7,11 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use crate::error::EvalError;
-use crate::method::Method;
-use crate::metrics::MethodMetrics;
+use crate::methods::method::Method;
 use crate::report::font::{FONT, ensure_font};
 use crate::report::plot::{colour_of, is_variant};
 use crate::report::scores::SituationMetrics;
+use crate::scene::metrics::MethodMetrics;
 
 const SIZE_PX: (u32, u32) = (1200, 760);
 const KEY_PX: u32 = 230;

@@ -7,11 +7,12 @@ use std::collections::BTreeMap;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use crate::estimate::MotionEstimate;
-use crate::method::Method;
-use crate::progress::StageTiming;
-use crate::result::{BenchmarkReport, SceneResult, SituationResult};
-use crate::truth_at_scan::TruthAtScan;
+use crate::methods::estimate::MotionEstimate;
+use crate::methods::method::Method;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::report::stage_timing::StageTiming;
+use crate::scene::result::{SceneResult, SituationResult};
+use crate::scene::truth_at_scan::TruthAtScan;
 
 /// A situation of `scans` scans: heading turns from 150° through 180° to −140°, speed 4-8 m/s
 /// (and 0.3 m/s, unscored for heading, in the first two scans).
@@ -83,10 +84,10 @@ pub(crate) fn synthetic_report() -> BenchmarkReport {
 /// A whole scene of `scans` scans: random scored points for four methods, a moving car and a
 /// walking pedestrian at every scan, and scan timings.
 pub(crate) fn synthetic_scene(name: &str, scans: usize, seed: u64) -> SceneResult {
-    use crate::objects::ObjectScan;
-    use crate::perception_timing::{ScanTiming, StepTiming};
-    use crate::scene_flow::SceneFlowTally;
-    use crate::scene_point::FlowClass;
+    use crate::scene::objects::ObjectScan;
+    use crate::scene::perception_timing::{ScanTiming, StepTiming};
+    use crate::scene::scene_flow::SceneFlowTally;
+    use crate::scene::scene_point::FlowClass;
     use patchflow_dataset::ActorClass;
 
     let mut rng = ChaCha8Rng::seed_from_u64(seed);

@@ -3,21 +3,17 @@
 //! `plots/<situation>_heading.png`, `plots/<situation>_speed.png`, `plots/summary_rmse.png` and, when sequences were
 //! evaluated as whole scenes, `plots/objects_epe_by_range.png` and `plots/objects_epe_by_points.png`.
 
-use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use crate::error::EvalError;
-use crate::objects::ObjectScan;
-use crate::perception_summary::PerceptionSummary;
-use crate::report::csv::tables_csv;
-use crate::report::files::{create_dir, write_atomic};
-use crate::report::json::{metrics_text, metrics_value};
-use crate::report::markdown::report_markdown;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::report::files::create_dir;
 use crate::report::object_plot::{ObjectAxis, plot_object_epe};
 use crate::report::plot::{plot_heading, plot_speed};
-use crate::report::scores::ReportScores;
+use crate::report::report_model::ReportModel;
 use crate::report::summary_plot::plot_summary;
-use crate::result::BenchmarkReport;
+use crate::report::write_once::WriteOnce;
+use crate::scene::objects::ObjectScan;
 
 /// The files a report consists of.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -43,68 +39,52 @@ pub struct ReportFiles {
 /// println!("{}", files.report_md.display());
 /// ```
 pub fn write_report(report: &BenchmarkReport, dir: &Path) -> Result<ReportFiles, EvalError> {
-    Ok(write_report_scored(report, dir)?.0)
+    write_model(&ReportModel::new(report)?, dir, &mut WriteOnce::new())
 }
 
-/// [`write_report`], also handing back the scores it computed once, so that callers print the
-/// same numbers without scoring again.
-pub(crate) fn write_report_scored(
-    report: &BenchmarkReport,
+/// Writes the files of a report model into `dir` (created if needed), each once through `files`:
+/// the text files rendered in one pass, then the plots.
+pub(crate) fn write_model(
+    model: &ReportModel<'_>,
     dir: &Path,
-) -> Result<(ReportFiles, ReportScores), EvalError> {
-    check_names(report)?;
-    let scores = ReportScores::of(report)?;
-
+    files: &mut WriteOnce,
+) -> Result<ReportFiles, EvalError> {
+    let report = model.results;
     let plots_dir = dir.join("plots");
     create_dir(&plots_dir)?;
-    let files = ReportFiles {
+    let mut paths = ReportFiles {
         metrics_json: dir.join("metrics.json"),
         tables_csv: dir.join("tables.csv"),
         report_md: dir.join("report.md"),
         perception_json: dir.join("perception.json"),
-        plots: report
-            .situations
-            .iter()
-            .flat_map(|s| {
-                [
-                    plots_dir.join(format!("{}_heading.png", s.name)),
-                    plots_dir.join(format!("{}_speed.png", s.name)),
-                ]
-            })
-            .collect(),
+        plots: Vec::new(),
     };
-    let json = metrics_value(report, &scores)
-        .and_then(|value| metrics_text(&value))
-        .map_err(|err| match err {
-            EvalError::Json { source, .. } => EvalError::Json {
-                path: files.metrics_json.clone(),
-                source,
-            },
-            other => other,
-        })?;
-    write_atomic(&files.metrics_json, json.as_bytes())?;
-    write_atomic(&files.tables_csv, tables_csv(&scores).as_bytes())?;
-    write_atomic(
-        &files.report_md,
-        report_markdown(report, &scores).as_bytes(),
-    )?;
-    for (situation, pair) in report.situations.iter().zip(files.plots.chunks(2)) {
-        plot_heading(situation, &pair[0])?;
-        plot_speed(situation, &pair[1])?;
+    let rendered = model.render().map_err(|err| match err {
+        EvalError::Json { source, .. } => EvalError::Json {
+            path: paths.metrics_json.clone(),
+            source,
+        },
+        other => other,
+    })?;
+    files.write(&paths.metrics_json, rendered.metrics_json.as_bytes())?;
+    files.write(&paths.tables_csv, rendered.tables_csv.as_bytes())?;
+    files.write(&paths.report_md, rendered.report_md.as_bytes())?;
+    if let Some(text) = &rendered.perception_json {
+        files.write(&paths.perception_json, text.as_bytes())?;
     }
-    let mut files = files;
+    for situation in &report.situations {
+        let heading = plots_dir.join(format!("{}_heading.png", situation.name));
+        let speed = plots_dir.join(format!("{}_speed.png", situation.name));
+        plot_heading(situation, &heading)?;
+        plot_speed(situation, &speed)?;
+        paths.plots.extend([heading, speed]);
+    }
     if !report.situations.is_empty() {
         let path = plots_dir.join("summary_rmse.png");
-        plot_summary(&scores.situations, &path)?;
-        files.plots.push(path);
+        plot_summary(&model.scores.situations, &path)?;
+        paths.plots.push(path);
     }
     if !report.scenes.is_empty() {
-        let perception = PerceptionSummary::of_scenes(&report.scenes);
-        let text = serde_json::to_string_pretty(&perception).map_err(|source| EvalError::Json {
-            path: files.perception_json.clone(),
-            source,
-        })?;
-        write_atomic(&files.perception_json, format!("{text}\n").as_bytes())?;
         let objects: Vec<ObjectScan> = report
             .scenes
             .iter()
@@ -116,34 +96,10 @@ pub(crate) fn write_report_scored(
         ] {
             let path = plots_dir.join(name);
             plot_object_epe(&objects, axis, &path)?;
-            files.plots.push(path);
+            paths.plots.push(path);
         }
     }
-    Ok((files, scores))
-}
-
-fn check_names(report: &BenchmarkReport) -> Result<(), EvalError> {
-    let mut seen = BTreeSet::new();
-    for s in &report.situations {
-        let usable = !s.name.is_empty()
-            && !s.name.starts_with('.')
-            && s.name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
-        if !usable {
-            return Err(EvalError::BadResult {
-                situation: s.name.clone(),
-                reason: "a situation name must be letters, digits, '_', '-' or '.'".into(),
-            });
-        }
-        if !seen.insert(s.name.as_str()) {
-            return Err(EvalError::BadResult {
-                situation: s.name.clone(),
-                reason: "the situation appears twice".into(),
-            });
-        }
-    }
-    Ok(())
+    Ok(paths)
 }
 
 #[cfg(test)]

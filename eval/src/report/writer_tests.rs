@@ -90,7 +90,7 @@ fn a_method_with_the_wrong_number_of_estimates_is_an_error_naming_the_situation(
     let mut report = synthetic_report();
     report.situations[1]
         .methods
-        .insert(crate::method::Method::Kf, vec![None; 3]);
+        .insert(crate::methods::method::Method::Kf, vec![None; 3]);
     let err = write_report(&report, dir.path()).unwrap_err().to_string();
     assert!(err.contains("situation4") && err.contains("KF"), "{err}");
 }

@@ -7,12 +7,12 @@ use std::collections::BTreeMap;
 use patchflow_dataset::Sweep;
 use patchflow_learn::SweepFeatures;
 
-use crate::estimate::MotionEstimate;
-use crate::moving_iou::{MovingIou, is_moving_displacement};
-use crate::objects::MIN_OBJECT_POINTS;
-use crate::scene_flow::SceneFlowTally;
-use crate::scene_point::ScenePoints;
-use crate::truth_at_scan::TruthAtScan;
+use crate::methods::estimate::MotionEstimate;
+use crate::scene::moving_iou::{MovingIou, is_moving_displacement};
+use crate::scene::objects::MIN_OBJECT_POINTS;
+use crate::scene::scene_flow::SceneFlowTally;
+use crate::scene::scene_point::ScenePoints;
+use crate::scene::truth_at_scan::TruthAtScan;
 
 /// What one method's predictions scored so far.
 #[derive(Debug, Clone, Default)]

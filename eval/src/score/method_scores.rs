@@ -5,11 +5,11 @@
 use serde::Serialize;
 
 use crate::error::EvalError;
-use crate::estimate::MotionEstimate;
-use crate::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
-use crate::moving_iou::MovingIou;
-use crate::scene_flow::{SceneFlowMetrics, SceneFlowTally};
-use crate::truth_at_scan::TruthAtScan;
+use crate::methods::estimate::MotionEstimate;
+use crate::scene::metrics::{MIN_SCORED_SPEED_MPS, MethodMetrics, score_method};
+use crate::scene::moving_iou::MovingIou;
+use crate::scene::scene_flow::{SceneFlowMetrics, SceneFlowTally};
+use crate::scene::truth_at_scan::TruthAtScan;
 
 /// Where a method's rows come from.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

@@ -12,12 +12,12 @@ use std::collections::BTreeMap;
 use patchflow_dataset::Dataset;
 use patchflow_learn::{FeatureParams, MotionEstimator, MovingClassifier, ScanStream};
 
-use crate::baseline_params::BaselineParams;
-use crate::dataset_evaluation::{evaluate_dataset, sequences_to_evaluate};
 use crate::error::EvalError;
-use crate::method::Method;
-use crate::result::SceneResult;
-use crate::scene_point::ScenePoints;
+use crate::methods::baselines::baseline_params::BaselineParams;
+use crate::methods::method::Method;
+use crate::pipeline::dataset_evaluation::{evaluate_dataset, sequences_to_evaluate};
+use crate::scene::result::SceneResult;
+use crate::scene::scene_point::ScenePoints;
 
 pub use external_tally::ExternalTally;
 pub use method_scores::{MethodScores, MethodSource, MethodTally};

@@ -9,12 +9,13 @@ use std::path::Path;
 use patchflow_learn::{MotionEstimator, MovingClassifier};
 use patchflow_sim::Realism;
 
-use crate::baseline_params::BaselineParams;
-use crate::bench::run_files::remove_data;
-use crate::bench::{BenchPlan, evaluate_targets_with_baselines, source_name};
+use crate::cv::cv_report::CvReport;
 use crate::error::EvalError;
-use crate::report::CvReport;
-use crate::result::BenchmarkReport;
+use crate::methods::baselines::baseline_params::BaselineParams;
+use crate::pipeline::data_folders::remove_data;
+use crate::pipeline::plan::{BenchPlan, source_name};
+use crate::pipeline::target_runs::evaluate_targets_with_baselines;
+use crate::report::benchmark_report::BenchmarkReport;
 use crate::study::discussion::discussion_section;
 use crate::study::markdown::study_section;
 use crate::study::merge::merge_study;

@@ -5,11 +5,12 @@
 
 use std::fmt::Write as _;
 
-use crate::method::{CANONICAL_METHODS, Method};
-use crate::report::{CvFeature, CvGp, CvReport, fmt_opt};
+use crate::cv::cv_report::{CvFeature, CvGp, CvReport};
+use crate::methods::method::{CANONICAL_METHODS, Method};
+use crate::report::fmt_opt;
+use crate::report::thesis_tables::{THESIS_CV_HEADING_RMSE_DEG, THESIS_SITUATIONS};
 use crate::study::point_result::PointResult;
 use crate::study::study_report::StudyReport;
-use crate::thesis_tables::{THESIS_CV_HEADING_RMSE_DEG, THESIS_SITUATIONS};
 
 /// The thesis' six methods (it has no `-AUTO` variants).
 fn thesis_methods() -> &'static [Method] {

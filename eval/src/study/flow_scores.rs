@@ -7,8 +7,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::result::BenchmarkReport;
-use crate::scene_flow::SceneFlowTally;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::scene::scene_flow::SceneFlowTally;
 
 /// One method's scene flow over some sequences.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -60,9 +60,9 @@ pub(crate) fn pooled_scene_flow(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::method::Method;
-    use crate::result::SceneResult;
-    use crate::scene_point::FlowClass;
+    use crate::methods::method::Method;
+    use crate::scene::result::SceneResult;
+    use crate::scene::scene_point::FlowClass;
 
     /// A scene of `points` car points moving 0.5 m per sweep: KF-AUTO off by 0.1 m, ZERO-FLOW
     /// by the whole move.

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use crate::method::CANONICAL_METHODS;
+use crate::methods::method::CANONICAL_METHODS;
 use crate::report::fmt_opt;
 use crate::study::findings::{findings_section, thesis_prediction};
 use crate::study::measures::{MEASURES, study_methods};

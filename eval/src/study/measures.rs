@@ -1,7 +1,7 @@
 //! The measures a study's tables and plots show (heading and speed RMSE, coverage) and the
 //! methods of a study in report order, shared by `study.md`, the findings and the plots.
 
-use crate::method::CANONICAL_METHODS;
+use crate::methods::method::CANONICAL_METHODS;
 use crate::study::point_result::Scores;
 use crate::study::study_report::StudyReport;
 

@@ -6,8 +6,8 @@
 use patchflow_learn::GpKind;
 use patchflow_sim::{Realism, ScenarioSource};
 
-use crate::bench::BenchPlan;
 use crate::error::EvalError;
+use crate::pipeline::plan::BenchPlan;
 use crate::study::sensor_setting::SensorSetting;
 
 /// The factor a study varies.

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::bench::source_name;
+use crate::pipeline::plan::source_name;
 use crate::study::plan::StudyPlan;
 
 /// The fixed parts of a study plan, as recorded beside each point's result.
@@ -96,7 +96,7 @@ impl PlanStamp {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::BenchPlan;
+    use crate::pipeline::plan::BenchPlan;
     use crate::study::plan::StudyFactor;
 
     #[test]

@@ -9,12 +9,12 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
-use crate::estimate::MotionEstimate;
-use crate::metrics::{MethodMetrics, score_method};
-use crate::result::BenchmarkReport;
+use crate::methods::estimate::MotionEstimate;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::scene::metrics::{MethodMetrics, score_method};
+use crate::scene::truth_at_scan::TruthAtScan;
 use crate::study::flow_scores::{FlowScores, pooled_scene_flow};
 use crate::study::plan::StudyPoint;
-use crate::truth_at_scan::TruthAtScan;
 
 /// Bins of the target's points in the height slice: label and upper edge (as in `report.md`).
 pub const POINT_BINS: [(&str, f64); 3] = [

@@ -12,11 +12,12 @@ use patchflow_learn::{
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
-use crate::bench::{
-    collect_feature_draws_with_bar, evaluate_with_bar, generate_with_progress, shortened_tracks,
-};
 use crate::error::EvalError;
-use crate::progress::spinner;
+use crate::pipeline::progress::spinner;
+use crate::pipeline::short_tracks::shortened_tracks;
+use crate::pipeline::stages::{
+    collect_feature_draws_with_bar, evaluate_with_bar, generate_with_progress,
+};
 use crate::report::{create_dir, write_atomic};
 use crate::study::merge::{StudyFiles, merge_study};
 use crate::study::plan::{StudyPlan, StudyPoint};

@@ -1,0 +1,309 @@
+//! Multi-target tracker over all clusters, for the `KF-AUTO` baseline: one constant-velocity Kalman
+//! filter per track on the cluster centroid, nearest-neighbour association with a χ² gate.
+//!
+//! Each scan:
+//! 1. predict every track to the scan's time stamp;
+//! 2. gate: a (track, cluster) pair is a candidate when the squared Mahalanobis distance of the
+//!    centroid innovation `yᵀS⁻¹y` is at most `gate_chi2` (9.21 = χ²₂ at 99 %);
+//! 3. associate greedily, one-to-one: confirmed tracks before tentative ones, then the smallest
+//!    distance first (ties broken by track id, then cluster index, so the result is deterministic);
+//! 4. update the associated tracks; a tentative track becomes confirmed after `confirm_hits`
+//!    consecutive hits;
+//! 5. track end: a tentative track is deleted at its first miss, a confirmed one after more than
+//!    `max_misses` consecutive misses (it coasts on its prediction meanwhile);
+//! 6. track start: every unassociated cluster starts a tentative track.
+//!
+//! Life-cycle after Deep SORT (reference/baselines.md §2.2). The tracker never looks at the target
+//! id: the benchmark only reads out the confirmed track that took the target cluster.
+
+use crate::error::EvalError;
+use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
+use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
+
+/// Knobs of the tracker.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackerParams {
+    /// Filter of each track.
+    pub kalman: KalmanParams,
+    /// Gate on the squared Mahalanobis distance (χ² with 2 dof; 9.21 = 99 %).
+    pub gate_chi2: f64,
+    /// Consecutive hits before a tentative track is confirmed.
+    pub confirm_hits: usize,
+    /// A confirmed track is deleted after more consecutive misses than this.
+    pub max_misses: usize,
+}
+
+impl Default for TrackerParams {
+    fn default() -> Self {
+        Self {
+            kalman: KalmanParams::default(),
+            gate_chi2: 9.21,
+            confirm_hits: 3,
+            max_misses: 3,
+        }
+    }
+}
+
+/// Whether a track has earned trust yet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TrackStatus {
+    /// Started recently; not reported.
+    Tentative,
+    /// Seen `confirm_hits` times in a row; reported.
+    Confirmed,
+}
+
+/// One tracked object.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Track {
+    /// Unique id, never reused.
+    pub id: usize,
+    /// Its filter.
+    pub filter: ConstantVelocityKalman,
+    /// Tentative or confirmed.
+    pub status: TrackStatus,
+    /// Consecutive scans with an associated cluster.
+    pub consecutive_hits: usize,
+    /// Consecutive scans without.
+    pub consecutive_misses: usize,
+}
+
+/// The tracker state.
+#[derive(Debug, Clone)]
+pub struct MultiTargetTracker {
+    params: TrackerParams,
+    tracks: Vec<Track>,
+    next_id: usize,
+    last_stamp_secs: Option<f64>,
+}
+
+impl MultiTargetTracker {
+    /// An empty tracker.
+    pub fn new(params: TrackerParams) -> Result<Self, EvalError> {
+        params.kalman.validate()?;
+        if params.gate_chi2.is_nan() || params.gate_chi2 <= 0.0 {
+            return Err(EvalError::BadParameter {
+                name: "TrackerParams.gate_chi2",
+                reason: format!("must be positive, got {}", params.gate_chi2),
+            });
+        }
+        Ok(Self {
+            params,
+            tracks: Vec::new(),
+            next_id: 0,
+            last_stamp_secs: None,
+        })
+    }
+
+    /// The live tracks.
+    pub fn tracks(&self) -> &[Track] {
+        &self.tracks
+    }
+
+    /// The live track with this id.
+    pub fn track(&self, id: usize) -> Option<&Track> {
+        self.tracks.iter().find(|t| t.id == id)
+    }
+
+    /// Processes one scan's cluster centroids; returns, per cluster, the id of the track (tentative
+    /// or confirmed) that took it. `scan` only labels errors.
+    pub fn step(
+        &mut self,
+        scan: usize,
+        stamp_secs: f64,
+        centroids_xy: &[[f64; 2]],
+    ) -> Result<Vec<Option<usize>>, EvalError> {
+        self.step_measured(scan, stamp_secs, centroids_xy, &[])
+    }
+
+    /// [`Self::step`] where cluster `c` may also come with a measured velocity
+    /// (`velocities[c]`, `GP-KF`): the track that takes it, or the track it starts, is also
+    /// corrected by it. A shorter slice means the rest have none.
+    pub fn step_measured(
+        &mut self,
+        scan: usize,
+        stamp_secs: f64,
+        centroids_xy: &[[f64; 2]],
+        velocities: &[Option<VelocityMeasurement>],
+    ) -> Result<Vec<Option<usize>>, EvalError> {
+        let velocity_of = |c: usize| velocities.get(c).copied().flatten();
+        // 1. Predict.
+        if let Some(last) = self.last_stamp_secs {
+            let dt = stamp_secs - last;
+            if !(dt > 0.0 && dt.is_finite()) {
+                return Err(EvalError::BadObservation {
+                    situation: "-".into(),
+                    scan,
+                    reason: format!("time stamp {stamp_secs} s does not follow {last} s"),
+                });
+            }
+            self.tracks.iter_mut().for_each(|t| t.filter.predict(dt));
+        }
+        self.last_stamp_secs = Some(stamp_secs);
+        // 2. Gate.
+        let mut candidates = Vec::new();
+        for (ti, track) in self.tracks.iter().enumerate() {
+            for (ci, c) in centroids_xy.iter().enumerate() {
+                let d2 = track.filter.innovation(*c)?.mahalanobis_sq;
+                if d2 <= self.params.gate_chi2 {
+                    let rank = usize::from(track.status == TrackStatus::Tentative);
+                    candidates.push((rank, d2, track.id, ti, ci));
+                }
+            }
+        }
+        // 3. Greedy one-to-one nearest neighbour, confirmed tracks first.
+        candidates.sort_by(|a, b| {
+            a.0.cmp(&b.0)
+                .then(a.1.total_cmp(&b.1))
+                .then(a.2.cmp(&b.2))
+                .then(a.4.cmp(&b.4))
+        });
+        let mut track_cluster: Vec<Option<usize>> = vec![None; self.tracks.len()];
+        let mut cluster_track: Vec<Option<usize>> = vec![None; centroids_xy.len()];
+        for (_, _, id, ti, ci) in candidates {
+            if track_cluster[ti].is_none() && cluster_track[ci].is_none() {
+                track_cluster[ti] = Some(ci);
+                cluster_track[ci] = Some(id);
+            }
+        }
+        // 4. Update hits, 5. count misses.
+        for (track, cluster) in self.tracks.iter_mut().zip(&track_cluster) {
+            match cluster {
+                Some(ci) => {
+                    track.filter.update(centroids_xy[*ci])?;
+                    if let Some(v) = velocity_of(*ci) {
+                        track.filter.update_velocity(&v)?;
+                    }
+                    track.consecutive_hits += 1;
+                    track.consecutive_misses = 0;
+                    if track.consecutive_hits >= self.params.confirm_hits {
+                        track.status = TrackStatus::Confirmed;
+                    }
+                }
+                None => {
+                    track.consecutive_hits = 0;
+                    track.consecutive_misses += 1;
+                }
+            }
+        }
+        let max_misses = self.params.max_misses;
+        self.tracks.retain(|t| match t.status {
+            TrackStatus::Tentative => t.consecutive_misses == 0,
+            TrackStatus::Confirmed => t.consecutive_misses <= max_misses,
+        });
+        // 6. Start tracks on the unassociated clusters.
+        for (ci, assigned) in cluster_track.iter_mut().enumerate() {
+            if assigned.is_none() {
+                let mut track = Track {
+                    id: self.next_id,
+                    filter: ConstantVelocityKalman::new(centroids_xy[ci], self.params.kalman)?,
+                    status: TrackStatus::Tentative,
+                    consecutive_hits: 1,
+                    consecutive_misses: 0,
+                };
+                if self.params.confirm_hits <= 1 {
+                    track.status = TrackStatus::Confirmed;
+                }
+                if let Some(v) = velocity_of(ci) {
+                    track.filter.update_velocity(&v)?;
+                }
+                *assigned = Some(track.id);
+                self.next_id += 1;
+                self.tracks.push(track);
+            }
+        }
+        Ok(cluster_track)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    const DT: f64 = 0.1;
+
+    fn tracker() -> MultiTargetTracker {
+        MultiTargetTracker::new(TrackerParams::default()).unwrap()
+    }
+
+    #[test]
+    fn one_track_id_survives_a_crossing_of_two_targets_at_different_speeds() {
+        // A drives +x at 10 m/s along y = 0; B drives +y at 3 m/s along x = 0.5; their paths
+        // cross near (0.5, 0) with the cars about a metre apart at the closest point.
+        let mut rng = ChaCha8Rng::seed_from_u64(21);
+        let mut t = tracker();
+        let (mut ids_a, mut ids_b) = (Vec::new(), Vec::new());
+        for k in 0..40 {
+            let time = k as f64 * DT;
+            let mut noise = || rng.random_range(-0.1..0.1);
+            let a = [-15.0 + 10.0 * time + noise(), noise()];
+            let b = [0.5 + noise(), -5.5 + 3.0 * time + noise()];
+            // Alternate the cluster order so list position carries no information.
+            let (centroids, ia, ib) = if k % 2 == 0 {
+                (vec![a, b], 0, 1)
+            } else {
+                (vec![b, a], 1, 0)
+            };
+            let assigned = t.step(k, time, &centroids).unwrap();
+            ids_a.push(assigned[ia].unwrap());
+            ids_b.push(assigned[ib].unwrap());
+        }
+        assert!(ids_a.iter().all(|id| *id == ids_a[0]), "{ids_a:?}");
+        assert!(ids_b.iter().all(|id| *id == ids_b[0]), "{ids_b:?}");
+        assert_ne!(ids_a[0], ids_b[0]);
+        let vel_a = t.track(ids_a[0]).unwrap().filter.velocity();
+        assert!((vel_a[0] - 10.0).abs() < 1.0, "{vel_a:?}");
+    }
+
+    #[test]
+    fn a_far_clutter_cluster_is_gated_out_of_a_confirmed_track() {
+        let mut t = tracker();
+        let mut target_id = None;
+        for k in 0..10 {
+            let target = [5.0 * k as f64 * DT, 0.0];
+            let assigned = t.step(k, k as f64 * DT, &[target]).unwrap();
+            target_id = assigned[0];
+        }
+        // The target vanishes for one scan while clutter appears 8 m ahead of it.
+        let clutter = t.step(10, 1.0, &[[13.0, 0.0]]).unwrap();
+        assert_ne!(clutter[0], target_id);
+        let after = t.step(11, 1.1, &[[5.5, 0.0]]).unwrap();
+        assert_eq!(after[0], target_id);
+        // The clutter's tentative track died at its first miss.
+        assert_eq!(t.tracks().len(), 1);
+    }
+
+    #[test]
+    fn tracks_are_confirmed_after_three_hits_and_ended_after_more_than_three_misses() {
+        let mut t = tracker();
+        let mut statuses = Vec::new();
+        for k in 0..4 {
+            let assigned = t.step(k, k as f64 * DT, &[[k as f64 * 0.4, 1.0]]).unwrap();
+            statuses.push(t.track(assigned[0].unwrap()).unwrap().status);
+        }
+        assert_eq!(
+            statuses,
+            [
+                TrackStatus::Tentative,
+                TrackStatus::Tentative,
+                TrackStatus::Confirmed,
+                TrackStatus::Confirmed
+            ]
+        );
+        for k in 4..7 {
+            t.step(k, k as f64 * DT, &[]).unwrap();
+            assert_eq!(t.tracks().len(), 1, "coasting at scan {k}");
+        }
+        t.step(7, 0.7, &[]).unwrap();
+        assert!(t.tracks().is_empty());
+    }
+
+    #[test]
+    fn a_time_stamp_that_does_not_increase_is_an_error() {
+        let mut t = tracker();
+        t.step(0, 1.0, &[[0.0, 0.0]]).unwrap();
+        assert!(t.step(1, 1.0, &[[0.0, 0.0]]).is_err());
+    }
+}

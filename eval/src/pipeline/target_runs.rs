@@ -1,0 +1,323 @@
+//! The per-target tables alone (thesis 4.4's protocol: the target's cluster, predicted at every
+//! one of its points, merged ALL and BEST) for the further training seeds of a benchmark: only
+//! the GP methods depend on training, so a seed needs neither the baselines nor the whole scene.
+//! With the baselines, the same serves the realism study, which scores the target only: no GP
+//! runs on the rest of the scene and ICP-AUTO aligns the target's cluster alone. GP-KF and
+//! GP-ICP then run too, with the GP's estimate (and the moving decision) of the target's cluster
+//! alone: the other clusters' tracks get centroids only, as KF-AUTO's.
+
+use std::collections::BTreeMap;
+
+use patchflow_dataset::{Dataset, SequenceReader};
+use patchflow_learn::{
+    ClusterEstimate, FeatureParams, FeaturedSweep, MergeRule, MotionEstimator, MovingClassifier,
+    ScanStream,
+};
+use rayon::prelude::*;
+
+use crate::error::EvalError;
+use crate::methods::baselines::baseline_method::run_all_baselines;
+use crate::methods::baselines::baseline_params::BaselineParams;
+use crate::methods::baselines::velocity_measurement::VelocityFloors;
+use crate::methods::estimate::MotionEstimate;
+use crate::methods::estimate::to_estimate;
+use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
+use crate::methods::method::Method;
+use crate::methods::observation::ScanObservation;
+use crate::pipeline::dataset_evaluation::sequences_to_evaluate;
+use crate::report::benchmark_report::BenchmarkReport;
+use crate::scene::oracle::{observe, target_at, target_cluster};
+use crate::scene::result::SituationResult;
+
+/// Every GP read-out's estimate of the target at every scan of every situation (sequences with a
+/// target) of `dataset`, in dataset order, for each of several trained runs (`runs[k]` holds one
+/// run's estimators, one per GP kind); the runs share each scan's maps. The estimates equal
+/// those of the whole evaluation ([`crate::evaluate_dataset`]) for the same estimators.
+pub fn evaluate_targets(
+    dataset: &Dataset,
+    runs: &[Vec<MotionEstimator>],
+) -> Result<Vec<Vec<SituationResult>>, EvalError> {
+    targets_of_runs(dataset, runs, None, None)
+}
+
+/// Every method's estimate of the target at every scan of every situation of `dataset` (the GP
+/// read-outs of `estimators` and the four baselines with `baselines`), the situations in
+/// parallel: the per-target tables of [`crate::evaluate_dataset`], equal to its, without the
+/// whole scene (whose scores and timings are not wanted here).
+pub(crate) fn evaluate_targets_with_baselines(
+    dataset: &Dataset,
+    estimators: &[MotionEstimator],
+    baselines: &BaselineParams,
+    moving: Option<&MovingClassifier>,
+) -> Result<BenchmarkReport, EvalError> {
+    let runs = [estimators.to_vec()];
+    let situations = targets_of_runs(dataset, &runs, Some(baselines), moving)?
+        .into_iter()
+        .next()
+        .unwrap_or_default();
+    Ok(BenchmarkReport {
+        situations,
+        ..BenchmarkReport::default()
+    })
+}
+
+/// The targets of `dataset` for each run, with the baselines' estimates in every run if asked.
+fn targets_of_runs(
+    dataset: &Dataset,
+    runs: &[Vec<MotionEstimator>],
+    baselines: Option<&BaselineParams>,
+    moving: Option<&MovingClassifier>,
+) -> Result<Vec<Vec<SituationResult>>, EvalError> {
+    let names = sequences_to_evaluate(dataset)?;
+    let sequences = names
+        .par_iter()
+        .map(|name| evaluate_target(&dataset.sequence(name)?, runs, baselines, moving))
+        .collect::<Result<Vec<_>, EvalError>>()?;
+    let mut per_run = vec![Vec::new(); runs.len()];
+    for results in sequences.into_iter().flatten() {
+        for (run, result) in per_run.iter_mut().zip(results) {
+            run.push(result);
+        }
+    }
+    Ok(per_run)
+}
+
+/// One sequence's target for every run, or `None` when the sequence marks no target.
+fn evaluate_target(
+    sequence: &SequenceReader,
+    runs: &[Vec<MotionEstimator>],
+    baselines: Option<&BaselineParams>,
+    moving: Option<&MovingClassifier>,
+) -> Result<Option<Vec<SituationResult>>, EvalError> {
+    let name = sequence.info().name.clone();
+    if sequence.len() < 2 || sequence.read_sweep(0)?.target().is_none() {
+        return Ok(None);
+    }
+    // Each distinct set of feature parameters gets its maps once per scan.
+    let mut params: Vec<FeatureParams> = Vec::new();
+    let mut group_of: Vec<Vec<usize>> = Vec::with_capacity(runs.len());
+    for run in runs {
+        let mut groups = Vec::with_capacity(run.len());
+        for e in run {
+            // The training-only speed jitter does not change the run-time maps.
+            let own = FeatureParams {
+                speed_jitter_deg: 0.0,
+                ..e.feature_params().clone()
+            };
+            match params.iter().position(|p| *p == own) {
+                Some(g) => groups.push(g),
+                None => {
+                    params.push(own);
+                    groups.push(params.len() - 1);
+                }
+            }
+        }
+        group_of.push(groups);
+    }
+    let mut truth = Vec::new();
+    let mut methods: Vec<BTreeMap<Method, Vec<Option<MotionEstimate>>>> =
+        vec![BTreeMap::new(); runs.len()];
+    let mut observations: Vec<ScanObservation> = Vec::new();
+    // Per scan: the target's moving decision; per run and scan: its first GP's ALL estimate.
+    let mut target_moving: Vec<Option<bool>> = Vec::new();
+    let mut target_all: Vec<Vec<Option<MotionEstimate>>> = vec![Vec::new(); runs.len()];
+    let mut stream = ScanStream::new(sequence, params)?;
+    while let Some((index, sweep)) = stream.read_next()? {
+        let features = stream.features_of(&sweep)?;
+        let scan = FeaturedSweep {
+            index,
+            sweep,
+            features,
+        };
+        truth.push(target_at(&scan, &scan.features[0], &name)?);
+        if baselines.is_some() {
+            // What the baselines see (the first estimator's clusters, as the whole evaluation);
+            // the oracle association kept for the target alone, which only its estimates read.
+            let mut observation = observe(&scan, &scan.features[0]);
+            let target = observation.target_actor;
+            observation.actors.retain(|&actor, _| Some(actor) == target);
+            let decision = match (moving, observation.target_cluster()) {
+                (Some(classifier), Some(c)) => {
+                    classifier.cluster_probabilities(&scan.features[0])?[c].map(|p| p > 0.5)
+                }
+                _ => None,
+            };
+            target_moving.push(decision);
+            observations.push(observation);
+        }
+        let runs_and_columns = runs.iter().zip(&group_of).zip(&mut methods);
+        for (((run, groups), columns), first_all) in runs_and_columns.zip(&mut target_all) {
+            for (i, (estimator, &group)) in run.iter().zip(groups).enumerate() {
+                let own = &scan.features[group];
+                let estimate = match target_cluster(own, &scan.sweep) {
+                    Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
+                    None => ClusterEstimate::default(),
+                };
+                if i == 0 {
+                    first_all.push(estimate.all.map(to_estimate));
+                }
+                for (rule, motion) in [
+                    (MergeRule::All, estimate.all),
+                    (MergeRule::Best, estimate.best),
+                ] {
+                    let Some(method) = Method::of_target_readout(estimator, rule) else {
+                        continue;
+                    };
+                    let column = columns.entry(method).or_default();
+                    column.push(motion.map(to_estimate));
+                }
+                if baselines.is_some() && moving.is_some() {
+                    let decided = match target_moving.last().copied().flatten() {
+                        Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
+                        _ => estimate.all.map(to_estimate),
+                    };
+                    let column = columns.entry(Method::gp_decided(estimator.gp_kind()));
+                    column.or_default().push(decided);
+                }
+            }
+        }
+    }
+    // Thesis 3.2: the baselines, run once; they do not learn, so every run gets the same.
+    if let Some(params) = baselines {
+        let estimates = run_all_baselines(&name, &observations, params)?;
+        for (columns, first_all) in methods.iter_mut().zip(&target_all) {
+            columns.extend(estimates.clone());
+            columns.extend(learned_targets(
+                &observations,
+                first_all,
+                &target_moving,
+                params,
+            )?);
+        }
+    }
+    let results = methods
+        .into_iter()
+        .map(|methods| {
+            let result = SituationResult {
+                name: name.clone(),
+                scans: truth.len(),
+                truth: truth.clone(),
+                methods,
+            };
+            result.validate().map(|()| result)
+        })
+        .collect::<Result<Vec<_>, EvalError>>()?;
+    Ok(Some(results))
+}
+
+/// GP-KF's and GP-ICP's estimates of the target at every scan, given the GP's estimate of the
+/// target's cluster and its moving decision (`None` without a classifier) at every scan.
+fn learned_targets(
+    observations: &[ScanObservation],
+    target_all: &[Option<MotionEstimate>],
+    target_moving: &[Option<bool>],
+    params: &BaselineParams,
+) -> Result<BTreeMap<Method, Vec<Option<MotionEstimate>>>, EvalError> {
+    let mut trackers = LearnedTrackers::new(params, VelocityFloors::default())?;
+    let mut out: BTreeMap<Method, Vec<Option<MotionEstimate>>> = BTreeMap::new();
+    for (k, observation) in observations.iter().enumerate() {
+        let n = observation.clusters.len();
+        let target = observation.target_cluster().filter(|&c| c < n);
+        let mut learned = vec![LearnedCluster::default(); n];
+        let mut wanted = vec![false; n];
+        if let Some(c) = target {
+            learned[c] = LearnedCluster {
+                gp: target_all.get(k).copied().flatten(),
+                moving: target_moving.get(k).copied().flatten(),
+            };
+            wanted[c] = true;
+        }
+        let flows = trackers.step(observation, &learned, &wanted)?;
+        for (method, clusters) in flows {
+            let estimate = target.and_then(|c| clusters[c]).map(|f| f.estimate());
+            out.entry(method).or_default().push(estimate);
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use patchflow_learn::{EstimatorParams, GpKind};
+    use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
+
+    use crate::methods::baselines::baseline_params::BaselineParams;
+    use crate::pipeline::dataset_evaluation::evaluate_dataset;
+
+    #[test]
+    fn the_target_alone_gets_the_same_gp_estimates_as_the_whole_evaluation() {
+        let dir = tempfile::tempdir().unwrap();
+        let tiny = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
+        let options = GenerateOptions {
+            out: dir.path().to_owned(),
+            seed: 5,
+            shard: Shard::ALL,
+            overwrite: false,
+            realism: None,
+        };
+        generate_dataset(&[ScenarioSource::File(tiny.into())], &options, &|_| {}).unwrap();
+        let dataset = Dataset::open(dir.path()).unwrap();
+        let params = EstimatorParams {
+            gp: GpKind::Spgp,
+            samples: 40,
+            pseudo_inputs: 5,
+            max_iters: 10,
+            ..EstimatorParams::default()
+        };
+        let estimator = MotionEstimator::train(&dataset, &params).unwrap();
+        let estimators = [estimator];
+        let whole = evaluate_dataset(
+            &dataset,
+            &estimators,
+            &BaselineParams::default(),
+            None,
+            &|| {},
+        )
+        .unwrap();
+        let runs = [estimators.to_vec(), estimators.to_vec()];
+        let targets = evaluate_targets(&dataset, &runs).unwrap();
+        assert_eq!(targets.len(), 2, "one result per run");
+        assert_eq!(targets[0], targets[1], "the same estimators twice");
+        assert_eq!(targets[0].len(), 1);
+        let (alone, full) = (&targets[0][0], &whole.situations[0]);
+        assert_eq!((&alone.name, alone.scans), (&full.name, full.scans));
+        assert_eq!(alone.truth, full.truth);
+        assert_eq!(alone.methods.len(), 2, "SPGP-ALL and SPGP-BEST");
+        for (method, estimates) in &alone.methods {
+            assert_eq!(Some(estimates), full.methods.get(method), "{method}");
+        }
+        assert!(alone.methods[&Method::SpgpAll].iter().any(Option::is_some));
+        // With the baselines: every method of the whole evaluation's per-target table, equal,
+        // but GP-KF and GP-ICP, which see the GP on the target's cluster alone here.
+        let with = evaluate_targets_with_baselines(
+            &dataset,
+            &estimators,
+            &BaselineParams::default(),
+            None,
+        )
+        .unwrap();
+        let without_learned_tracking = |situations: &[SituationResult]| {
+            let mut out = situations.to_vec();
+            for s in &mut out {
+                s.methods.remove(&Method::GpKf);
+                s.methods.remove(&Method::GpIcp);
+            }
+            out
+        };
+        assert_eq!(
+            without_learned_tracking(&with.situations),
+            without_learned_tracking(&whole.situations)
+        );
+        assert!(
+            with.situations[0].methods[&Method::GpKf]
+                .iter()
+                .any(Option::is_some)
+        );
+        assert!(
+            with.situations[0].methods[&Method::IcpAuto]
+                .iter()
+                .any(Option::is_some)
+        );
+    }
+}

@@ -1,0 +1,359 @@
+//! Replays one sequence scan by scan, in order, as a car would run it: thesis Algorithm 3.1 on
+//! every scan for every trained estimator, the baselines of thesis 3.2 on every cluster, and the
+//! scores: per-target tables after thesis 4.4, scene flow and every actor for the whole scene.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use patchflow_dataset::SequenceReader;
+use patchflow_learn::{
+    ClusterEstimate, ClusterMotion, FeatureParams, FeaturedSweep, MotionEstimator,
+    MovingClassifier, ScanMotion, ScanStream, SweepFeatures,
+};
+
+use crate::error::EvalError;
+use crate::methods::baselines::baseline_method::BaselineMethod;
+use crate::methods::baselines::baseline_params::BaselineParams;
+use crate::methods::baselines::baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
+use crate::methods::baselines::velocity_measurement::VelocityFloors;
+use crate::methods::estimate::{MotionEstimate, to_estimate};
+use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
+use crate::methods::method::{GpReadout, Method};
+use crate::scene::cpu_time::process_cpu_secs;
+use crate::scene::objects::ObjectScan;
+use crate::scene::oracle::{observe, target_at, target_cluster};
+use crate::scene::perception_timing::{ScanTiming, StepTiming};
+use crate::scene::result::{SceneResult, SituationResult};
+use crate::scene::scan_scoring::{MethodFlow, object_scans, score_points};
+use crate::scene::scene_flow::SceneFlowTally;
+use crate::scene::scene_point::ScenePoints;
+use crate::scene::truth_at_scan::TruthAtScan;
+
+/// What one sequence yields.
+#[derive(Debug, Clone)]
+pub struct SequenceRun {
+    /// The per-target tables' data, when the sequence marks a target.
+    pub target: Option<SituationResult>,
+    /// The whole scene.
+    pub scene: SceneResult,
+}
+
+/// The running scores of a sequence.
+struct Scores {
+    tallies: BTreeMap<Method, SceneFlowTally>,
+    objects: Vec<ObjectScan>,
+    timing: Vec<ScanTiming>,
+    target_truth: Vec<TruthAtScan>,
+    target_estimates: BTreeMap<Method, Vec<Option<MotionEstimate>>>,
+}
+
+/// The trackers of a sequence: the baselines and the GP-informed ones.
+struct Trackers {
+    baselines: BaselineTrackers,
+    learned: LearnedTrackers,
+}
+
+/// Evaluates every estimator and baseline on one sequence. Scan `k` of the result is sweep
+/// `k + 1`: the first sweep has no predecessor, so no difference map and no estimate. With a
+/// moving classifier, the `+MOS` readouts, GP-KF and GP-ICP take its moving/static decision.
+/// GP-KF and GP-ICP read the first estimator's merged (ALL) estimates.
+///
+/// The whole-scene scores use the estimators trained with the first estimator's feature
+/// parameters (they share its maps and clusters); an estimator trained with other parameters
+/// computes its own maps and appears in the per-target tables only.
+pub fn evaluate_sequence(
+    sequence: &SequenceReader,
+    estimators: &[MotionEstimator],
+    baselines: &BaselineParams,
+    moving: Option<&MovingClassifier>,
+    on_scan: &(dyn Fn() + Sync),
+) -> Result<SequenceRun, EvalError> {
+    let name = sequence.info().name.clone();
+    let Some(first) = estimators.first() else {
+        return Err(EvalError::BadParameter {
+            name: "estimators",
+            reason: "no trained estimator given".into(),
+        });
+    };
+    // Each distinct set of feature parameters gets its features once per scan.
+    let mut params: Vec<FeatureParams> = vec![first.feature_params().clone()];
+    let mut group_of = Vec::with_capacity(estimators.len());
+    for e in estimators {
+        let group = match params.iter().position(|p| p == e.feature_params()) {
+            Some(g) => g,
+            None => {
+                params.push(e.feature_params().clone());
+                params.len() - 1
+            }
+        };
+        group_of.push(group);
+    }
+    let has_target = sequence.len() >= 2 && sequence.read_sweep(0)?.target().is_some();
+    let mut trackers = Trackers {
+        baselines: BaselineTrackers::new(&name, baselines)?,
+        learned: LearnedTrackers::new(baselines, VelocityFloors::default())?,
+    };
+    let mut scores = Scores {
+        tallies: BTreeMap::new(),
+        objects: Vec::new(),
+        timing: Vec::new(),
+        target_truth: Vec::new(),
+        target_estimates: BTreeMap::new(),
+    };
+    let mut stream = ScanStream::new(sequence, params)?;
+    while let Some((index, sweep)) = stream.read_next()? {
+        let cpu_start = process_cpu_secs();
+        let features = stream.features_of(&sweep)?;
+        let scan = FeaturedSweep {
+            index,
+            sweep,
+            features,
+        };
+        let dt = scan.sweep.stamp_secs - sequence.stamps_secs()[scan.index - 1];
+        evaluate_scan(
+            &scan,
+            cpu_start,
+            dt,
+            (estimators, &group_of, moving),
+            has_target.then_some(&name),
+            &mut trackers,
+            &mut scores,
+        )?;
+        on_scan();
+    }
+    let scans = scores.timing.len();
+    let target = has_target
+        .then(|| SituationResult {
+            name: name.clone(),
+            scans,
+            truth: scores.target_truth,
+            methods: scores.target_estimates,
+        })
+        .map(|result| result.validate().map(|()| result))
+        .transpose()?;
+    Ok(SequenceRun {
+        target,
+        scene: SceneResult {
+            name,
+            scans,
+            scene_flow: scores.tallies,
+            objects: scores.objects,
+            timing: scores.timing,
+        },
+    })
+}
+
+/// One scan: the estimators' whole-scan step, the target's estimate, the baselines, the scores.
+fn evaluate_scan(
+    scan: &FeaturedSweep,
+    cpu_start: Option<f64>,
+    dt_secs: f64,
+    (estimators, group_of, moving): (&[MotionEstimator], &[usize], Option<&MovingClassifier>),
+    situation: Option<&String>,
+    trackers: &mut Trackers,
+    scores: &mut Scores,
+) -> Result<(), EvalError> {
+    let features = &scan.features[0];
+    let mut timing = ScanTiming::with_features(features.timing());
+    // Thesis Algorithm 3.1, steps 3 and 4, on the whole scan, per estimator sharing these maps.
+    let mut motions = Vec::new();
+    for (estimator, _) in estimators.iter().zip(group_of).filter(|(_, g)| **g == 0) {
+        let motion = estimator.estimate_features(features)?;
+        timing.estimators.push(StepTiming::from(motion.timing));
+        motions.push((estimator.gp_kind(), motion));
+    }
+    timing.whole_scan_cpu_secs = cpu_start
+        .zip(process_cpu_secs())
+        .map(|(start, end)| end - start);
+    // Moving or static, per object hypothesis (issue 27).
+    let start = Instant::now();
+    let probabilities = match moving {
+        Some(classifier) => Some(classifier.cluster_probabilities(features)?),
+        None => None,
+    };
+    let decisions: Vec<Option<bool>> = match &probabilities {
+        Some(p) => p.iter().map(|p| p.map(|p| p > 0.5)).collect(),
+        None => vec![None; features.clusters().len()],
+    };
+    timing.segmentation_secs = start.elapsed().as_secs_f64();
+    // The oracle association (thesis 4.4): every actor's cluster.
+    let observation = observe(scan, features);
+    let hypotheses = hypothesis_flags(features);
+    // Thesis 4.4's protocol for the target: its cluster, predicted at every one of its points.
+    let target = match situation {
+        Some(situation) => Some(target_at(scan, features, situation)?),
+        None => None,
+    };
+    let start = Instant::now();
+    let mut target_gp = Vec::new();
+    if target.is_some() {
+        for (estimator, &group) in estimators.iter().zip(group_of) {
+            let own = &scan.features[group];
+            let estimate = match target_cluster(own, &scan.sweep) {
+                Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
+                None => ClusterEstimate::default(),
+            };
+            target_gp.push((estimator.gp_kind(), estimate));
+        }
+        timing.target_secs = start.elapsed().as_secs_f64() / estimators.len() as f64;
+    }
+    // Thesis 3.2: the baselines on every cluster (ICP-AUTO on the hypotheses and the target).
+    let mut wanted = hypotheses.clone();
+    if let Some(c) = observation.target_cluster() {
+        wanted[c] = true;
+    }
+    let start = Instant::now();
+    let baseline = trackers.baselines.step(observation.clone(), &wanted)?;
+    timing.baselines_secs = start.elapsed().as_secs_f64();
+    // GP-KF on every cluster, GP-ICP where ICP-AUTO runs, from the first estimator's ALL.
+    let learned: Vec<LearnedCluster> = (0..features.clusters().len())
+        .map(|c| LearnedCluster {
+            gp: motions
+                .first()
+                .and_then(|(_, m)| m.clusters[c].and_then(|e| e.all))
+                .map(to_estimate),
+            moving: decisions[c],
+        })
+        .collect();
+    let start = Instant::now();
+    let gp_kf = trackers.learned.step_kf(&observation, &learned)?;
+    timing.gp_kf_secs = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let gp_icp = trackers.learned.step_icp(&observation, &learned, &wanted)?;
+    timing.gp_icp_secs = start.elapsed().as_secs_f64();
+    let learned_flows = BTreeMap::from([(Method::GpKf, gp_kf), (Method::GpIcp, gp_icp)]);
+    // Scene flow of every method on every scored point, and every actor.
+    let flows = method_flows(
+        &motions,
+        &baseline,
+        &learned_flows,
+        &hypotheses,
+        moving.map(|_| &decisions[..]),
+    );
+    let points = ScenePoints::new(features, &scan.sweep, dt_secs);
+    let errors = score_points(
+        &points,
+        features.clusters().ids(),
+        &flows,
+        &mut scores.tallies,
+    );
+    scores.objects.extend(object_scans(
+        &scan.sweep,
+        &points,
+        &observation,
+        &flows,
+        &baseline,
+        &errors,
+    ));
+    // The per-target tables.
+    if let Some(truth) = target {
+        timing.target_points = truth.target_points.unwrap_or(0);
+        scores.target_truth.push(truth);
+        let target_moving = observation
+            .target_cluster()
+            .and_then(|c| decisions.get(c).copied().flatten());
+        for (kind, estimate) in target_gp {
+            for (rule, motion) in [
+                (patchflow_learn::MergeRule::All, estimate.all),
+                (patchflow_learn::MergeRule::Best, estimate.best),
+            ] {
+                let method = Method::gp(kind, GpReadout::Merged(rule));
+                let column = scores.target_estimates.entry(method).or_default();
+                column.push(motion.map(to_estimate));
+            }
+            if moving.is_some() {
+                let decided = match target_moving {
+                    Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
+                    _ => estimate.all.map(to_estimate),
+                };
+                let column = scores
+                    .target_estimates
+                    .entry(Method::gp_decided(kind))
+                    .or_default();
+                column.push(decided);
+            }
+        }
+        for (&method, clusters) in &learned_flows {
+            let estimate = observation
+                .target_cluster()
+                .and_then(|c| clusters.get(c).copied().flatten())
+                .map(|f| f.estimate());
+            let column = scores.target_estimates.entry(method).or_default();
+            column.push(estimate);
+        }
+        for baseline_method in BaselineMethod::ALL {
+            let method = baseline_method.method();
+            let estimate = observation
+                .target_actor
+                .and_then(|t| baseline.actor_estimate(method, t, &observation));
+            scores
+                .target_estimates
+                .entry(method)
+                .or_default()
+                .push(estimate);
+        }
+    }
+    scores.timing.push(timing);
+    Ok(())
+}
+
+/// Which clusters of the scan are object hypotheses.
+fn hypothesis_flags(features: &SweepFeatures) -> Vec<bool> {
+    let mut flags = vec![false; features.clusters().len()];
+    for c in features.object_hypotheses() {
+        flags[c] = true;
+    }
+    flags
+}
+
+/// How each method moves the scan's points. `decisions` (with a moving classifier): per cluster,
+/// moving or static for the object hypotheses.
+fn method_flows(
+    motions: &[(patchflow_learn::GpKind, ScanMotion)],
+    baseline: &BaselineScan,
+    learned: &BTreeMap<Method, Vec<Option<ClusterFlow>>>,
+    hypotheses: &[bool],
+    decisions: Option<&[Option<bool>]>,
+) -> BTreeMap<Method, MethodFlow> {
+    let mut flows = BTreeMap::new();
+    for (kind, motion) in motions {
+        let [all, best, point] = Method::of_estimator(*kind);
+        let merged = |pick: fn(&ClusterEstimate) -> Option<ClusterMotion>| {
+            let clusters = motion.clusters.iter();
+            let flows = clusters.map(|e| e.as_ref().and_then(pick));
+            MethodFlow::Clusters(
+                flows
+                    .map(|m| m.map(|m| ClusterFlow::Uniform(to_estimate(m))))
+                    .collect(),
+            )
+        };
+        flows.insert(all, merged(|e| e.all));
+        flows.insert(best, merged(|e| e.best));
+        if let Some(decisions) = decisions {
+            let decided = motion.clusters.iter().zip(decisions).map(|(e, moving)| {
+                let all = e.as_ref().and_then(|e| e.all).map(to_estimate);
+                match moving {
+                    Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
+                    _ => all,
+                }
+                .map(ClusterFlow::Uniform)
+            });
+            flows.insert(
+                Method::gp_decided(*kind),
+                MethodFlow::Clusters(decided.collect()),
+            );
+        }
+        let velocities = motion.points.iter().map(|p| p.map(|p| p.velocity_xy_mps()));
+        flows.insert(point, MethodFlow::Points(velocities.collect()));
+    }
+    for (&method, clusters) in baseline.clusters.iter().chain(learned) {
+        let kept = clusters
+            .iter()
+            .zip(hypotheses)
+            .map(|(flow, &hypothesis)| flow.filter(|_| hypothesis))
+            .collect();
+        flows.insert(method, MethodFlow::Clusters(kept));
+    }
+    flows.insert(Method::ZeroFlow, MethodFlow::Zero);
+    flows
+}
