@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Brings up a one-node Slurm cluster from Debian's packages (no systemd, no cgroups) and runs the
-# README's scale-out recipes on it: a sharded `generate` array job with an `afterok` merge, checked
+# scale-out recipes of docs/scaling.md on it: a sharded `generate` array job with an `afterok` merge, checked
 # byte for byte against one unsharded run, and a sharded `study --quick` array job merged
 # afterwards, checking that a merge without `--quick` is refused. For checking the recipes by hand
 # on a scratch machine (it installs packages and starts daemons as root); not part of CI.
@@ -70,7 +70,7 @@ wait_for() { # job id: waits until the job (and its array tasks) left the queue;
   fi
 }
 
-# 3. Generate: the README's array job, then the same command without --shard once (afterok).
+# 3. Generate: docs/scaling.md's array job, then the same command without --shard once (afterok).
 DATA=$WORK/data-sharded
 rm -rf "$DATA" "$WORK/data-single"
 ARRAY=$(sbatch --parsable --array=0-$((SHARDS - 1)) --cpus-per-task=1 \
@@ -82,7 +82,7 @@ wait_for "$ARRAY"; wait_for "$MERGE"
 "$BIN" generate $SCENARIOS --out "$WORK/data-single" --seed 7 >/dev/null
 diff -r "$DATA" "$WORK/data-single" && echo "generate: sharded == single run ($(find "$DATA" -type f | wc -l) files)"
 
-# 4. Study: the README's array job with --quick, merged with --quick; a merge without it refused.
+# 4. Study: docs/scaling.md's array job with --quick, merged with --quick; a merge without it refused.
 if [ "$STUDY" = 1 ]; then
   OUT=$WORK/study-rate
   rm -rf "$OUT"
