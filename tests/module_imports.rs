@@ -289,18 +289,6 @@ fn two_way_rooms(root: &Path, skip: &[PathBuf]) -> (usize, Vec<String>) {
     (files.len(), ties)
 }
 
-/// Two-way ties between rooms that predate the room check (issue 29), in `sim` (owned by the
-/// simulation's work, not the evaluation's): `lidar/block_caster.rs` reads
-/// `simulation::MOVING_SPEED_MPS` while `simulation.rs` drives the `Lidar`; `motion/trajectory.rs`
-/// builds from `scenario::ActorConfig` while the scenario checks use `motion::Trajectory`;
-/// `world/` facades take `scene::Material` while the scene queries `world::StreetPart`. Listed so
-/// no new tie joins them; a tie that is broken must leave this list (the test says so).
-const KNOWN_TIES: [&str; 3] = [
-    "sim/src: lidar <-> simulation",
-    "sim/src: motion <-> scenario",
-    "sim/src: scene <-> world",
-];
-
 #[test]
 fn no_two_rooms_of_a_crate_import_each_other() {
     let workspace = patchflow_tests::workspace_root();
@@ -314,19 +302,7 @@ fn no_two_rooms_of_a_crate_import_each_other() {
         ties.extend(pairs.into_iter().map(|pair| format!("{name}: {pair}")));
     }
     assert!(files_seen > 100, "read only {files_seen} source files");
-    let new: Vec<&String> = ties
-        .iter()
-        .filter(|t| !KNOWN_TIES.contains(&t.as_str()))
-        .collect();
-    assert!(new.is_empty(), "rooms importing each other: {new:#?}");
-    let broken: Vec<&str> = KNOWN_TIES
-        .into_iter()
-        .filter(|k| !ties.iter().any(|t| t == k))
-        .collect();
-    assert!(
-        broken.is_empty(),
-        "no longer tied, remove from KNOWN_TIES: {broken:?}"
-    );
+    assert!(ties.is_empty(), "rooms importing each other: {ties:#?}");
 }
 
 #[test]

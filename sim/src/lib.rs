@@ -35,6 +35,7 @@ pub use generate::{
 pub use kitti_names::write_kitti_names;
 pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
 pub use memory_budget::{MemoryBudget, memory_budget};
+pub use motion::MOVING_SPEED_MPS;
 pub use motion::{MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory};
 pub use patchflow_dataset as dataset;
 pub use scenario::{
@@ -46,4 +47,4 @@ pub use scenario::{
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;
-pub use simulation::{MOVING_SPEED_MPS, Simulation};
+pub use simulation::Simulation;

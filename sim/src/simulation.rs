@@ -6,13 +6,10 @@ use patchflow_dataset::{ObjectTruth, Pose, Sweep};
 
 use crate::error::Result;
 use crate::lidar::Lidar;
-use crate::motion::MotionState;
+use crate::motion::{MOVING_SPEED_MPS, MotionState};
 use crate::scenario::{ActorConfig, Scenario, random_traffic};
 use crate::scene::{Scene, SceneActor};
 use crate::seed::sweep_key;
-
-/// Speed from which an actor counts as moving (moving SemanticKITTI classes), m/s.
-pub const MOVING_SPEED_MPS: f64 = 0.05;
 
 /// One scenario's scene and lidar, ready to produce sweeps.
 ///

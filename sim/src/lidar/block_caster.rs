@@ -16,11 +16,10 @@ use super::firing_table::FiringTable;
 use super::intensity::intensity;
 use super::scan::{ColumnSlots, Return};
 use super::sensor_model::SensorModel;
-use crate::motion::MotionState;
+use crate::motion::{MOVING_SPEED_MPS, MotionState};
 use crate::scenario::LidarConfig;
 use crate::scene::InstantQuery;
 use crate::seed::sub_seed;
-use crate::simulation::MOVING_SPEED_MPS;
 
 /// Rays shorter than this (the origin inside a shape) are not returns, metres.
 pub(super) const MIN_RANGE_M: f32 = 0.05;

@@ -6,4 +6,4 @@ mod trajectory;
 
 pub use path::{Path, PathPoint};
 pub use speed_profile::{ProfileState, SpeedProfile};
-pub use trajectory::{MotionState, Trajectory};
+pub use trajectory::{MOVING_SPEED_MPS, MotionState, Trajectory};

@@ -2,7 +2,6 @@
 //! rate come in closed form at any time t (never by finite differences).
 
 use super::{Path, SpeedProfile};
-use crate::scenario::ActorConfig;
 use patchflow_dataset::wrap_angle_upper_rad;
 
 /// The exact motion state of a box following its path at one instant (ground plane, world frame).
@@ -33,6 +32,9 @@ impl MotionState {
     }
 }
 
+/// Speed from which an actor counts as moving (moving SemanticKITTI classes), m/s.
+pub const MOVING_SPEED_MPS: f64 = 0.05;
+
 /// A path and a speed profile.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Trajectory {
@@ -41,20 +43,6 @@ pub struct Trajectory {
 }
 
 impl Trajectory {
-    /// Builds the trajectory of a resolved actor; an error names the offending field.
-    pub(crate) fn from_config(actor: &ActorConfig) -> Result<Self, (&'static str, String)> {
-        let radius = actor.turn_radius_m.unwrap_or(8.0);
-        let path = Path::new(&actor.path_m, radius).map_err(|reason| ("path_m", reason))?;
-        let profile = SpeedProfile::new(
-            actor.start_secs,
-            actor.initial_speed_mps.unwrap_or(actor.speed_mps),
-            actor.speed_mps,
-            actor.accel_mps2.unwrap_or(2.0),
-            &actor.speed_changes,
-        );
-        Ok(Self { path, profile })
-    }
-
     /// Builds a trajectory from its parts.
     pub fn new(path: Path, profile: SpeedProfile) -> Self {
         Self { path, profile }

@@ -4,6 +4,8 @@
 use patchflow_dataset::ActorClass;
 use serde::{Deserialize, Serialize};
 
+use crate::motion::{Path, SpeedProfile, Trajectory};
+
 use super::bounds::{
     Bound, COORD_M, MAX_PATH_POINTS, SIZE_M, TIME_SECS, TURN_RADIUS_M, check_count,
     reflectivity_problem,
@@ -140,6 +142,20 @@ pub(crate) fn default_size(class: ActorClass, model: Option<CarModel>) -> [f64; 
 }
 
 impl ActorConfig {
+    /// Builds the trajectory of a resolved actor; an error names the offending field.
+    pub(crate) fn trajectory(&self) -> Result<Trajectory, (&'static str, String)> {
+        let radius = self.turn_radius_m.unwrap_or(8.0);
+        let path = Path::new(&self.path_m, radius).map_err(|reason| ("path_m", reason))?;
+        let profile = SpeedProfile::new(
+            self.start_secs,
+            self.initial_speed_mps.unwrap_or(self.speed_mps),
+            self.speed_mps,
+            self.accel_mps2.unwrap_or(2.0),
+            &self.speed_changes,
+        );
+        Ok(Trajectory::new(path, profile))
+    }
+
     /// Fills every optional field with its class default, so the written scenario is explicit.
     pub(crate) fn resolve(&mut self) {
         let limits = class_limits(self.class);

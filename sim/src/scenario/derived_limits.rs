@@ -106,7 +106,7 @@ fn mover_problems(s: &Scenario, end_secs: f64) -> Vec<Problem> {
     }));
     let mut out = Vec::new();
     for (mut at, actor, limit_m, region) in movers {
-        let Ok(trajectory) = Trajectory::from_config(actor) else {
+        let Ok(trajectory) = actor.trajectory() else {
             continue;
         };
         let reach_m = farthest_m(actor, &trajectory, s.start_secs, end_secs);

@@ -12,7 +12,6 @@ use super::bounds::{
 use super::derived_limits::derived_problems;
 use super::problem::{Problem, Seg};
 use crate::error::{Result, SimError};
-use crate::motion::Trajectory;
 
 impl Scenario {
     /// Reads, validates and resolves a scenario file; errors name the file and the line.
@@ -179,7 +178,7 @@ impl Scenario {
         for (at, actor) in movers {
             let mut problems = actor.problems();
             if problems.is_empty()
-                && let Err((field, reason)) = Trajectory::from_config(actor)
+                && let Err((field, reason)) = actor.trajectory()
             {
                 problems.push((field, reason));
             }

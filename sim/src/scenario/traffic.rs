@@ -173,7 +173,6 @@ impl ActorConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::motion::Trajectory;
 
     fn config() -> TrafficConfig {
         TrafficConfig {
@@ -200,10 +199,10 @@ mod tests {
         for actor in random_traffic(&config(), 11, "t", 30.0) {
             assert!(actor.problems().is_empty(), "{:?}", actor.problems());
             assert!(
-                Trajectory::from_config(&actor).is_ok(),
+                actor.trajectory().is_ok(),
                 "{}: {:?}",
                 actor.name,
-                Trajectory::from_config(&actor).err()
+                actor.trajectory().err()
             );
         }
     }

@@ -11,7 +11,6 @@ use super::bounds::gigabytes;
 use super::bounds::show;
 use super::problem::{Problem, Seg};
 use super::{Realism, Scenario, StructureKind, WorldKnobs};
-use crate::motion::Trajectory;
 
 /// Most street segments a world is laid along (each ground vertex is tested against every one).
 pub(crate) const MAX_STREETS: u64 = 2000;
@@ -144,7 +143,7 @@ pub(crate) fn lidar_reach(s: &Scenario) -> ([f64; 2], [f64; 2]) {
     let reach = s.lidar.max_range_m + 10.0;
     let mut min = [f64::MAX; 2];
     let mut max = [f64::MIN; 2];
-    if let Ok(ego) = Trajectory::from_config(&s.ego) {
+    if let Ok(ego) = s.ego.trajectory() {
         for i in 0..=s.sweeps {
             let p = ego.state_at(s.sweep_start_secs(i)).position_m;
             for a in 0..2 {

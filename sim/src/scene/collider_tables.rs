@@ -123,7 +123,8 @@ impl ColliderTables {
         shapes: bool,
     ) -> std::result::Result<SceneActor, String> {
         let size = config.size_m.unwrap_or([4.5, 1.8, 1.5]);
-        let trajectory = Trajectory::from_config(config)
+        let trajectory = config
+            .trajectory()
             .map_err(|(field, reason)| format!("{}.{field}: {reason}", config.name))?;
         let body = self
             .bodies

@@ -9,11 +9,10 @@ mod scene_actor;
 mod scene_instant;
 mod scene_queries;
 mod static_obstacles;
-mod surface;
 
+pub use crate::world::{Glass, Material, Surface, SurfaceKind};
 pub use instant_query::{HitPart, InstantQuery};
 pub use rapier_scene::Scene;
 pub use ray_tree::QueryTree;
 pub use scene_actor::SceneActor;
 pub use scene_instant::SceneInstant;
-pub use surface::{Glass, Material, Surface, SurfaceKind};

@@ -6,8 +6,8 @@
 
 use patchflow_dataset::{ActorClass, SemanticClass};
 
+use super::Material;
 use super::piece::{Piece, PieceShape};
-use crate::scene::Material;
 
 /// Reflectivity of tyres.
 const RUBBER: f32 = 0.08;

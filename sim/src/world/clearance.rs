@@ -1,7 +1,6 @@
 //! Where procedural clutter may stand: off every actor's swept corridor (sampled from the exact
 //! trajectories), off the scenario's own structures, and clear of clutter placed before.
 
-use crate::motion::Trajectory;
 use crate::scenario::{ActorConfig, StructureConfig};
 
 /// A structure's footprint: centre, half extents, (cos, sin) of its yaw.
@@ -33,7 +32,7 @@ impl Clearance {
     ) -> Self {
         let mut out = Self::default();
         for actor in movers {
-            let Ok(trajectory) = Trajectory::from_config(actor) else {
+            let Ok(trajectory) = actor.trajectory() else {
                 continue;
             };
             let half_width = actor.size_m.map_or(1.0, |s| s[1] / 2.0);

@@ -7,9 +7,9 @@ use patchflow_dataset::SemanticClass;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::Material;
 use super::facade_shape::FacadeGrid;
 use super::piece::{Piece, PieceShape};
-use crate::scene::Material;
 
 /// Depth of the window recess, metres.
 const RECESS_M: f64 = 0.25;

@@ -8,10 +8,10 @@ use patchflow_dataset::SemanticClass;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::Material;
 use super::clearance::Clearance;
 use super::piece::Piece;
 use super::street_furniture::SideBuilder;
-use crate::scene::Material;
 use crate::seed::sub_seed;
 
 /// Gap between the back of the sidewalk and the frontage's centre line, metres.

@@ -202,7 +202,7 @@ impl GridPiece {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Material;
+    use crate::world::Material;
     use patchflow_dataset::SemanticClass;
     use rapier3d::prelude::Pose;
 

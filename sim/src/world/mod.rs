@@ -22,6 +22,7 @@ mod street_furniture;
 mod street_item;
 mod street_map;
 mod street_shape;
+mod surface;
 mod terrain_scatter;
 
 use std::sync::Arc;
@@ -33,6 +34,7 @@ pub use ground_field::GroundField;
 pub(crate) use piece::{Piece, PieceShape};
 pub use piece_grid::{HitNormal, PieceGrid};
 pub use street_shape::{StreetPart, StreetShape};
+pub use surface::{Glass, Material, Surface, SurfaceKind};
 
 // Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
 // heights and materials); a larger reach gets larger cells.

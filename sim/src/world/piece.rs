@@ -5,9 +5,9 @@
 use patchflow_dataset::SemanticClass;
 use rapier3d::prelude::SharedShape;
 
+use super::Material;
 use super::facade_shape::{FacadeGrid, FacadeShape};
 use super::plane_hull::PlaneHull;
-use crate::scene::Material;
 
 /// The geometry of a piece, in its own frame (z up; a cylinder's axis along its local y).
 #[derive(Debug, Clone, PartialEq)]

@@ -1,7 +1,7 @@
 //! Tests of `piece_grid.rs`.
 
 use super::*;
-use crate::scene::Material;
+use crate::world::Material;
 use crate::world::{Piece, PieceShape};
 use patchflow_dataset::SemanticClass;
 

@@ -6,9 +6,9 @@ use patchflow_dataset::SemanticClass;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
+use super::Material;
 use super::body_shapes::parked_car_parts;
 use super::piece::{Piece, PieceShape};
-use crate::scene::Material;
 
 /// The pieces of `item` standing at `p` on ground `base` metres high, beside a street of yaw
 /// `yaw` on its `side` (+1 left, −1 right).

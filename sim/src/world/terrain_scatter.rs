@@ -6,10 +6,10 @@ use patchflow_dataset::SemanticClass;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+use super::Material;
 use super::clearance::Clearance;
 use super::ground_field::{GroundField, GroundMaterial};
 use super::piece::{Piece, PieceShape};
-use crate::scene::Material;
 
 /// Trees per square metre of terrain at clutter 1.
 const TREES_PER_M2: f64 = 1.0 / 250.0;
