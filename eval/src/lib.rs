@@ -124,6 +124,6 @@ pub use occupancy::{
 
 // ── Reports ─────────────────────────────────────────────────────────────────────────────────
 pub use report::{
-    ReportFiles, SceneFigures, add_to_metrics, metrics_json, write_cv_report,
-    write_dataset_scene_figures, write_map_figure, write_report, write_scene_figures,
+    ReportFiles, SceneFigures, metrics_json, write_cv_report, write_dataset_scene_figures,
+    write_map_figure, write_report, write_report_with, write_scene_figures,
 };

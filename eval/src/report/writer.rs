@@ -39,7 +39,19 @@ pub struct ReportFiles {
 /// println!("{}", files.report_md.display());
 /// ```
 pub fn write_report(report: &BenchmarkReport, dir: &Path) -> Result<ReportFiles, EvalError> {
-    write_model(&ReportModel::new(report)?, dir, &mut WriteOnce::new())
+    write_report_with(report, serde_json::Map::new(), dir)
+}
+
+/// [`write_report`] with top-level `metrics.json` entries beside the SPEC §7 shape (what produced
+/// the numbers: the models, their seeds), rendered in the same pass so the file is written once.
+pub fn write_report_with(
+    report: &BenchmarkReport,
+    metrics_entries: serde_json::Map<String, serde_json::Value>,
+    dir: &Path,
+) -> Result<ReportFiles, EvalError> {
+    let mut model = ReportModel::new(report)?;
+    model.extras.metrics = metrics_entries;
+    write_model(&model, dir, &mut WriteOnce::new())
 }
 
 /// Writes the files of a report model into `dir` (created if needed), each once through `files`:

@@ -5,9 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::stages::evaluate_with_bar;
-use patchflow_eval::{
-    PerceptionSummary, add_to_metrics, write_dataset_scene_figures, write_report,
-};
+use patchflow_eval::{PerceptionSummary, write_dataset_scene_figures, write_report_with};
 use patchflow_learn::{MOVING_FILE_NAME, MotionEstimator, MovingClassifier};
 
 use crate::common::DataAndReport;
@@ -55,8 +53,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
     report.scene_figures =
         write_dataset_scene_figures(&dataset, &names, &args.io.out.join("plots"))?;
-    let files = write_report(&report, &args.io.out)?;
-    add_to_metrics(&files.metrics_json, provenance(&args.model, &estimators))?;
+    let files = write_report_with(&report, provenance(&args.model, &estimators), &args.io.out)?;
     if let Some(all) = PerceptionSummary::of_scenes(&report.scenes).last() {
         println!("perception: {}", all.line());
     }
