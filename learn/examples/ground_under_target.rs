@@ -1,6 +1,6 @@
 //! The estimated ground under a situation's target, sweep by sweep, against the truth (the
 //! bottom of the target's box): at its centre, its front and back ends, and 2 m ahead of it.
-//! Found the far-ground fault of `urban` (README, "Results of the default run"): with the far
+//! Found the far-ground fault of `urban` (docs/ground.md, "The ground under far targets"): with the far
 //! road's returns lost, the estimate under targets 30-45 m away stood 0.2-1.5 m high.
 //!
 //! `cargo run --release -p patchflow-learn --example ground_under_target -- DATASET SEQUENCE`

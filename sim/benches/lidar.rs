@@ -9,7 +9,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use patchflow_sim::{EMBEDDED_SCENARIOS, QueryTree, Scenario, Simulation};
 
-/// The scenarios compared, as in the README's sweep-cost table.
+/// The scenarios compared, as in docs/speed.md's simulation-speed table.
 const SCENARIOS: [&str; 3] = ["situation1", "train03", "situation5"];
 
 fn simulation(name: &str) -> (Simulation, u32) {

@@ -3,7 +3,7 @@
 //! the run's own data what kind of miss it is: a few outlier scans or a spread misreading, the
 //! scans right after the target was hidden, the range that carries the error, a speed bias, and
 //! whether the same models meet the bar on the `ideal` rung (then the world breaks them, not the
-//! training). The causes found by ablation are in README's "Why the GPs lost accuracy".
+//! training). The causes found by ablation are in docs/investigations.md, "Why the GPs lost accuracy on `urban`".
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -226,7 +226,7 @@ pub fn bar_markdown(rows: &[BarRow], rung: &str) -> String {
         let _ = writeln!(
             md,
             "\nThe causes behind these patterns were found by ablation (one realism knob at a \
-             time; README, \"Why the GPs lost accuracy on `urban`\"): street clutter and parked \
+             time; docs/investigations.md, \"Why the GPs lost accuracy on `urban`\"): street clutter and parked \
              cars next to far targets (much of it through the ground estimate under them, fixed: \
              item 7 there), a crossing target learned worse from urban training tracks, and the \
              long side of a car passing close by, which slides along itself.\n"

@@ -4,7 +4,7 @@
 //! scenario text with a smaller top-level `sweeps` and a later `start_secs`, written beside the
 //! datasets so `generate` records exactly what it simulated.
 //!
-//! Why the last share (ARCHITECTURE.md, "Quick training tracks"): the tracks' actors start
+//! Why the last share (docs/investigations.md, "Quick training tracks"): the tracks' actors start
 //! far from the ego and converge on its route, so the full tracks' importance-weighted draw
 //! (thesis 3.1.2) takes 66 % of its samples, 77 % of its crossing cars and 75 % of its actors at
 //! 8 m/s or more from the last third of the sweeps and 12 % (mostly pedestrians) from the first.

@@ -19,7 +19,7 @@ pub const MAX_OBJECT_LENGTH_M: f64 = 12.0;
 /// Fewest sliced points of one object: one ring across the narrowest side of a car at the
 /// situations' farthest range (a 1.8 m front at 40 m spans 13 columns of 0.2°; thesis 4.4's
 /// targets had about 200). On `urban`, clusters below it were a tenth of the target's scans in
-/// situation 5 and 85 % of its squared heading error (README, "Results of the default run").
+/// situation 5 and 85 % of its squared heading error (docs/results.md, earlier results).
 pub const MIN_OBJECT_POINTS: usize = 10;
 
 /// A cluster's extent along its principal axes (the eigenvectors of its point covariance).

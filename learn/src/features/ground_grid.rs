@@ -203,8 +203,8 @@ const SLOPE_BASE_M: f64 = 12.0;
 /// Where the far road returns nothing, the slope filter's cones reach from ground metres away,
 /// and the roofs, hoods and sills of parked cars seen over nearer traffic (one ring per cell, no
 /// face below it) pass as ground; on `urban` the estimate under targets 30-45 m away stood
-/// 0.2-1.5 m high, the height slice with it, and the targets' motion was misread there (README,
-/// "Results of the default run"). With no far ground to go by, the near road extended is the
+/// 0.2-1.5 m high, the height slice with it, and the targets' motion was misread there (docs/ground.md,
+/// "The ground under far targets"). With no far ground to go by, the near road extended is the
 /// best guess; a far estimate within a curb of it is kept, so seen ground that rises gently
 /// (grade changes, terrain) keeps its own.
 fn hold_far_ground_to_near_ground(heights_m: &mut [f64], window: &GridWindow, centre_xy: [f64; 2]) {

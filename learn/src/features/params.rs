@@ -42,7 +42,7 @@ pub struct FeatureParams {
     /// error the thesis names as the main cause of bad speeds (4.4, situation 2); a speed GP
     /// that only ever saw exactly aligned patches reads a car 30° off its axis as nearly still.
     /// 25° is about the merged-heading RMSE the thesis reports on real data (Tables 4.6-4.14:
-    /// 8.7° to 24°). Measured effect in ARCHITECTURE.md.
+    /// 8.7° to 24°). Measured effect in docs/estimator.md.
     pub speed_jitter_deg: f64,
     /// Gabor filter bank (thesis 2.2.3).
     pub gabor: GaborParams,

@@ -39,7 +39,7 @@ pub struct Args {
     pub seed: u64,
     /// `default` or `thesis`: the thesis' protocol exactly (no mirror images, speed patches
     /// aligned to the exact true heading, GPs with a zero mean function; the list of the
-    /// default's deviations is `EstimatorParams`' doc and README's "The estimator's defaults").
+    /// default's deviations is `EstimatorParams`' doc and docs/estimator.md).
     #[arg(long, value_enum, default_value_t = PresetChoice::Default)]
     pub preset: PresetChoice,
     /// Same as `--preset thesis` (kept for older scripts).

@@ -30,7 +30,7 @@ pub struct VelocityFloors {
 }
 
 impl Default for VelocityFloors {
-    /// 10° and 1 m/s: about the GPs' heading and speed RMSE on the targets (README).
+    /// 10° and 1 m/s: about the GPs' heading and speed RMSE on the targets (docs/results.md).
     fn default() -> Self {
         Self {
             min_heading_std_rad: 10f64.to_radians(),
