@@ -136,10 +136,8 @@ mod tests {
             .collect()
     }
 
-    #[test]
-    fn a_model_predicting_astronomical_speeds_is_refused_naming_the_sweep() {
-        let dir = tempfile::tempdir().unwrap();
-        let data = dataset(&dir.path().join("data"), &[0.4]);
+    /// A model trained on `data` whose speed GP's targets were standardised around 1e200 m/s.
+    fn broken_model(dir: &Path, data: &Dataset) -> MotionEstimator {
         let params = EstimatorParams {
             gp: GpKind::Spgp,
             features: FeatureParams {
@@ -151,17 +149,23 @@ mod tests {
             max_iters: 5,
             ..EstimatorParams::default()
         };
-        let model = dir.path().join("m.json");
-        MotionEstimator::train(&data, &params)
+        let model = dir.join("m.json");
+        MotionEstimator::train(data, &params)
             .unwrap()
             .save(&model)
             .unwrap();
-        // A speed GP whose targets were standardised around 1e200 m/s.
         let mut json: serde_json::Value =
             serde_json::from_slice(&std::fs::read(&model).unwrap()).unwrap();
         json["speed"]["target_transform"]["mean"] = serde_json::json!([1e200]);
         std::fs::write(&model, serde_json::to_vec(&json).unwrap()).unwrap();
-        let estimator = MotionEstimator::load(&model).unwrap();
+        MotionEstimator::load(&model).unwrap()
+    }
+
+    #[test]
+    fn a_model_predicting_astronomical_speeds_is_refused_naming_the_sweep() {
+        let dir = tempfile::tempdir().unwrap();
+        let data = dataset(&dir.path().join("data"), &[0.4]);
+        let estimator = broken_model(dir.path(), &data);
         let out = dir.path().join("flow");
         let err = export_flow(
             &data,
@@ -177,6 +181,28 @@ mod tests {
             "{err}"
         );
         assert!(!out.join("sequences/track0/flow/000001.bin").exists());
+    }
+
+    #[test]
+    fn evaluating_a_model_predicting_astronomical_speeds_is_refused_naming_the_sequence_and_scan() {
+        let dir = tempfile::tempdir().unwrap();
+        let data = dataset(&dir.path().join("data"), &[0.4]);
+        let estimator = broken_model(dir.path(), &data);
+        let sequence = data.sequence("track0").unwrap();
+        let err = crate::scene::scene_evaluation::evaluate_sequence(
+            &sequence,
+            &[estimator],
+            &crate::BaselineParams::default(),
+            None,
+            &|| {},
+        )
+        .err()
+        .expect("refused")
+        .to_string();
+        assert!(
+            err.contains("track0") && err.contains("1000 m/s") && err.contains("broken"),
+            "{err}"
+        );
     }
 
     #[test]

@@ -18,6 +18,7 @@ use crate::methods::baselines::baseline_step::{BaselineScan, BaselineTrackers, C
 use crate::methods::baselines::velocity_measurement::VelocityFloors;
 use crate::methods::estimate::{MotionEstimate, to_estimate};
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
+use crate::methods::learned::plausible_motion::implausible_motion;
 use crate::methods::method::{GpReadout, Method};
 use crate::scene::cpu_time::process_cpu_secs;
 use crate::scene::objects::ObjectScan;
@@ -118,7 +119,20 @@ pub fn evaluate_sequence(
             has_target.then_some(&name),
             &mut trackers,
             &mut scores,
-        )?;
+        )
+        .map_err(|err| match err {
+            // A scan without a situation is named by its sequence.
+            EvalError::BadObservation {
+                situation,
+                scan,
+                reason,
+            } if situation == "-" => EvalError::BadObservation {
+                situation: name.clone(),
+                scan,
+                reason,
+            },
+            other => other,
+        })?;
         on_scan();
     }
     let scans = scores.timing.len();
@@ -159,6 +173,13 @@ fn evaluate_scan(
     let mut motions = Vec::new();
     for (estimator, _) in estimators.iter().zip(group_of).filter(|(_, g)| **g == 0) {
         let motion = estimator.estimate_features(features)?;
+        if let Some(reason) = implausible_motion(&motion) {
+            return Err(EvalError::BadObservation {
+                situation: situation.map_or_else(|| "-".to_owned(), String::clone),
+                scan: scan.index,
+                reason,
+            });
+        }
         timing.estimators.push(StepTiming::from(motion.timing));
         motions.push((estimator.gp_kind(), motion));
     }

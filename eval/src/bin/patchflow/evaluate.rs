@@ -49,7 +49,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         None
     };
     let dataset = Dataset::open(&args.io.data)?;
-    let mut report = evaluate_with_bar(&dataset, &estimators, moving.as_ref())?;
+    let mut report =
+        evaluate_with_bar(&dataset, &estimators, moving.as_ref()).with_context(|| {
+            let models: Vec<String> = args.model.iter().map(|m| m.display().to_string()).collect();
+            format!("evaluating with model {}", models.join(", "))
+        })?;
     let names: Vec<String> = report.situations.iter().map(|s| s.name.clone()).collect();
     report.scene_figures =
         write_dataset_scene_figures(&dataset, &names, &args.io.out.join("plots"))?;

@@ -11,6 +11,7 @@ use crate::methods::baselines::baseline_params::BaselineParams;
 use crate::methods::baselines::velocity_measurement::VelocityFloors;
 use crate::methods::estimate::{MotionEstimate, to_estimate};
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
+use crate::methods::learned::plausible_motion::implausible_motion;
 use crate::methods::observation::{ClusterObservation, ScanObservation};
 
 /// What the learned perception says about one scan, per cluster of its features.
@@ -59,6 +60,13 @@ impl<'a> LearnedPerception<'a> {
         stamp_secs: f64,
     ) -> Result<LearnedScan, EvalError> {
         let motion = self.estimator.estimate_features(features)?;
+        if let Some(reason) = implausible_motion(&motion) {
+            return Err(EvalError::BadObservation {
+                situation: "-".to_owned(),
+                scan: self.scans,
+                reason,
+            });
+        }
         let moving: Vec<Option<bool>> = match self.moving {
             Some(classifier) => classifier
                 .cluster_probabilities(features)?

@@ -3,3 +3,4 @@
 
 pub(crate) mod learned_perception;
 pub(crate) mod learned_step;
+pub(crate) mod plausible_motion;
