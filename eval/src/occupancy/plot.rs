@@ -9,6 +9,7 @@ use patchflow_occupancy::{MapFigure, MapMethodId, SequenceScores};
 use plotters::prelude::*;
 
 use crate::error::EvalError;
+use crate::report::png_file::PngFile;
 use crate::report::{FONT, ensure_font};
 
 /// Size of one panel, pixels.
@@ -47,7 +48,9 @@ pub fn plot_occupancy_figure(
         });
     }
     let size = (PANEL_PX.0 * figures.len() as u32, PANEL_PX.1 * 3 + 40);
-    let root = BitMapBackend::new(path, size).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, size).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let (title, body) = root.split_vertically(40);
     title
@@ -103,7 +106,8 @@ pub fn plot_occupancy_figure(
             }
         }
     }
-    root.present().map_err(|e| err(&e))
+    root.present().map_err(|e| err(&e))?;
+    png.commit()
 }
 
 /// How values become colours.

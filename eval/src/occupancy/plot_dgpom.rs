@@ -9,6 +9,7 @@ use patchflow_occupancy::{AheadScores, ClusterKind, MotionField, MotionMap};
 use plotters::prelude::*;
 
 use crate::error::EvalError;
+use crate::report::png_file::PngFile;
 use crate::report::{FONT, ensure_font};
 
 /// Seconds of motion an arrow shows (a 2 m/s car gets a 1.6 m arrow).
@@ -52,7 +53,9 @@ pub fn plot_motion_map(scenario: &str, map: &MotionMap, path: &Path) -> Result<(
     );
     let panel_w = 760u32;
     let panel_h = ((panel_w as f64 - 50.0) * (y.1 - y.0) / (x.1 - x.0)) as u32 + 70;
-    let root = BitMapBackend::new(path, (2 * panel_w, panel_h + 40)).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, (2 * panel_w, panel_h + 40)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let (title, body) = root.split_vertically(40);
     title
@@ -121,7 +124,8 @@ pub fn plot_motion_map(scenario: &str, map: &MotionMap, path: &Path) -> Result<(
                 .map_err(|e| err(&e))?;
         }
     }
-    root.present().map_err(|e| err(&e))
+    root.present().map_err(|e| err(&e))?;
+    png.commit()
 }
 
 /// Draws the AUC against the time since the last observation (Figure 10) to `path`.
@@ -130,7 +134,9 @@ pub fn plot_ahead(scenario: &str, scores: &AheadScores, path: &Path) -> Result<(
     let err = plot_error(path);
     let stats = scores.mean_std();
     let x_max = scores.seconds_ahead.last().copied().unwrap_or(1.0).max(1.0) + 0.5;
-    let root = BitMapBackend::new(path, (720, 480)).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, (720, 480)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
         .caption(
@@ -179,7 +185,8 @@ pub fn plot_ahead(scenario: &str, scores: &AheadScores, path: &Path) -> Result<(
                 .map(|&(t, m, _)| Circle::new((t, m), 4, BLUE.filled())),
         )
         .map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))
+    root.present().map_err(|e| err(&e))?;
+    png.commit()
 }
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;

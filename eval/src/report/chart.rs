@@ -11,6 +11,7 @@ use plotters::prelude::*;
 
 use crate::error::EvalError;
 use crate::report::font::{FONT, ensure_font};
+use crate::report::png_file::PngFile;
 
 /// Canvas size: chart and key panel.
 const SIZE_PX: (u32, u32) = (1200, 620);
@@ -101,7 +102,9 @@ pub(crate) fn draw(
     } else {
         SIZE_PX
     };
-    let root = BitMapBackend::new(path, size).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, size).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let root = root.titled(title, (FONT, 24)).map_err(|e| plot_err(&e))?;
     let (left, key) = root.split_horizontally(size.0 - KEY_PX);
@@ -159,7 +162,8 @@ pub(crate) fn draw(
         draw_strip(&area, label, points, x_range, &axes).map_err(|e| plot_err(&e))?;
     }
     draw_key(&key, &keyed, decor).map_err(|e| plot_err(&e))?;
-    root.present().map_err(|e| plot_err(&e))
+    root.present().map_err(|e| plot_err(&e))?;
+    png.commit()
 }
 
 type Chart<'a> = ChartContext<

@@ -12,6 +12,7 @@ use plotters::prelude::*;
 
 use crate::error::EvalError;
 use crate::report::font::{FONT, ensure_font};
+use crate::report::png_file::PngFile;
 use crate::report::world_chart::{Area, DrawResult, footprint};
 
 const SIZE_PX: (u32, u32) = (1500, 800);
@@ -56,7 +57,9 @@ pub fn write_map_figure(
         path: path.to_owned(),
         message: e.to_string(),
     };
-    let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, SIZE_PX).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let root = root.titled(title, (FONT, 20)).map_err(|e| plot_err(&e))?;
     let (panels, keys) = root.split_vertically(SIZE_PX.1 - 30 - KEY_PX);
@@ -84,7 +87,8 @@ pub fn write_map_figure(
         draw_map(area, map, label, colour, features, sweep).map_err(|e| plot_err(&e))?;
         draw_colour_key(key, label, colour, lo, hi).map_err(|e| plot_err(&e))?;
     }
-    root.present().map_err(|e| plot_err(&e))
+    root.present().map_err(|e| plot_err(&e))?;
+    png.commit()
 }
 
 fn draw_map(

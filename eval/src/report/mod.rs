@@ -18,6 +18,7 @@ mod object_plot;
 mod perception_markdown;
 pub(crate) mod perception_summary;
 mod plot;
+pub(crate) mod png_file;
 mod report_model;
 mod scene_figure;
 mod scene_markdown;

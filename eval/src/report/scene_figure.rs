@@ -14,6 +14,7 @@ use crate::error::EvalError;
 use crate::report::birds_eye::draw_birds_eye;
 use crate::report::cloud_view::draw_cloud;
 use crate::report::font::{FONT, ensure_font};
+use crate::report::png_file::PngFile;
 use crate::report::world_chart::{ActorPath, Area, DrawResult, RINGS_M, WorldChart};
 
 /// Canvas of a scene figure: the square picture and the key panel.
@@ -208,7 +209,9 @@ pub(crate) fn draw_figure(
         path: path.to_owned(),
         message: e.to_string(),
     };
-    let root = BitMapBackend::new(path, SCENE_PX).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, SCENE_PX).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let root = root.titled(title, (FONT, 20)).map_err(|e| plot_err(&e))?;
     let (left, key) = root.split_horizontally(SCENE_PX.0 - KEY_PX);
@@ -230,5 +233,6 @@ pub(crate) fn draw_figure(
         .draw()
         .map_err(|e| plot_err(&e))?;
     fill(&mut chart, &key).map_err(|e| plot_err(&e))?;
-    root.present().map_err(|e| plot_err(&e))
+    root.present().map_err(|e| plot_err(&e))?;
+    png.commit()
 }

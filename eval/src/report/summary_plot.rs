@@ -10,6 +10,7 @@ use crate::error::EvalError;
 use crate::methods::method::Method;
 use crate::report::font::{FONT, ensure_font};
 use crate::report::plot::{colour_of, is_variant};
+use crate::report::png_file::PngFile;
 use crate::report::scores::SituationMetrics;
 use crate::scene::metrics::MethodMetrics;
 
@@ -39,7 +40,9 @@ pub(crate) fn plot_summary(metrics: &[SituationMetrics], path: &Path) -> Result<
         all.dedup();
         all
     };
-    let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, SIZE_PX).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_err(&e))?;
     let root = root
         .titled(
@@ -119,5 +122,6 @@ pub(crate) fn plot_summary(metrics: &[SituationMetrics], path: &Path) -> Result<
         key.draw(&Text::new(method.name(), (46, y - 8), text.clone()))
             .map_err(|e| plot_err(&e))?;
     }
-    root.present().map_err(|e| plot_err(&e))
+    root.present().map_err(|e| plot_err(&e))?;
+    png.commit()
 }

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use plotters::prelude::*;
 
 use crate::error::EvalError;
+use crate::report::png_file::PngFile;
 use crate::report::{FONT, create_dir, ensure_font, palette_colour};
 use crate::study::measures::{MEASURES, study_methods};
 use crate::study::study_report::StudyReport;
@@ -60,7 +61,9 @@ fn draw(
         + 1e-9;
     let labels: Vec<String> = report.points.iter().map(|p| p.label.clone()).collect();
     let n = labels.len().max(1) as f64;
-    let root = BitMapBackend::new(path, SIZE_PX).into_drawing_area();
+    let png = PngFile::new(path);
+    let png_path = png.drawing_path().to_path_buf();
+    let root = BitMapBackend::new(&png_path, SIZE_PX).into_drawing_area();
     let e = |e: &dyn std::fmt::Display| e.to_string();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let mut chart = ChartBuilder::on(&root)
@@ -109,5 +112,6 @@ fn draw(
         .position(SeriesLabelPosition::UpperRight)
         .draw()
         .map_err(|x| e(&x))?;
-    root.present().map_err(|x| e(&x))
+    root.present().map_err(|x| e(&x))?;
+    png.commit().map_err(|e| e.to_string())
 }
