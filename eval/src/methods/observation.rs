@@ -18,6 +18,22 @@ pub struct ClusterObservation {
 }
 
 impl ClusterObservation {
+    /// Every cluster of a scan's features, with its points in the world frame's ground plane.
+    pub(crate) fn all_of(features: &patchflow_learn::SweepFeatures) -> Vec<Self> {
+        features
+            .clusters()
+            .iter()
+            .enumerate()
+            .map(|(id, members)| {
+                let points = members
+                    .iter()
+                    .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
+                    .collect();
+                Self::from_points(id, points)
+            })
+            .collect()
+    }
+
     /// A cluster from its points; the centroid is their mean (the origin for an empty cluster).
     pub fn from_points(id: usize, points_xy_world: Vec<[f64; 2]>) -> Self {
         let centroid_xy = centroid_of(&points_xy_world).unwrap_or([0.0, 0.0]);

@@ -136,9 +136,9 @@ mod tests {
             .collect()
     }
 
-    /// A model trained on `data` whose speed GP's targets were standardised around 1e200 m/s.
-    fn broken_model(dir: &Path, data: &Dataset) -> MotionEstimator {
-        let params = EstimatorParams {
+    /// A small SPGP estimator that trains in a fraction of a second.
+    fn tiny_params() -> EstimatorParams {
+        EstimatorParams {
             gp: GpKind::Spgp,
             features: FeatureParams {
                 half_extent_m: 20.0,
@@ -148,9 +148,13 @@ mod tests {
             pseudo_inputs: 5,
             max_iters: 5,
             ..EstimatorParams::default()
-        };
+        }
+    }
+
+    /// A model trained on `data` whose speed GP's targets were standardised around 1e200 m/s.
+    fn broken_model(dir: &Path, data: &Dataset) -> MotionEstimator {
         let model = dir.join("m.json");
-        MotionEstimator::train(data, &params)
+        MotionEstimator::train(data, &tiny_params())
             .unwrap()
             .save(&model)
             .unwrap();
@@ -209,18 +213,7 @@ mod tests {
     fn every_sweep_gets_a_flow_file_like_the_datasets_with_nan_where_nothing_was_seen() {
         let dir = tempfile::tempdir().unwrap();
         let data = dataset(&dir.path().join("data"), &[0.4, 2.0]);
-        let params = EstimatorParams {
-            gp: GpKind::Spgp,
-            features: FeatureParams {
-                half_extent_m: 20.0,
-                ..FeatureParams::default()
-            },
-            samples: 60,
-            pseudo_inputs: 5,
-            max_iters: 5,
-            ..EstimatorParams::default()
-        };
-        let estimator = MotionEstimator::train(&data, &params).unwrap();
+        let estimator = MotionEstimator::train(&data, &tiny_params()).unwrap();
         let out = dir.path().join("flow");
         let written = export_flow(
             &data,

@@ -13,18 +13,7 @@ use crate::scene::truth_at_scan::TruthAtScan;
 
 /// The clusters of a scan and, from the labels, which cluster holds most of each actor's points.
 pub(crate) fn observe(scan: &FeaturedSweep, features: &SweepFeatures) -> ScanObservation {
-    let clusters = features
-        .clusters()
-        .iter()
-        .enumerate()
-        .map(|(id, members)| {
-            let points = members
-                .iter()
-                .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-                .collect();
-            ClusterObservation::from_points(id, points)
-        })
-        .collect();
+    let clusters = ClusterObservation::all_of(features);
     let mut counts: BTreeMap<(u16, usize), usize> = BTreeMap::new();
     for (i, p) in features.points().iter().enumerate() {
         let actor = scan.sweep.labels[p.index].instance();

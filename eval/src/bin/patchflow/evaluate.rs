@@ -6,9 +6,9 @@ use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::stages::evaluate_with_bar;
 use patchflow_eval::{PerceptionSummary, write_dataset_scene_figures, write_report_with};
-use patchflow_learn::{MOVING_FILE_NAME, MotionEstimator, MovingClassifier};
+use patchflow_learn::MotionEstimator;
 
-use crate::common::DataAndReport;
+use crate::common::{DataAndReport, load_models};
 use crate::output_guard::Input;
 
 /// Arguments of `patchflow evaluate`.
@@ -32,22 +32,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .map(|m| Input::new("--model", m))
         .collect();
     args.io.check_output(&models)?;
-    let estimators = args
-        .model
-        .iter()
-        .map(|path| {
-            MotionEstimator::load(path).with_context(|| format!("loading model {}", path.display()))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    // The moving classifier `patchflow train` writes beside the (first) model, if there.
-    let moving_path = args.model[0].with_file_name(MOVING_FILE_NAME);
-    let moving = if moving_path.exists() {
-        let classifier = MovingClassifier::load(&moving_path)
-            .with_context(|| format!("loading {}", moving_path.display()))?;
-        Some(classifier)
-    } else {
-        None
-    };
+    let (estimators, moving) = load_models(&args.model)?;
     let dataset = Dataset::open(&args.io.data)?;
     let mut report =
         evaluate_with_bar(&dataset, &estimators, moving.as_ref()).with_context(|| {

@@ -5,13 +5,11 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::progress::progress_bar;
 use patchflow_eval::{PredictionFolder, scans_to_evaluate, score_predictions};
-use patchflow_learn::{MOVING_FILE_NAME, MotionEstimator, MovingClassifier};
 
-use crate::common::DataAndReport;
+use crate::common::{DataAndReport, load_models};
 use crate::output_guard::Input;
 
 /// Arguments of `patchflow score`.
@@ -45,24 +43,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .chain(args.model.iter().map(|m| Input::new("--model", m)))
         .collect();
     args.io.check_output(&inputs)?;
-    let estimators = args
-        .model
-        .iter()
-        .map(|path| {
-            MotionEstimator::load(path).with_context(|| format!("loading model {}", path.display()))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    // The moving classifier `patchflow train` writes beside the (first) model, if there.
-    let moving = match args
-        .model
-        .first()
-        .map(|m| m.with_file_name(MOVING_FILE_NAME))
-    {
-        Some(path) if path.exists() => Some(
-            MovingClassifier::load(&path).with_context(|| format!("loading {}", path.display()))?,
-        ),
-        _ => None,
-    };
+    let (estimators, moving) = load_models(&args.model)?;
     let dataset = Dataset::open(&args.io.data)?;
     let passes = 1 + u64::from(!estimators.is_empty());
     let bar = progress_bar(scans_to_evaluate(&dataset)? * passes, "scoring scans");

@@ -79,18 +79,7 @@ impl<'a> LearnedPerception<'a> {
             scan: self.scans,
             stamp_secs,
             sensor_xy_world: features.sensor_xy(),
-            clusters: features
-                .clusters()
-                .iter()
-                .enumerate()
-                .map(|(id, members)| {
-                    let points = members
-                        .iter()
-                        .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-                        .collect();
-                    ClusterObservation::from_points(id, points)
-                })
-                .collect(),
+            clusters: ClusterObservation::all_of(features),
             actors: Default::default(),
             target_actor: None,
         };
