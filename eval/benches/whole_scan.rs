@@ -19,7 +19,8 @@ use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use patchflow_dataset::{Dataset, Sweep};
 use patchflow_eval::{BaselineParams, DENSE_TRAFFIC_TOML, LearnedPerception};
 use patchflow_learn::{
-    EstimatorParams, GpKind, MotionEstimator, MovingClassifier, MovingParams, SweepFeatures,
+    ChangeEvidence, EstimatorParams, GpKind, HeightSlice, MotionEstimator, MovingClassifier,
+    MovingParams, SweepFeatures,
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
@@ -103,12 +104,16 @@ fn whole_scan(c: &mut Criterion) {
         b.iter(|| estimator.estimate_scan(black_box(&prev), black_box(&curr)))
     });
     let earlier = SweepFeatures::compute(&before, &prev, &params).expect("features");
+    let valid = params.check().expect("parameters");
+    let slice = |s| HeightSlice::cut(s, &valid).expect("slice");
+    let change_before = ChangeEvidence::build(&slice(&before), &slice(&prev), &valid);
+    let (before_slice, curr_slice) = (slice(&before), slice(&curr));
     let primed = || {
         let mut perception =
             LearnedPerception::new(&estimator, Some(&moving), &BaselineParams::default())
                 .expect("perception");
         perception
-            .step(&earlier, prev.stamp_secs)
+            .step(&earlier, &change_before, prev.stamp_secs)
             .expect("the scan before");
         perception
     };
@@ -118,7 +123,11 @@ fn whole_scan(c: &mut Criterion) {
             |mut perception| {
                 let features = SweepFeatures::compute(black_box(&prev), black_box(&curr), &params)
                     .expect("features");
-                perception.step(&features, curr.stamp_secs).expect("scan")
+                // The observed change since the sweep before is per-scan work too.
+                let change = ChangeEvidence::build(&before_slice, &curr_slice, &valid);
+                perception
+                    .step(&features, &change, curr.stamp_secs)
+                    .expect("scan")
             },
             BatchSize::SmallInput,
         )

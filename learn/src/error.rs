@@ -19,14 +19,6 @@ pub enum LearnError {
 }
 
 impl LearnError {
-    /// An operating-system error on `path`.
-    pub(crate) fn io(path: &Path, source: std::io::Error) -> Self {
-        Self::Gp(GpError::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    }
-
     /// A model file that is corrupt, of another kind, or of another version.
     pub(crate) fn model(path: &Path, reason: String) -> Self {
         Self::Gp(GpError::Model {

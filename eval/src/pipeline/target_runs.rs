@@ -10,8 +10,8 @@ use std::collections::BTreeMap;
 
 use patchflow_dataset::{Dataset, SequenceReader};
 use patchflow_learn::{
-    ClusterEstimate, FeatureParams, FeaturedSweep, MergeRule, MotionEstimator, MovingClassifier,
-    ScanStream,
+    ChangeEvidence, ClusterEstimate, FeatureParams, FeaturedSweep, MergeRule, MotionEstimator,
+    MovingClassifier, ScanStream,
 };
 use rayon::prelude::*;
 
@@ -136,9 +136,10 @@ fn evaluate_target(
             let mut observation = observe(&scan, &scan.features[0]);
             let target = observation.target_actor;
             observation.actors.retain(|&actor, _| Some(actor) == target);
-            let decision = match (moving, observation.target_cluster()) {
-                (Some(classifier), Some(c)) => {
-                    classifier.cluster_probabilities(&scan.features[0])?[c].map(|p| p > 0.5)
+            let change = moving.and_then(|_| ChangeEvidence::of_stream(&stream));
+            let decision = match (moving, change, observation.target_cluster()) {
+                (Some(classifier), Some(change), Some(c)) => {
+                    classifier.cluster_decisions(&scan.features[0], &change)?[c]
                 }
                 _ => None,
             };

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use patchflow_dataset::SequenceReader;
 use patchflow_learn::{
-    ClusterEstimate, ClusterMotion, FeatureParams, FeaturedSweep, MotionEstimator,
+    ChangeEvidence, ClusterEstimate, ClusterMotion, FeatureParams, FeaturedSweep, MotionEstimator,
     MovingClassifier, ScanMotion, ScanStream, SweepFeatures,
 };
 
@@ -111,11 +111,17 @@ pub fn evaluate_sequence(
             features,
         };
         let dt = scan.sweep.stamp_secs - sequence.stamps_secs()[scan.index - 1];
+        // The moving classifier reads the change observed over the last half second as well.
+        let change = match moving {
+            Some(_) => ChangeEvidence::of_stream(&stream),
+            None => None,
+        };
+        let moving_now = moving.zip(change.as_ref());
         evaluate_scan(
             &scan,
             cpu_start,
             dt,
-            (estimators, &group_of, moving),
+            (estimators, &group_of, moving_now),
             has_target.then_some(&name),
             &mut trackers,
             &mut scores,
@@ -162,7 +168,11 @@ fn evaluate_scan(
     scan: &FeaturedSweep,
     cpu_start: Option<f64>,
     dt_secs: f64,
-    (estimators, group_of, moving): (&[MotionEstimator], &[usize], Option<&MovingClassifier>),
+    (estimators, group_of, moving): (
+        &[MotionEstimator],
+        &[usize],
+        Option<(&MovingClassifier, &ChangeEvidence)>,
+    ),
     situation: Option<&String>,
     trackers: &mut Trackers,
     scores: &mut Scores,
@@ -188,12 +198,8 @@ fn evaluate_scan(
         .map(|(start, end)| end - start);
     // Moving or static, per object hypothesis (issue 27).
     let start = Instant::now();
-    let probabilities = match moving {
-        Some(classifier) => Some(classifier.cluster_probabilities(features)?),
-        None => None,
-    };
-    let decisions: Vec<Option<bool>> = match &probabilities {
-        Some(p) => p.iter().map(|p| p.map(|p| p > 0.5)).collect(),
+    let decisions: Vec<Option<bool>> = match moving {
+        Some((classifier, change)) => classifier.cluster_decisions(features, change)?,
         None => vec![None; features.clusters().len()],
     };
     timing.segmentation_secs = start.elapsed().as_secs_f64();

@@ -42,6 +42,7 @@ pub(crate) use cell_samples::CellSamples;
 pub use cluster::Clusters;
 pub use cluster_shape::{ClusterShape, MIN_OBJECT_POINTS};
 pub use csv::Alignment;
+pub(crate) use difference_map::MapPair;
 pub use feature_kind::FeatureKind;
 pub use gabor::GaborBank;
 pub use grid::{GridMap, GridWindow};

@@ -2,6 +2,7 @@
 //! height slice once, and its slice serves as the previous one of the next scan (thesis 2.1.2
 //! differences the maps at t and t − 1).
 
+use std::collections::VecDeque;
 use std::time::Instant;
 
 use patchflow_dataset::{SequenceReader, Sweep};
@@ -41,7 +42,13 @@ pub struct ScanStream<'a> {
     params: Vec<FeatureValidParams>,
     next: usize,
     previous: Vec<HeightSlice>,
+    /// The first parameter set's slices of the last `history_len` sweeps, oldest first; the last
+    /// is the current sweep's once [`Self::features_of`] has run.
+    history: VecDeque<HeightSlice>,
 }
+
+/// Slices kept for [`ScanStream::slice_back`]: the current sweep's and the five before it.
+const HISTORY_LEN: usize = 6;
 
 impl<'a> ScanStream<'a> {
     /// A stream over `sequence` computing features once per parameter set (usually one; several
@@ -56,6 +63,7 @@ impl<'a> ScanStream<'a> {
             params,
             next: 0,
             previous: Vec::new(),
+            history: VecDeque::with_capacity(HISTORY_LEN),
         })
     }
 
@@ -80,6 +88,7 @@ impl<'a> ScanStream<'a> {
                 return Ok(None);
             }
             self.previous = self.cut(&self.sequence.read_sweep(0)?)?;
+            self.remember();
             self.next = 1;
         }
         if self.next >= self.sequence.len() {
@@ -108,7 +117,31 @@ impl<'a> ScanStream<'a> {
             })
             .collect::<Result<Vec<_>>>()?;
         self.previous = current;
+        self.remember();
         Ok(features)
+    }
+
+    /// Keeps the first parameter set's newest slice in the history.
+    fn remember(&mut self) {
+        if let Some(slice) = self.previous.first() {
+            if self.history.len() == HISTORY_LEN {
+                self.history.pop_front();
+            }
+            self.history.push_back(slice.clone());
+        }
+    }
+
+    /// The first parameter set's slice of the sweep `n` before the last one handed to
+    /// [`Self::features_of`] (`n = 0`: that sweep), or the oldest kept when the sequence or the
+    /// history (the last five sweeps) does not reach that far; `None` before the first sweep.
+    pub fn slice_back(&self, n: usize) -> Option<&HeightSlice> {
+        let newest = self.history.len().checked_sub(1)?;
+        self.history.get(newest.saturating_sub(n))
+    }
+
+    /// The first parameter set, checked.
+    pub fn first_params(&self) -> Option<&FeatureValidParams> {
+        self.params.first()
     }
 
     fn advance(&mut self) -> Result<Option<FeaturedSweep>> {

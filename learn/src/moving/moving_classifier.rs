@@ -1,35 +1,30 @@
 //! The moving/static classifier: GP probabilistic least squares (GPML §6.5) on the
 //! [`cluster_inputs`] of object hypotheses, trained on a dataset's exact flow, applied per scan,
-//! and kept in a versioned `moving.json` beside the motion model.
+//! and kept in a versioned `moving.json` beside the motion model (`moving_file.rs`).
 //!
 //! Training takes every object hypothesis of evenly spaced scans of every sequence (at most
 //! `max_scans`), labelled by [`cluster_is_moving`], and fits an exact GP on at most `max_rows`
 //! of them: a seeded draw with as many static as moving clusters. The data hold about one moving
-//! cluster in fifty (parked cars, poles and bushes are hypotheses too); on the raw mix the fitted
-//! offset β called nearly every cluster static, so the classes are balanced and the decision at
-//! one half weighs a missed mover as much as a static cluster set in motion. A cluster that is no
+//! cluster in thirty (parked cars, poles and bushes are hypotheses too); on the raw mix the fitted
+//! offset β called nearly every cluster static, so the classes are balanced for the fit and the
+//! natural mix comes back in the decision threshold ([`iou_threshold`]). A cluster that is no
 //! object hypothesis (longer than any road user) is static by definition.
 
-use std::path::Path;
-
 use nalgebra::DMatrix;
-use patchflow_dataset::Dataset;
+use patchflow_dataset::{Dataset, Sweep};
 use patchflow_gp::{GpModel, PlsParams, Squashing};
 use rand::SeedableRng;
 use rand::seq::SliceRandom;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
 
-use super::cluster_inputs::{MOVING_INPUT_NAMES, cluster_inputs, cluster_is_moving};
-use crate::{FeatureParams, GpKind, GpParams, LearnError, Result, SweepFeatures};
-
-/// The `format` tag of a moving-classifier file.
-pub const MOVING_FORMAT: &str = "patchflow-moving-classifier";
-/// The file version this build writes and reads.
-pub const MOVING_VERSION: u32 = 1;
-/// The file name beside a motion model (`models/moving.json`).
-pub const MOVING_FILE_NAME: &str = "moving.json";
+use super::change_evidence::{CHANGE_BASELINE_SCANS, ChangeEvidence};
+use super::cluster_inputs::{MOVING_INPUTS, cluster_inputs, cluster_is_moving};
+use super::decision_threshold::{ScoredCluster, iou_threshold};
+use crate::{
+    FeatureParams, FeatureValidParams, GpKind, GpParams, HeightSlice, LearnError, Result,
+    SweepFeatures,
+};
 
 /// How much of a dataset the classifier learns from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,24 +47,73 @@ impl Default for MovingParams {
     }
 }
 
+/// One labelled training cluster.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MovingRow {
+    /// Its [`cluster_inputs`].
+    pub inputs: [f64; MOVING_INPUTS],
+    /// Whether most of its points move ([`cluster_is_moving`]).
+    pub moving: bool,
+    /// Its points that truly move.
+    pub moving_points: usize,
+    /// Its points that do not.
+    pub static_points: usize,
+}
+
+impl MovingRow {
+    /// The row of cluster `c` of `features`, cut from `sweep`.
+    pub fn of(features: &SweepFeatures, change: &ChangeEvidence, sweep: &Sweep, c: usize) -> Self {
+        let members = features.clusters().members(c);
+        let moving_points = members
+            .iter()
+            .filter(|&&i| {
+                let v = sweep.flow_in_world_mps[features.points()[i].index];
+                f64::from(v[0]).hypot(f64::from(v[1])) > super::MOVING_SPEED_MPS
+            })
+            .count();
+        Self {
+            inputs: cluster_inputs(features, change, c),
+            moving: cluster_is_moving(features, sweep, c),
+            moving_points,
+            static_points: members.len() - moving_points,
+        }
+    }
+}
+
 /// A trained moving/static classifier.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MovingClassifier {
-    gp: GpModel,
-    squashing: Squashing,
-    rows: usize,
-    moving_rows: usize,
+    pub(super) gp: GpModel,
+    pub(super) squashing: Squashing,
+    pub(super) threshold: f64,
+    pub(super) rows: usize,
+    pub(super) moving_rows: usize,
 }
 
-#[derive(Serialize, Deserialize)]
-struct MovingFile {
-    format: String,
-    version: u32,
-    inputs: Vec<String>,
-    rows: usize,
-    moving_rows: usize,
-    squashing: Squashing,
-    gp: serde_json::Value,
+/// The rows of scan `k` of a sequence: the maps of sweeps `k − 1` and `k`, the observed change
+/// since sweep `k − 5` (or the first).
+fn scan_rows(
+    sequence: &patchflow_dataset::SequenceReader,
+    k: usize,
+    valid: &FeatureValidParams,
+) -> Result<Vec<MovingRow>> {
+    let current = sequence.read_sweep(k)?;
+    let cut =
+        |i: usize| -> Result<HeightSlice> { HeightSlice::cut(&sequence.read_sweep(i)?, valid) };
+    let (previous, now) = (cut(k - 1)?, HeightSlice::cut(&current, valid)?);
+    let past_index = k.saturating_sub(CHANGE_BASELINE_SCANS);
+    let past = if past_index == k - 1 {
+        previous.clone()
+    } else {
+        cut(past_index)?
+    };
+    let features = SweepFeatures::from_slices(&previous, &now, valid)?;
+    let change = ChangeEvidence::build(&past, &now, valid);
+    Ok(features
+        .object_hypotheses()
+        .into_iter()
+        .map(|c| MovingRow::of(&features, &change, &current, c))
+        .collect())
 }
 
 impl MovingClassifier {
@@ -88,70 +132,99 @@ impl MovingClassifier {
         let chosen: Vec<&(String, usize)> = scans.iter().step_by(stride).collect();
         let per_scan = chosen
             .par_iter()
-            .map(|(name, k)| {
-                let sequence = dataset.sequence(name)?;
-                let previous = sequence.read_sweep(k - 1)?;
-                let current = sequence.read_sweep(*k)?;
-                let f = SweepFeatures::compute_checked(&previous, &current, &valid)?;
-                Ok(f.object_hypotheses()
-                    .into_iter()
-                    .map(|c| (cluster_inputs(&f, c), cluster_is_moving(&f, &current, c)))
-                    .collect::<Vec<_>>())
-            })
+            .map(|(name, k)| scan_rows(&dataset.sequence(name)?, *k, &valid))
             .collect::<Result<Vec<_>>>()?;
-        let rows: Vec<([f64; 6], bool)> = per_scan.into_iter().flatten().collect();
-        Self::fit(rows, params)
+        Self::fit(per_scan.into_iter().flatten().collect(), params)
     }
 
-    /// Fits the classifier to labelled inputs: at most `params.max_rows / 2` moving ones and as
-    /// many static ones, drawn uniformly.
-    pub fn fit(mut rows: Vec<([f64; 6], bool)>, params: &MovingParams) -> Result<Self> {
-        if rows.iter().any(|(x, _)| x.iter().any(|v| !v.is_finite())) {
+    /// Fits the classifier to labelled clusters: at most `params.max_rows / 2` moving ones and as
+    /// many static ones, drawn uniformly; the decision threshold from all of them.
+    pub fn fit(rows: Vec<MovingRow>, params: &MovingParams) -> Result<Self> {
+        if rows.iter().any(|r| r.inputs.iter().any(|v| !v.is_finite())) {
             return Err(LearnError::degenerate_data(
                 "a cluster's moving-classifier inputs are not finite".into(),
             ));
         }
-        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
-        rows.shuffle(&mut rng);
-        let (moving, still): (Vec<_>, Vec<_>) = rows.into_iter().partition(|(_, m)| *m);
+        let mut order: Vec<usize> = (0..rows.len()).collect();
+        order.shuffle(&mut ChaCha8Rng::seed_from_u64(params.seed));
+        let (moving, still): (Vec<usize>, Vec<usize>) =
+            order.into_iter().partition(|&i| rows[i].moving);
         let n = moving
             .len()
             .min(still.len())
             .min(params.max_rows.max(2) / 2);
-        let mut rows: Vec<([f64; 6], bool)> = moving.into_iter().take(n).collect();
-        rows.extend(still.into_iter().take(n));
-        let moving_rows = rows.iter().filter(|(_, moving)| *moving).count();
-        if moving_rows == 0 || moving_rows == rows.len() {
+        let fitted: Vec<usize> = moving
+            .iter()
+            .take(n)
+            .chain(still.iter().take(n))
+            .copied()
+            .collect();
+        if n == 0 {
             return Err(LearnError::degenerate_data(format!(
-                "{} clusters, {moving_rows} of them moving: the moving classifier needs both classes",
-                rows.len()
+                "{} clusters, {} of them moving: the moving classifier needs both classes",
+                rows.len(),
+                moving.len()
             )));
         }
-        let x = DMatrix::from_fn(rows.len(), MOVING_INPUT_NAMES.len(), |i, d| rows[i].0[d]);
-        let labels: Vec<bool> = rows.iter().map(|(_, moving)| *moving).collect();
+        let x = DMatrix::from_fn(fitted.len(), MOVING_INPUTS, |i, d| {
+            rows[fitted[i]].inputs[d]
+        });
+        let labels: Vec<bool> = fitted.iter().map(|&i| rows[i].moving).collect();
         let gp = GpParams::new(GpKind::Full).seed(params.seed);
-        let fitted = PlsParams::new(gp).fit(&x, &labels)?;
+        let pls = PlsParams::new(gp).fit(&x, &labels)?;
+        let squashing = pls.squashing();
+        // Held-out probabilities: leave-one-out for the fitted rows, predictions for the rest.
+        let mut probability = vec![f64::NAN; rows.len()];
+        for (k, &i) in fitted.iter().enumerate() {
+            probability[i] = squashing.probability(pls.loo().mean[k], pls.loo().var_latent[k]);
+        }
+        let rest: Vec<usize> = (0..rows.len())
+            .filter(|i| probability[*i].is_nan())
+            .collect();
+        if !rest.is_empty() {
+            let x = DMatrix::from_fn(rest.len(), MOVING_INPUTS, |i, d| rows[rest[i]].inputs[d]);
+            let p = pls.predict(&x)?;
+            for (k, &i) in rest.iter().enumerate() {
+                probability[i] = p.probability[k];
+            }
+        }
+        let scored: Vec<ScoredCluster> = rows
+            .iter()
+            .zip(&probability)
+            .map(|(r, &p)| ScoredCluster {
+                probability: p,
+                moving_points: r.moving_points,
+                static_points: r.static_points,
+            })
+            .collect();
+        let (threshold, _) = iou_threshold(&scored);
         Ok(Self {
-            gp: fitted.regression().clone(),
-            squashing: fitted.squashing(),
-            rows: rows.len(),
-            moving_rows,
+            gp: pls.regression().clone(),
+            squashing,
+            threshold,
+            rows: fitted.len(),
+            moving_rows: n,
         })
     }
 
     /// Per cluster of `features`, the probability that it moves: `Some` for object hypotheses,
-    /// `None` for the clusters too long to be one object (static).
-    pub fn cluster_probabilities(&self, features: &SweepFeatures) -> Result<Vec<Option<f64>>> {
+    /// `None` for the clusters too long to be one object (static). `change` is the observed change
+    /// since [`CHANGE_BASELINE_SCANS`] sweeps back on the same current sweep.
+    pub fn cluster_probabilities(
+        &self,
+        features: &SweepFeatures,
+        change: &ChangeEvidence,
+    ) -> Result<Vec<Option<f64>>> {
         let hypotheses = features.object_hypotheses();
         let mut out = vec![None; features.clusters().len()];
         if hypotheses.is_empty() {
             return Ok(out);
         }
-        let inputs: Vec<[f64; 6]> = hypotheses
+        let inputs: Vec<[f64; MOVING_INPUTS]> = hypotheses
             .iter()
-            .map(|&c| cluster_inputs(features, c))
+            .map(|&c| cluster_inputs(features, change, c))
             .collect();
-        let x = DMatrix::from_fn(inputs.len(), MOVING_INPUT_NAMES.len(), |i, d| inputs[i][d]);
+        let x = DMatrix::from_fn(inputs.len(), MOVING_INPUTS, |i, d| inputs[i][d]);
         let prediction = self.gp.predict(&x)?;
         for (k, &c) in hypotheses.iter().enumerate() {
             let p = self
@@ -162,163 +235,31 @@ impl MovingClassifier {
         Ok(out)
     }
 
-    /// The decision per cluster: moving when the probability is above one half.
-    pub fn cluster_decisions(&self, features: &SweepFeatures) -> Result<Vec<bool>> {
+    /// The decision per cluster: `Some(true)` for an object hypothesis whose probability of moving
+    /// is above [`Self::threshold`], `None` for the clusters that are no object hypothesis.
+    pub fn cluster_decisions(
+        &self,
+        features: &SweepFeatures,
+        change: &ChangeEvidence,
+    ) -> Result<Vec<Option<bool>>> {
         Ok(self
-            .cluster_probabilities(features)?
+            .cluster_probabilities(features, change)?
             .into_iter()
-            .map(|p| p.is_some_and(|p| p > 0.5))
+            .map(|p| p.map(|p| p > self.threshold))
             .collect())
+    }
+
+    /// The probability above which a cluster is called moving ([`iou_threshold`]).
+    pub fn threshold(&self) -> f64 {
+        self.threshold
     }
 
     /// Clusters the GP was fitted on, and how many of them moved.
     pub fn training_rows(&self) -> (usize, usize) {
         (self.rows, self.moving_rows)
     }
-
-    /// Writes the classifier (atomically: a temporary file renamed into place).
-    pub fn save(&self, path: &Path) -> Result<()> {
-        let file = MovingFile {
-            format: MOVING_FORMAT.into(),
-            version: MOVING_VERSION,
-            inputs: MOVING_INPUT_NAMES.map(String::from).to_vec(),
-            rows: self.rows,
-            moving_rows: self.moving_rows,
-            squashing: self.squashing,
-            gp: self.gp.to_json_value()?,
-        };
-        let model = |reason: String| LearnError::model(path, reason);
-        let mut bytes = serde_json::to_vec(&file).map_err(|e| model(e.to_string()))?;
-        bytes.push(b'\n');
-        Ok(patchflow_dataset::write_atomic(path, &bytes)?)
-    }
-
-    /// Reads a classifier written by [`Self::save`], checking format, version and inputs.
-    pub fn load(path: &Path) -> Result<Self> {
-        let model = |reason: String| LearnError::model(path, reason);
-        let bytes = std::fs::read(path).map_err(|source| LearnError::io(path, source))?;
-        let value: serde_json::Value =
-            serde_json::from_slice(&bytes).map_err(|e| model(format!("not JSON: {e}")))?;
-        let format = value.get("format").and_then(|f| f.as_str()).unwrap_or("");
-        if format != MOVING_FORMAT {
-            return Err(model(format!(
-                "not a patchflow moving classifier (format '{format}')"
-            )));
-        }
-        let file: MovingFile =
-            serde_json::from_value(value).map_err(|e| model(format!("corrupt: {e}")))?;
-        if file.version != MOVING_VERSION {
-            return Err(model(format!(
-                "version {} (this build reads {MOVING_VERSION})",
-                file.version
-            )));
-        }
-        if file.inputs != MOVING_INPUT_NAMES {
-            return Err(model(format!("inputs {:?}", file.inputs)));
-        }
-        let valid = file.squashing.alpha.is_finite() && file.squashing.beta.is_finite();
-        if !valid || file.moving_rows == 0 || file.moving_rows >= file.rows {
-            return Err(model("squashing or row counts out of range".into()));
-        }
-        let gp = GpModel::from_json_value(file.gp, path)?;
-        if gp.input_names().len() != MOVING_INPUT_NAMES.len() {
-            return Err(model(format!(
-                "the GP reads {} inputs, not {}",
-                gp.input_names().len(),
-                MOVING_INPUT_NAMES.len()
-            )));
-        }
-        Ok(Self {
-            gp,
-            squashing: file.squashing,
-            rows: file.rows,
-            moving_rows: file.moving_rows,
-        })
-    }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
-
-    /// Features of a scene with one car at `speed_mps` and one parked car, over 0.1 s.
-    fn scene(speed_mps: f64, at: [f64; 2]) -> (SweepFeatures, patchflow_dataset::Sweep) {
-        let scene = SyntheticScene {
-            boxes: vec![
-                SceneBox::car(1, at, 0.3, speed_mps),
-                SceneBox::car(2, [-at[0], -at[1]], 1.2, 0.0),
-            ],
-        };
-        let lidar = SyntheticLidar::with_resolution(32, 720);
-        let prev = scene.scan(&lidar, [0.0, 0.0], 0.0, 0);
-        let curr = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
-        let f = SweepFeatures::compute(&prev, &curr, &FeatureParams::default()).unwrap();
-        (f, curr)
-    }
-
-    fn trained() -> MovingClassifier {
-        let mut rows = Vec::new();
-        for (k, speed) in [0.0, 4.0, 8.0, 12.0].iter().enumerate() {
-            for r in [10.0, 15.0, 20.0] {
-                let (f, sweep) = scene(*speed, [r, 2.0 + k as f64]);
-                for c in f.object_hypotheses() {
-                    rows.push((cluster_inputs(&f, c), cluster_is_moving(&f, &sweep, c)));
-                }
-            }
-        }
-        MovingClassifier::fit(rows, &MovingParams::default()).unwrap()
-    }
-
-    #[test]
-    fn a_moving_car_is_decided_moving_and_a_parked_car_static() {
-        let classifier = trained();
-        let (f, sweep) = scene(10.0, [13.0, 4.0]);
-        let decisions = classifier.cluster_decisions(&f).unwrap();
-        let hypotheses = f.object_hypotheses();
-        assert_eq!(hypotheses.len(), 2);
-        for c in hypotheses {
-            assert_eq!(
-                decisions[c],
-                cluster_is_moving(&f, &sweep, c),
-                "cluster {c}"
-            );
-        }
-    }
-
-    #[test]
-    fn a_saved_classifier_loads_back_with_the_same_probabilities() {
-        let classifier = trained();
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join(MOVING_FILE_NAME);
-        classifier.save(&path).unwrap();
-        let loaded = MovingClassifier::load(&path).unwrap();
-        let (f, _) = scene(6.0, [12.0, 3.0]);
-        let a = classifier.cluster_probabilities(&f).unwrap();
-        let b = loaded.cluster_probabilities(&f).unwrap();
-        assert_eq!(a, b);
-    }
-
-    #[test]
-    fn a_file_of_another_format_or_version_is_refused_with_its_path() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join(MOVING_FILE_NAME);
-        std::fs::write(&path, r#"{"format":"other","version":1}"#).unwrap();
-        let err = MovingClassifier::load(&path).unwrap_err().to_string();
-        assert!(
-            err.contains("moving.json") && err.contains("other"),
-            "{err}"
-        );
-        let classifier = trained();
-        classifier.save(&path).unwrap();
-        let text = std::fs::read_to_string(&path).unwrap();
-        std::fs::write(&path, text.replace("\"version\":1", "\"version\":9")).unwrap();
-        assert!(MovingClassifier::load(&path).is_err());
-    }
-
-    #[test]
-    fn one_class_only_is_an_error() {
-        let rows = vec![([0.0; 6], false); 10];
-        assert!(MovingClassifier::fit(rows, &MovingParams::default()).is_err());
-    }
-}
+#[path = "moving_classifier_tests.rs"]
+mod tests;

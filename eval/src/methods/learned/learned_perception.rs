@@ -4,7 +4,9 @@
 //! evaluation runs the same steps beside the baselines; this is the public entry for one model
 //! (and the Criterion bench of the whole learned scan).
 
-use patchflow_learn::{MotionEstimator, MovingClassifier, ScanMotion, SweepFeatures};
+use patchflow_learn::{
+    ChangeEvidence, MotionEstimator, MovingClassifier, ScanMotion, SweepFeatures,
+};
 
 use crate::error::EvalError;
 use crate::methods::baselines::baseline_params::BaselineParams;
@@ -52,11 +54,13 @@ impl<'a> LearnedPerception<'a> {
         })
     }
 
-    /// The next scan's features (computed with the estimator's feature parameters), taken at
-    /// `stamp_secs` (increasing from scan to scan).
+    /// The next scan's features (computed with the estimator's feature parameters) and the
+    /// change observed on it over the last half second (what the moving classifier reads beside
+    /// the features: [`ChangeEvidence`]), taken at `stamp_secs` (increasing from scan to scan).
     pub fn step(
         &mut self,
         features: &SweepFeatures,
+        change: &ChangeEvidence,
         stamp_secs: f64,
     ) -> Result<LearnedScan, EvalError> {
         let motion = self.estimator.estimate_features(features)?;
@@ -68,11 +72,7 @@ impl<'a> LearnedPerception<'a> {
             });
         }
         let moving: Vec<Option<bool>> = match self.moving {
-            Some(classifier) => classifier
-                .cluster_probabilities(features)?
-                .into_iter()
-                .map(|p| p.map(|p| p > 0.5))
-                .collect(),
+            Some(classifier) => classifier.cluster_decisions(features, change)?,
             None => vec![None; features.clusters().len()],
         };
         let observation = ScanObservation {

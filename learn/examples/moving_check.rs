@@ -1,0 +1,160 @@
+//! How well the moving/static classifier segments the situations' scans (issue 27): trains it on
+//! the training tracks of a `bench --keep-data` folder (as `bench` does, seed 7), then scores per
+//! point on every situation, as LiDAR-MOS does (every sliced point of every scan; a point is
+//! predicted moving when its cluster is an object hypothesis decided moving): the moving class's
+//! precision, recall and IoU at the classifier's own threshold, the IoU at other thresholds, and
+//! the static points called moving by their SemanticKITTI class.
+//!
+//! `cargo run --release -p patchflow-learn --example moving_check -- BENCH_OUT`
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use patchflow_dataset::Dataset;
+use patchflow_learn::{
+    ChangeEvidence, FeatureParams, MOVING_SPEED_MPS, MovingClassifier, MovingParams, ScanStream,
+};
+
+type Failure = Box<dyn std::error::Error>;
+
+/// One scored cluster: probability, moving points, static points, class of its first point.
+type Scored = (f64, u64, u64, u16);
+
+fn main() -> Result<(), Failure> {
+    let root = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .ok_or("usage: moving_check BENCH_OUT")?,
+    );
+    let params = FeatureParams::default();
+    let train = Dataset::open(&root.join("data/train"))?;
+    let env = |name: &str, default: usize| {
+        std::env::var(name)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let defaults = MovingParams::default();
+    let moving_params = MovingParams {
+        seed: env("SEED", 7) as u64,
+        max_rows: env("MAX_ROWS", defaults.max_rows),
+        max_scans: env("MAX_SCANS", defaults.max_scans),
+    };
+    let classifier = MovingClassifier::train(&train, &params, &moving_params)?;
+    let (rows, moving_rows) = classifier.training_rows();
+    println!(
+        "fitted on {rows} clusters ({moving_rows} moving); threshold {:.2}",
+        classifier.threshold()
+    );
+    let situations = Dataset::open(&root.join("data/situations"))?;
+    let (mut scored, mut moving_total): (Vec<Scored>, u64) = (Vec::new(), 0);
+    let mut debug_sum = [[0.0f64; 10]; 2];
+    let mut debug_n = [0.0f64; 2];
+    for info in situations.sequences() {
+        let sequence = situations.sequence(&info.name)?;
+        let mut stream = ScanStream::new(&sequence, vec![params.clone()])?;
+        let (mut tp, mut fp, mut fn_) = (0u64, 0u64, 0u64);
+        while let Some((_, sweep)) = stream.read_next()? {
+            let features = stream.features_of(&sweep)?.remove(0);
+            let change = ChangeEvidence::of_stream(&stream).ok_or("no slice")?;
+            let probabilities = classifier.cluster_probabilities(&features, &change)?;
+            if std::env::var("COMPARE").is_ok() && sweep.index == 20 {
+                let past = sequence.read_sweep(15)?;
+                let a = patchflow_learn::SweepFeatures::compute(&past, &sweep, &params)?;
+                let b = patchflow_learn::SweepFeatures::compute(
+                    &past,
+                    &sweep,
+                    &FeatureParams::with_prior(0.01),
+                )?;
+                let (mut same, mut differ) = (0, 0);
+                for p in a.points() {
+                    let (x, y) = (p.x_m, p.y_m);
+                    let (na, nb) = (a.reflection_map().at(x, y), b.reflection_map().at(x, y));
+                    let (da, db) = (a.difference_map().at(x, y), b.difference_map().at(x, y));
+                    let seen = (na - nb).abs() < 1e-6 && ((na - da) - (nb - db)).abs() < 1e-6;
+                    let old = if seen { da } else { 0.0 };
+                    if (old - change.observed_change(x, y)).abs() < 1e-9 {
+                        same += 1;
+                    } else {
+                        differ += 1;
+                    }
+                }
+                println!(
+                    "compare at sweep 20 of {}: {same} same, {differ} differ",
+                    info.name
+                );
+            }
+            if std::env::var("DEBUG_INPUTS").is_ok() {
+                for c in features.object_hypotheses() {
+                    let x = patchflow_learn::cluster_inputs(&features, &change, c);
+                    let m = patchflow_learn::cluster_is_moving(&features, &sweep, c);
+                    let k = usize::from(m);
+                    for d in 0..x.len() {
+                        debug_sum[k][d] += x[d];
+                    }
+                    debug_n[k] += 1.0;
+                }
+            }
+            let truly = |i: usize| {
+                let v = sweep.flow_in_world_mps[features.points()[i].index];
+                f64::from(v[0]).hypot(f64::from(v[1])) > MOVING_SPEED_MPS
+            };
+            for (c, p) in probabilities.iter().enumerate() {
+                let members = features.clusters().members(c);
+                let moving = members.iter().filter(|&&i| truly(i)).count() as u64;
+                let total = members.len() as u64;
+                moving_total += moving;
+                let decided = p.is_some_and(|p| p > classifier.threshold());
+                if decided {
+                    (tp, fp) = (tp + moving, fp + total - moving);
+                } else {
+                    fn_ += moving;
+                }
+                if let (Some(p), Some(&i)) = (p, members.first()) {
+                    let class = sweep.labels[features.points()[i].index].semantic();
+                    scored.push((*p, moving, total - moving, class));
+                }
+            }
+        }
+        let iou = tp as f64 / (tp + fp + fn_).max(1) as f64;
+        println!(
+            "{:<24} points TP {tp:>7} FP {fp:>7} FN {fn_:>7}  IoU {iou:.3}",
+            info.name
+        );
+    }
+    if std::env::var("DEBUG_INPUTS").is_ok() {
+        for k in 0..2 {
+            let means: Vec<String> = debug_sum[k]
+                .iter()
+                .map(|v| format!("{:.3}", v / debug_n[k]))
+                .collect();
+            println!("moving={k} n={} means {}", debug_n[k], means.join(" "));
+        }
+    }
+    let at = |t: f64| {
+        let tp: u64 = scored.iter().filter(|s| s.0 > t).map(|s| s.1).sum();
+        let fp: u64 = scored.iter().filter(|s| s.0 > t).map(|s| s.2).sum();
+        (tp, fp)
+    };
+    let (tp, fp) = at(classifier.threshold());
+    println!(
+        "all situations at {:.2}: precision {:.3} recall {:.3} IoU {:.3}",
+        classifier.threshold(),
+        tp as f64 / (tp + fp).max(1) as f64,
+        tp as f64 / moving_total.max(1) as f64,
+        tp as f64 / (moving_total + fp).max(1) as f64
+    );
+    for t in [0.5, 0.6, 0.7, 0.8, 0.9, 0.95] {
+        let (tp, fp) = at(t);
+        println!(
+            "  threshold {t:.2}: IoU {:.3}",
+            tp as f64 / (moving_total + fp).max(1) as f64
+        );
+    }
+    let mut by_class: BTreeMap<u16, u64> = BTreeMap::new();
+    for s in scored.iter().filter(|s| s.0 > classifier.threshold()) {
+        *by_class.entry(s.3).or_default() += s.2;
+    }
+    println!("static points called moving, by SemanticKITTI class: {by_class:?}");
+    Ok(())
+}

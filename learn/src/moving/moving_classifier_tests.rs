@@ -1,0 +1,119 @@
+//! Tests of the moving classifier: decisions on a scene with a moving and a parked car, the file.
+
+use super::*;
+use crate::moving::MOVING_FILE_NAME;
+use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
+
+/// Features of a scene with one car at `speed_mps` and one parked car, the observed change over
+/// 0.5 s, and the current sweep.
+fn scene(speed_mps: f64, at: [f64; 2]) -> (SweepFeatures, ChangeEvidence, Sweep) {
+    let scene = SyntheticScene {
+        boxes: vec![
+            SceneBox::car(1, at, 0.3, speed_mps),
+            SceneBox::car(2, [-at[0], -at[1]], 1.2, 0.0),
+        ],
+    };
+    let lidar = SyntheticLidar::with_resolution(32, 720);
+    let valid = FeatureParams::default().check().unwrap();
+    let past = scene.advanced(-0.4).scan(&lidar, [0.0, 0.0], 0.0, 0);
+    let prev = scene.scan(&lidar, [0.0, 0.0], 0.0, 4);
+    let curr = scene.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 5);
+    let slice = |s: &Sweep| HeightSlice::cut(s, &valid).unwrap();
+    let f = SweepFeatures::from_slices(&slice(&prev), &slice(&curr), &valid).unwrap();
+    let change = ChangeEvidence::build(&slice(&past), &slice(&curr), &valid);
+    (f, change, curr)
+}
+
+fn trained() -> MovingClassifier {
+    let mut rows = Vec::new();
+    for (k, speed) in [0.0, 4.0, 8.0, 12.0].iter().enumerate() {
+        for r in [10.0, 15.0, 20.0] {
+            let (f, change, sweep) = scene(*speed, [r, 2.0 + k as f64]);
+            for c in f.object_hypotheses() {
+                rows.push(MovingRow::of(&f, &change, &sweep, c));
+            }
+        }
+    }
+    MovingClassifier::fit(rows, &MovingParams::default()).unwrap()
+}
+
+#[test]
+fn a_moving_car_is_decided_moving_and_a_parked_car_static() {
+    let classifier = trained();
+    let (f, change, sweep) = scene(10.0, [13.0, 4.0]);
+    let decisions = classifier.cluster_decisions(&f, &change).unwrap();
+    let hypotheses = f.object_hypotheses();
+    assert_eq!(hypotheses.len(), 2);
+    for c in hypotheses {
+        assert_eq!(
+            decisions[c],
+            Some(cluster_is_moving(&f, &sweep, c)),
+            "cluster {c}"
+        );
+    }
+}
+
+#[test]
+fn the_decision_threshold_lies_between_even_odds_and_certainty() {
+    let t = trained().threshold();
+    assert!((0.5..1.0).contains(&t), "threshold {t}");
+}
+
+#[test]
+fn a_saved_classifier_loads_back_with_the_same_probabilities_and_threshold() {
+    let classifier = trained();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(MOVING_FILE_NAME);
+    classifier.save(&path).unwrap();
+    let loaded = MovingClassifier::load(&path).unwrap();
+    let (f, change, _) = scene(6.0, [12.0, 3.0]);
+    let a = classifier.cluster_probabilities(&f, &change).unwrap();
+    let b = loaded.cluster_probabilities(&f, &change).unwrap();
+    assert_eq!(a, b);
+    assert_eq!(classifier.threshold(), loaded.threshold());
+}
+
+#[test]
+fn a_file_of_another_format_or_version_is_refused_with_its_path() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(MOVING_FILE_NAME);
+    std::fs::write(&path, r#"{"format":"other","version":2}"#).unwrap();
+    let err = MovingClassifier::load(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("moving.json") && err.contains("other"),
+        "{err}"
+    );
+    let classifier = trained();
+    classifier.save(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, text.replace("\"version\":2", "\"version\":1")).unwrap();
+    let err = MovingClassifier::load(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("version 1") && err.contains("retrain"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_threshold_outside_its_range_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(MOVING_FILE_NAME);
+    trained().save(&path).unwrap();
+    let mut value: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    value["threshold"] = serde_json::json!(1.5);
+    std::fs::write(&path, serde_json::to_vec(&value).unwrap()).unwrap();
+    let err = MovingClassifier::load(&path).unwrap_err().to_string();
+    assert!(err.contains("threshold"), "{err}");
+}
+
+#[test]
+fn one_class_only_is_an_error() {
+    let row = MovingRow {
+        inputs: [0.0; MOVING_INPUTS],
+        moving: false,
+        moving_points: 0,
+        static_points: 10,
+    };
+    assert!(MovingClassifier::fit(vec![row; 10], &MovingParams::default()).is_err());
+}
