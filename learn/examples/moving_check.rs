@@ -5,7 +5,8 @@
 //! precision, recall and IoU at the classifier's own threshold, the IoU at other thresholds, and
 //! the static points called moving by their SemanticKITTI class.
 //!
-//! `cargo run --release -p patchflow-learn --example moving_check -- BENCH_OUT`
+//! `cargo run --release -p patchflow-learn --example moving_check -- BENCH_OUT` (`SEED`,
+//! `MAX_ROWS`, `MAX_SCANS` override the training parameters).
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -48,8 +49,6 @@ fn main() -> Result<(), Failure> {
     );
     let situations = Dataset::open(&root.join("data/situations"))?;
     let (mut scored, mut moving_total): (Vec<Scored>, u64) = (Vec::new(), 0);
-    let mut debug_sum = [[0.0f64; 10]; 2];
-    let mut debug_n = [0.0f64; 2];
     for info in situations.sequences() {
         let sequence = situations.sequence(&info.name)?;
         let mut stream = ScanStream::new(&sequence, vec![params.clone()])?;
@@ -58,43 +57,6 @@ fn main() -> Result<(), Failure> {
             let features = stream.features_of(&sweep)?.remove(0);
             let change = ChangeEvidence::of_stream(&stream).ok_or("no slice")?;
             let probabilities = classifier.cluster_probabilities(&features, &change)?;
-            if std::env::var("COMPARE").is_ok() && sweep.index == 20 {
-                let past = sequence.read_sweep(15)?;
-                let a = patchflow_learn::SweepFeatures::compute(&past, &sweep, &params)?;
-                let b = patchflow_learn::SweepFeatures::compute(
-                    &past,
-                    &sweep,
-                    &FeatureParams::with_prior(0.01),
-                )?;
-                let (mut same, mut differ) = (0, 0);
-                for p in a.points() {
-                    let (x, y) = (p.x_m, p.y_m);
-                    let (na, nb) = (a.reflection_map().at(x, y), b.reflection_map().at(x, y));
-                    let (da, db) = (a.difference_map().at(x, y), b.difference_map().at(x, y));
-                    let seen = (na - nb).abs() < 1e-6 && ((na - da) - (nb - db)).abs() < 1e-6;
-                    let old = if seen { da } else { 0.0 };
-                    if (old - change.observed_change(x, y)).abs() < 1e-9 {
-                        same += 1;
-                    } else {
-                        differ += 1;
-                    }
-                }
-                println!(
-                    "compare at sweep 20 of {}: {same} same, {differ} differ",
-                    info.name
-                );
-            }
-            if std::env::var("DEBUG_INPUTS").is_ok() {
-                for c in features.object_hypotheses() {
-                    let x = patchflow_learn::cluster_inputs(&features, &change, c);
-                    let m = patchflow_learn::cluster_is_moving(&features, &sweep, c);
-                    let k = usize::from(m);
-                    for d in 0..x.len() {
-                        debug_sum[k][d] += x[d];
-                    }
-                    debug_n[k] += 1.0;
-                }
-            }
             let truly = |i: usize| {
                 let v = sweep.flow_in_world_mps[features.points()[i].index];
                 f64::from(v[0]).hypot(f64::from(v[1])) > MOVING_SPEED_MPS
@@ -121,15 +83,6 @@ fn main() -> Result<(), Failure> {
             "{:<24} points TP {tp:>7} FP {fp:>7} FN {fn_:>7}  IoU {iou:.3}",
             info.name
         );
-    }
-    if std::env::var("DEBUG_INPUTS").is_ok() {
-        for k in 0..2 {
-            let means: Vec<String> = debug_sum[k]
-                .iter()
-                .map(|v| format!("{:.3}", v / debug_n[k]))
-                .collect();
-            println!("moving={k} n={} means {}", debug_n[k], means.join(" "));
-        }
     }
     let at = |t: f64| {
         let tp: u64 = scored.iter().filter(|s| s.0 > t).map(|s| s.1).sum();

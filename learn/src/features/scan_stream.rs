@@ -230,4 +230,22 @@ mod tests {
         assert_eq!(stream.remaining(), 0);
         assert!(stream.next().is_none());
     }
+
+    #[test]
+    fn slice_back_reaches_five_sweeps_and_no_further() {
+        let dir = tempfile::tempdir().unwrap();
+        let reader = sequence(dir.path(), 9);
+        let params = FeatureParams::default();
+        let valid = params.check().unwrap();
+        let mut stream = ScanStream::new(&reader, vec![params]).unwrap();
+        assert!(stream.slice_back(0).is_none());
+        let cut = |k: usize| HeightSlice::cut(&reader.read_sweep(k).unwrap(), &valid).unwrap();
+        while let Some((index, sweep)) = stream.read_next().unwrap() {
+            stream.features_of(&sweep).unwrap();
+            assert_eq!(stream.slice_back(0), Some(&cut(index)), "scan {index}");
+            let oldest = index.saturating_sub(5);
+            assert_eq!(stream.slice_back(5), Some(&cut(oldest)), "scan {index}");
+            assert_eq!(stream.slice_back(9), Some(&cut(oldest)), "scan {index}");
+        }
+    }
 }
