@@ -57,6 +57,21 @@ fn main() -> Result<(), Failure> {
             let features = stream.features_of(&sweep)?.remove(0);
             let change = ChangeEvidence::of_stream(&stream).ok_or("no slice")?;
             let probabilities = classifier.cluster_probabilities(&features, &change)?;
+            if std::env::var("TARGET").is_ok()
+                && let Some(target) = sweep.target()
+            {
+                let mut counts: BTreeMap<usize, usize> = BTreeMap::new();
+                for (i, p) in features.points().iter().enumerate() {
+                    if sweep.labels[p.index].instance() == target.id {
+                        *counts.entry(features.cluster_of(i)).or_default() += 1;
+                    }
+                }
+                let c = counts.into_iter().max_by_key(|e| e.1).map(|e| e.0);
+                let p = c.and_then(|c| probabilities[c]);
+                let o = sweep.world_from_sensor.translation.vector;
+                let range = (target.centre_m[0] - o[0]).hypot(target.centre_m[1] - o[1]);
+                print!("{}:{:.2}@{range:.0} ", sweep.index, p.unwrap_or(-1.0));
+            }
             let truly = |i: usize| {
                 let v = sweep.flow_in_world_mps[features.points()[i].index];
                 f64::from(v[0]).hypot(f64::from(v[1])) > MOVING_SPEED_MPS

@@ -21,6 +21,20 @@ pub struct MotionEstimate {
 }
 
 impl MotionEstimate {
+    /// A static decision: zero velocity, facing `heading_rad`. A zero velocity has no direction,
+    /// so a method that decides "static" keeps the heading its own motion estimate gives (the
+    /// GP's, the track's) rather than the world's +x axis, which would make the per-target
+    /// heading score depend on how the world is turned; the decision shows in the speed.
+    pub fn at_rest(heading_rad: f64) -> Self {
+        Self {
+            heading_rad,
+            speed_mps: 0.0,
+            velocity_xy_mps: [0.0, 0.0],
+            heading_var: None,
+            speed_var: None,
+        }
+    }
+
     /// An estimate from a world-frame velocity, without variances.
     pub fn from_velocity(velocity_xy_mps: [f64; 2]) -> Self {
         let [vx, vy] = velocity_xy_mps;

@@ -168,9 +168,12 @@ fn evaluate_target(
                     column.push(motion.map(to_estimate));
                 }
                 if baselines.is_some() && moving.is_some() {
+                    let all = estimate.all.map(to_estimate);
                     let decided = match target_moving.last().copied().flatten() {
-                        Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
-                        _ => estimate.all.map(to_estimate),
+                        Some(false) => {
+                            Some(MotionEstimate::at_rest(all.map_or(0.0, |e| e.heading_rad)))
+                        }
+                        _ => all,
                     };
                     let column = columns.entry(Method::gp_decided(estimator.gp_kind()));
                     column.or_default().push(decided);

@@ -289,9 +289,12 @@ fn evaluate_scan(
                 column.push(motion.map(to_estimate));
             }
             if moving.is_some() {
+                let all = estimate.all.map(to_estimate);
                 let decided = match target_moving {
-                    Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
-                    _ => estimate.all.map(to_estimate),
+                    Some(false) => {
+                        Some(MotionEstimate::at_rest(all.map_or(0.0, |e| e.heading_rad)))
+                    }
+                    _ => all,
                 };
                 let column = scores
                     .target_estimates
@@ -360,7 +363,9 @@ fn method_flows(
             let decided = motion.clusters.iter().zip(decisions).map(|(e, moving)| {
                 let all = e.as_ref().and_then(|e| e.all).map(to_estimate);
                 match moving {
-                    Some(false) => Some(MotionEstimate::from_velocity([0.0, 0.0])),
+                    Some(false) => {
+                        Some(MotionEstimate::at_rest(all.map_or(0.0, |e| e.heading_rad)))
+                    }
                     _ => all,
                 }
                 .map(ClusterFlow::Uniform)

@@ -41,14 +41,13 @@ pub struct LearnedCluster {
     pub moving: Option<bool>,
 }
 
-/// The flow of a cluster decided static.
-const AT_REST: ClusterFlow = ClusterFlow::Uniform(MotionEstimate {
-    heading_rad: 0.0,
-    speed_mps: 0.0,
-    velocity_xy_mps: [0.0, 0.0],
-    heading_var: None,
-    speed_var: None,
-});
+/// The flow of a cluster decided static: zero, facing the heading of `estimate` (the track's or
+/// the GP's; [`MotionEstimate::at_rest`]).
+fn at_rest(estimate: Option<MotionEstimate>) -> ClusterFlow {
+    ClusterFlow::Uniform(MotionEstimate::at_rest(
+        estimate.map_or(0.0, |e| e.heading_rad),
+    ))
+}
 
 /// GP-KF's and GP-ICP's state between scans.
 #[derive(Debug)]
@@ -124,7 +123,9 @@ impl LearnedTrackers {
             .enumerate()
             .map(|(c, id)| {
                 if of(c).moving == Some(false) {
-                    return Some(AT_REST);
+                    let track = (*id).and_then(|id| self.tracker.track(id));
+                    let heading = track.and_then(|t| t.filter.estimate()).or(of(c).gp);
+                    return Some(at_rest(heading));
                 }
                 let track = self.tracker.track((*id)?)?;
                 let trusted =
@@ -161,7 +162,7 @@ impl LearnedTrackers {
                     return None;
                 }
                 if of(c).moving == Some(false) {
-                    return Some(AT_REST);
+                    return Some(at_rest(of(c).gp));
                 }
                 let (previous, dt) = self.previous.as_ref().zip(dt)?;
                 let before = &previous.clusters.get(links.get(c).copied().flatten()?)?;

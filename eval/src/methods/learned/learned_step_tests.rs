@@ -89,6 +89,18 @@ fn gp_icp_recovers_the_moving_car_exactly_from_the_second_scan() {
 }
 
 #[test]
+fn a_box_decided_static_keeps_a_heading_of_its_own_not_the_world_x_axis() {
+    // The GP says 0.5 rad for the parked car; GP-ICP keeps it, GP-KF its track's (or the GP's).
+    for step in run(6, true) {
+        let icp = step[&Method::GpIcp][1].unwrap().estimate();
+        assert!((icp.heading_rad - 0.5).abs() < 1e-12, "{icp:?}");
+        assert_eq!(icp.speed_mps, 0.0);
+        let kf = step[&Method::GpKf][1].unwrap().estimate();
+        assert_eq!(kf.speed_mps, 0.0);
+    }
+}
+
+#[test]
 fn a_box_decided_static_gets_zero_flow_from_both() {
     for step in run(6, true) {
         for method in [Method::GpKf, Method::GpIcp] {
