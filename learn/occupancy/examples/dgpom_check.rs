@@ -114,17 +114,28 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         free_spacing_m: std::env::var("FREE").map_or(Ok(3.0), |v| v.parse())?,
         ..SampleParams::default()
     };
+    let solver = GpSolver {
+        noise_floor: std::env::var("NOISE_FLOOR").map_or(Ok(GpSolver::default().noise_floor), |v| v.parse())?,
+        ..GpSolver::default()
+    };
     let methods: Vec<Box<dyn MapMethod>> = vec![
         Box::new(DgpomMethod::new(
             DgpomParams {
+                solver,
                 samples: samples.clone(),
                 max_iters: std::env::var("ITERS").map_or(Ok(50), |v| v.parse())?,
                 ..DgpomParams::default()
             },
             map,
         )),
-        Box::new(GpomMethod::space(samples.clone())),
-        Box::new(GpomMethod::space_time(samples)),
+        Box::new(GpomMethod {
+            solver,
+            ..GpomMethod::space(samples.clone())
+        }),
+        Box::new(GpomMethod {
+            solver,
+            ..GpomMethod::space_time(samples)
+        }),
     ];
     // METHODS=DGPOM,GPOM-RD keeps only those; QUERY=5,6 only those query times.
     let only = std::env::var("METHODS").ok();
