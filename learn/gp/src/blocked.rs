@@ -4,7 +4,7 @@
 //! (one leaf) and thousands of points in the full GP this is several times faster than
 //! nalgebra's unblocked routines.
 
-use nalgebra::{DMatrix, DMatrixViewMut};
+use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut};
 
 use rayon::prelude::*;
 
@@ -132,7 +132,7 @@ pub(crate) fn lower_solve(l: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
     const COLUMNS_PER_TASK: usize = 128;
     let (n, m) = b.shape();
     if m <= COLUMNS_PER_TASK {
-        return lower_solve_block(l, b.clone());
+        return lower_solve_block(l.as_view(), b.clone());
     }
     let blocks: Vec<DMatrix<f64>> = (0..m)
         .step_by(COLUMNS_PER_TASK)
@@ -140,7 +140,7 @@ pub(crate) fn lower_solve(l: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
         .into_par_iter()
         .map(|start| {
             let width = COLUMNS_PER_TASK.min(m - start);
-            lower_solve_block(l, b.columns(start, width).into_owned())
+            lower_solve_block(l.as_view(), b.columns(start, width).into_owned())
         })
         .collect();
     let mut out = DMatrix::zeros(n, m);
@@ -151,14 +151,14 @@ pub(crate) fn lower_solve(l: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
     out
 }
 
-/// L⁻¹B for one block of columns, overwriting `b`.
-fn lower_solve_block(l: &DMatrix<f64>, mut b: DMatrix<f64>) -> DMatrix<f64> {
+/// L⁻¹B for one block of columns, overwriting `b`; `l` is read in place (only a leaf's small
+/// diagonal block is copied).
+fn lower_solve_block(l: DMatrixView<'_, f64>, mut b: DMatrix<f64>) -> DMatrix<f64> {
     let n = l.nrows();
     if n <= 2 * LEAF {
-        let m = b.ncols();
-        let ls = l.as_slice();
-        for c in 0..m {
-            let col = &mut b.as_mut_slice()[c * n..(c + 1) * n];
+        let leaf = l.clone_owned();
+        let ls = leaf.as_slice();
+        for col in b.as_mut_slice().chunks_exact_mut(n) {
             for k in 0..n {
                 let lk = &ls[k * n..(k + 1) * n];
                 let xk = col[k] / lk[k];
@@ -172,13 +172,10 @@ fn lower_solve_block(l: &DMatrix<f64>, mut b: DMatrix<f64>) -> DMatrix<f64> {
     }
     let n1 = n / 2;
     let n2 = n - n1;
-    let v1 = lower_solve_block(
-        &l.view((0, 0), (n1, n1)).into_owned(),
-        b.rows(0, n1).into_owned(),
-    );
+    let v1 = lower_solve_block(l.view((0, 0), (n1, n1)), b.rows(0, n1).into_owned());
     let mut b2 = b.rows(n1, n2).into_owned();
     b2 -= mul(&l.view((n1, 0), (n2, n1)), &v1);
-    let v2 = lower_solve_block(&l.view((n1, n1), (n2, n2)).into_owned(), b2);
+    let v2 = lower_solve_block(l.view((n1, n1), (n2, n2)), b2);
     b.rows_mut(0, n1).copy_from(&v1);
     b.rows_mut(n1, n2).copy_from(&v2);
     b
