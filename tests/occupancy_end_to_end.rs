@@ -17,8 +17,7 @@ use patchflow_eval::{
 };
 use patchflow_occupancy::{
     AheadParams, DgpomMethod, DgpomParams, GpSolver, GpomMethod, MapMethod, MapMethodId,
-    OccupancyGridMethod,
-    OccupancyParams, OccupancySequence, SampleParams, Thinning,
+    OccupancyGridMethod, OccupancyParams, OccupancySequence, SampleParams, Thinning,
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 

@@ -7,8 +7,8 @@ use std::sync::Arc;
 
 use patchflow_dataset::Dataset;
 use patchflow_occupancy::{
-    AheadScores, DgpomMethod, GpomMethod, MapMethod, MotionMap, OccupancyGridMethod, OccupancyParams,
-    OccupancySequence, SampleParams, SequenceScores, Thinning, evaluate_sequence,
+    AheadScores, DgpomMethod, GpomMethod, MapMethod, MotionMap, OccupancyGridMethod,
+    OccupancyParams, OccupancySequence, SampleParams, SequenceScores, Thinning, evaluate_sequence,
 };
 
 use super::dgpom::dgpom_method;

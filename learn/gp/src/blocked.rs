@@ -255,7 +255,10 @@ mod tests {
             let b = DMatrix::from_fn(n, m, |i, j| ((i * 5 + j * 3) % 11) as f64 - 5.0);
             let want = l.solve_lower_triangular(&b).expect("non-singular");
             let got = lower_solve(&l, &b);
-            assert!((&got - &want).amax() < 1e-9 * want.amax().max(1.0), "n={n} m={m}");
+            assert!(
+                (&got - &want).amax() < 1e-9 * want.amax().max(1.0),
+                "n={n} m={m}"
+            );
         }
     }
 

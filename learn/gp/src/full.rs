@@ -4,10 +4,10 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::blocked::{lower_gram, lower_solve};
 use super::fitc::Evaluation;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, self_covariance};
-use super::blocked::{lower_gram, lower_solve};
 use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse};
 use super::train_data::TrainData;
 use crate::{GpError, Result};

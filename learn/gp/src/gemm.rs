@@ -27,9 +27,8 @@ where
     let (m, k, n) = (a.nrows(), a.ncols(), b.ncols());
     if n >= 2 * SPLIT_MIN_COLUMNS && (m * k).saturating_mul(n) >= SPLIT_MIN_FLOPS {
         let h = n / 2;
-        let (left, right) = rayon::join(|| mul(a, &b.columns(0, h)), || {
-            mul(a, &b.columns(h, n - h))
-        });
+        let (left, right) =
+            rayon::join(|| mul(a, &b.columns(0, h)), || mul(a, &b.columns(h, n - h)));
         let mut out = DMatrix::zeros(m, n);
         out.columns_mut(0, h).copy_from(&left);
         out.columns_mut(h, n - h).copy_from(&right);
@@ -53,7 +52,7 @@ mod tests {
     fn a_product_large_enough_to_be_split_equals_the_unsplit_one_bit_for_bit() {
         let a = DMatrix::from_fn(300, 280, |i, j| ((i * 7 + j * 3) % 19) as f64 * 0.1 - 0.9);
         let b = DMatrix::from_fn(280, 301, |i, j| ((i * 5 + j * 11) % 23) as f64 * 0.05 - 0.5);
-        assert!(300 * 280 * 301 >= SPLIT_MIN_FLOPS);
+        const { assert!(300 * 280 * 301 >= SPLIT_MIN_FLOPS) };
         assert_eq!(mul(&a, &b), &a * &b);
         // A strided (transposed) view of the right operand is split the same way.
         let bt = b.transpose();

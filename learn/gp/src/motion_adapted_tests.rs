@@ -255,7 +255,10 @@ fn over_one_point_set_the_half_evaluated_covariance_and_gradient_equal_the_full_
     let a = points(150, 3);
     let copy = a.clone();
     let (ea, ec) = (k.point_data(&a), k.point_data(&copy));
-    let (pa, pc) = (Points::new(&a, ea.as_ref()), Points::new(&copy, ec.as_ref()));
+    let (pa, pc) = (
+        Points::new(&a, ea.as_ref()),
+        Points::new(&copy, ec.as_ref()),
+    );
     let (own, full) = (k.cross(pa, pa), k.cross(pa, pc));
     assert!((&own - &full).amax() < 1e-15, "covariance");
     assert_eq!(own, own.transpose());

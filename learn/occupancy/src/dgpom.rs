@@ -84,7 +84,12 @@ impl FitCache {
         for scan in window.scans {
             (scan.index, scan.stamp_secs.to_bits(), scan.beams.len()).hash(&mut h);
             for b in &scan.beams {
-                (b.start_m.map(f64::to_bits), b.end_m.map(f64::to_bits), b.hit).hash(&mut h);
+                (
+                    b.start_m.map(f64::to_bits),
+                    b.end_m.map(f64::to_bits),
+                    b.hit,
+                )
+                    .hash(&mut h);
             }
         }
         h.finish()
