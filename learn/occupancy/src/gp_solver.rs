@@ -21,7 +21,8 @@ pub struct GpSolver {
     /// units (their variance is 1). Left free, the marginal likelihood of the exact GP drives it
     /// to 0 on the T-junction (σ² = 0.000 in every DGPOM fit): the regression interpolates every
     /// label, returns and free samples 0.3 m apart included, and the sub-metre length-scales it
-    /// then picks cost DGPOM 0.03 AUC (issue 25; docs/occupancy.md).
+    /// then picks cost DGPOM 0.03 AUC (issue 25; docs/occupancy.md). The exact GP's only: on
+    /// the busy intersection's SPGP maps the same floor cost DGPOM 0.02 (0.874 to 0.855).
     pub noise_floor: f64,
 }
 
@@ -43,15 +44,14 @@ impl GpSolver {
 
     /// The GP parameters for a map of `n` training points (`seed` places the pseudo-inputs).
     pub fn params(&self, n: usize, seed: u64) -> GpParams {
-        let params = if self.is_exact(n) {
-            GpParams::new(GpKind::Full)
+        if self.is_exact(n) {
+            GpParams::new(GpKind::Full).noise_floor(self.noise_floor)
         } else {
             GpParams::new(GpKind::Spgp)
                 .pseudo_inputs(self.pseudo_inputs)
                 .optimise_pseudo_inputs(false)
                 .seed(seed)
-        };
-        params.noise_floor(self.noise_floor)
+        }
     }
 
     /// The path a map of `n` training points takes, for reports: `exact` or `SPGP M`.
@@ -67,7 +67,7 @@ impl GpSolver {
     pub fn describe(&self) -> String {
         let up_to = self.exact_up_to.min(FULL_GP_MAX_SAMPLES);
         format!(
-            "the exact GP (Cholesky of the full kernel matrix, jitter retried) for maps of up to {up_to} training points, SPGP with {} pseudo-inputs held at a seeded subset of the training points above that; the noise variance of the regression on the ±1 labels is held at or above {} of the standardised labels' variance",
+            "the exact GP (Cholesky of the full kernel matrix, jitter retried) for maps of up to {up_to} training points, SPGP with {} pseudo-inputs held at a seeded subset of the training points above that; the exact GP's noise variance of the regression on the ±1 labels is held at or above {} of the standardised labels' variance",
             self.pseudo_inputs, self.noise_floor
         )
     }
@@ -91,12 +91,13 @@ mod tests {
     }
 
     #[test]
-    fn every_map_fits_its_noise_variance_at_or_above_the_floor() {
+    fn exact_maps_hold_the_noise_floor_and_sparse_ones_keep_the_gp_default() {
         let solver = GpSolver::default();
-        for n in [100, 10_000] {
-            let params = solver.params(n, 7).check().expect("valid");
-            assert_eq!(params.noise_floor(), solver.noise_floor);
-        }
+        let exact = solver.params(100, 7).check().expect("valid");
+        assert_eq!(exact.noise_floor(), solver.noise_floor);
+        let sparse = solver.params(10_000, 7).check().expect("valid");
+        let default = GpParams::new(GpKind::Spgp).check().expect("valid");
+        assert_eq!(sparse.noise_floor(), default.noise_floor());
         assert!(solver.describe().contains("0.05"));
     }
 
