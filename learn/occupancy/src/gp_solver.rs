@@ -22,7 +22,7 @@ pub struct GpSolver {
     /// to 0 on the T-junction (σ² = 0.000 in every DGPOM fit): the regression interpolates every
     /// label, returns and free samples 0.3 m apart included, and the sub-metre length-scales it
     /// then picks cost DGPOM 0.03 AUC (issue 25; docs/occupancy.md). The exact GP's only: on
-    /// the busy intersection's SPGP maps the same floor cost DGPOM 0.02 (0.874 to 0.855).
+    /// the busy intersection's SPGP maps the same floor cost DGPOM 0.009 (0.864 to 0.855).
     pub noise_floor: f64,
 }
 
