@@ -8,15 +8,16 @@
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
 use std::cell::RefCell;
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use patchflow_eval::{
     OccupancyReport, SequenceKind, evaluate_occupancy, learn_motion_map, load_sequence,
-    occupancy_sequences, predict_ahead, write_occupancy_report,
+    occupancy_sequences, predict_ahead_with, write_occupancy_report,
 };
 use patchflow_occupancy::{
-    AheadParams, DgpomMethod, DgpomParams, GpSolver, GpomMethod, MapMethod, OccupancyGridMethod,
-    OccupancyParams, OccupancySequence, SampleParams, Thinning,
+    AheadParams, DgpomMethod, DgpomParams, GpSolver, GpomMethod, MapMethod, MapMethodId,
+    OccupancyGridMethod, OccupancyParams, OccupancySequence, SampleParams, Thinning,
 };
 use patchflow_sim::{GenerateOptions, ScenarioSource, Shard, generate_dataset};
 
@@ -45,11 +46,13 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
         solver: GpSolver {
             exact_up_to: 0,
             pseudo_inputs: 60,
+            ..GpSolver::default()
         },
         max_iters: 25,
         ..m
     };
     let motion_map = RefCell::new(None);
+    let dgpom_method = RefCell::new(None);
     let methods =
         |sequence: &OccupancySequence, kind: SequenceKind, training: Option<&OccupancySequence>| {
             assert_eq!(kind, SequenceKind::Planar);
@@ -64,8 +67,10 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
                 max_iters: 25,
                 ..DgpomParams::default()
             };
+            let dgpom = DgpomMethod::new(dgpom, map);
+            *dgpom_method.borrow_mut() = Some(dgpom.clone());
             let methods: Vec<Box<dyn MapMethod>> = vec![
-                Box::new(DgpomMethod::new(dgpom, map)),
+                Box::new(dgpom),
                 Box::new(small(GpomMethod::space(samples.clone()))),
                 Box::new(small(GpomMethod::space_time(samples.clone()))),
                 Box::new(OccupancyGridMethod::default()),
@@ -80,11 +85,18 @@ fn small_run(dataset: &patchflow_dataset::Dataset) -> OccupancyReport {
     let map = motion_map.into_inner().unwrap();
     report.motion_maps.insert("dgpom_tjunction".into(), map);
     let ahead = AheadParams {
-        start_scans: vec![4],
+        start_scans: vec![5],
         horizon_scans: 2,
         ..AheadParams::default()
     };
-    predict_ahead(dataset, &mut report, &ahead, &|| {}).unwrap();
+    // Predicting ahead from query time 5 reuses that map's fit: no third fit is made.
+    let dgpom = dgpom_method.into_inner().unwrap();
+    let methods = BTreeMap::from([("dgpom_tjunction".to_owned(), dgpom.clone())]);
+    predict_ahead_with(dataset, &mut report, &ahead, &|| {}, &methods).unwrap();
+    assert_eq!(dgpom.fits_kept(), 2);
+    let at_scan = report.ahead["dgpom_tjunction"].auc[0][0];
+    let map = report.scenarios[0].methods[&MapMethodId::Dgpom].auc_by_query_scan[&5];
+    assert_eq!(Some(at_scan), map);
     report
 }
 
@@ -220,6 +232,7 @@ fn a_one_hertz_3d_lidar_is_mapped_through_the_height_slice_and_a_ten_hertz_one_i
         solver: GpSolver {
             exact_up_to: 0,
             pseudo_inputs: 60,
+            ..GpSolver::default()
         },
         max_iters: 25,
         ..GpomMethod::space(samples)

@@ -118,8 +118,8 @@ pub use cv::cv_report::{CvFeature, CvGp, CvReport, CvRow};
 // ── Occupancy maps (DGPOM paper, SPEC §5b) ──────────────────────────────────────────────────
 pub use occupancy::{
     OccupancyReport, SequenceKind, dgpom_method, evaluate_occupancy, height_slice_scan,
-    learn_motion_map, load_sequence, occupancy_methods, occupancy_sequences, predict_ahead,
-    write_occupancy_report,
+    learn_motion_map, load_sequence, occupancy_methods, occupancy_methods_with,
+    occupancy_sequences, predict_ahead, predict_ahead_with, write_occupancy_report,
 };
 
 // ── Reports ─────────────────────────────────────────────────────────────────────────────────

@@ -1,10 +1,11 @@
 //! DGPOM's predictions ahead of the last scan (DGPOM paper, Figure 10) on every scenario of an
 //! occupancy run that has a motion map: the AUC against the time since the last observation.
 
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use patchflow_dataset::Dataset;
-use patchflow_occupancy::{AheadParams, evaluate_ahead};
+use patchflow_occupancy::{AheadParams, DgpomMethod, evaluate_ahead};
 use rayon::prelude::*;
 
 use super::dgpom::dgpom_method;
@@ -21,9 +22,25 @@ pub fn predict_ahead(
     params: &AheadParams,
     on_start: &(dyn Fn() + Sync),
 ) -> Result<(), EvalError> {
+    predict_ahead_with(dataset, report, params, on_start, &BTreeMap::new())
+}
+
+/// [`predict_ahead`] with the DGPOM methods that made the run's maps, by scenario name: a start
+/// time that is also a query time reuses that map's fit (the same scans carried to the same
+/// time) instead of fitting again. A scenario without one gets a fresh method.
+pub fn predict_ahead_with(
+    dataset: &Dataset,
+    report: &mut OccupancyReport,
+    params: &AheadParams,
+    on_start: &(dyn Fn() + Sync),
+    methods: &BTreeMap<String, DgpomMethod>,
+) -> Result<(), EvalError> {
     for (name, map) in &report.motion_maps {
         let (sequence, kind) = load_sequence(dataset, name)?;
-        let method = dgpom_method(&kind.sample_params(report.seed), Arc::clone(map));
+        let method = match methods.get(name) {
+            Some(method) => method.clone(),
+            None => dgpom_method(&kind.sample_params(report.seed), Arc::clone(map)),
+        };
         let parts = params
             .start_scans
             .par_iter()

@@ -15,12 +15,12 @@ mod sequence_kind;
 mod slice_scan;
 mod writer;
 
-pub use ahead::predict_ahead;
+pub use ahead::{predict_ahead, predict_ahead_with};
 pub use dgpom::{dgpom_method, dgpom_notes, learn_motion_map};
 pub use markdown::occupancy_section;
 pub use run::{
-    OccupancyReport, evaluate_occupancy, height_slice_note, occupancy_methods, occupancy_notes,
-    occupancy_sequences,
+    OccupancyReport, evaluate_occupancy, height_slice_note, occupancy_methods,
+    occupancy_methods_with, occupancy_notes, occupancy_sequences,
 };
 pub use sequence_kind::{SequenceKind, load_sequence};
 pub use slice_scan::height_slice_scan;

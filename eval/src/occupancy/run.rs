@@ -7,8 +7,8 @@ use std::sync::Arc;
 
 use patchflow_dataset::Dataset;
 use patchflow_occupancy::{
-    AheadScores, GpomMethod, MapMethod, MotionMap, OccupancyGridMethod, OccupancyParams,
-    OccupancySequence, SampleParams, SequenceScores, Thinning, evaluate_sequence,
+    AheadScores, DgpomMethod, GpomMethod, MapMethod, MotionMap, OccupancyGridMethod,
+    OccupancyParams, OccupancySequence, SampleParams, SequenceScores, Thinning, evaluate_sequence,
 };
 
 use super::dgpom::dgpom_method;
@@ -67,9 +67,17 @@ pub fn occupancy_methods(
     samples: &SampleParams,
     motion_map: Option<Arc<MotionMap>>,
 ) -> Vec<Box<dyn MapMethod>> {
+    occupancy_methods_with(samples, motion_map.map(|map| dgpom_method(samples, map)))
+}
+
+/// [`occupancy_methods`] with a given DGPOM method (whose clones share its fits).
+pub fn occupancy_methods_with(
+    samples: &SampleParams,
+    dgpom: Option<DgpomMethod>,
+) -> Vec<Box<dyn MapMethod>> {
     let mut methods: Vec<Box<dyn MapMethod>> = Vec::new();
-    if let Some(map) = motion_map {
-        methods.push(Box::new(dgpom_method(samples, map)));
+    if let Some(method) = dgpom {
+        methods.push(Box::new(method));
     }
     methods.push(Box::new(GpomMethod::space(samples.clone())));
     methods.push(Box::new(GpomMethod::space_time(samples.clone())));

@@ -18,8 +18,9 @@ use crate::cv::cv_report::CvReport;
 use crate::error::EvalError;
 use crate::methods::baselines::baseline_params::BaselineParams;
 use crate::occupancy::{
-    OccupancyReport, SequenceKind, dgpom_notes, evaluate_occupancy, height_slice_note,
-    learn_motion_map, occupancy_methods, occupancy_notes, occupancy_sequences, predict_ahead,
+    OccupancyReport, SequenceKind, dgpom_method, dgpom_notes, evaluate_occupancy,
+    height_slice_note, learn_motion_map, occupancy_methods, occupancy_methods_with,
+    occupancy_notes, occupancy_sequences, predict_ahead_with,
 };
 use crate::pipeline::dataset_evaluation::{evaluate_dataset, scans_to_evaluate};
 use crate::pipeline::progress::{ProgressLines, progress_bar, progress_line, stderr_is_terminal};
@@ -209,6 +210,8 @@ pub fn occupancy_with_bar(
     let bar = progress_bar(maps as u64, "occupancy maps");
     // DGPOM's motion map is learned from the training run before the scenario is mapped.
     let motion_maps = RefCell::new(BTreeMap::new());
+    // The DGPOM method of each scenario, kept so predicting ahead reuses its fits.
+    let dgpom_methods = RefCell::new(BTreeMap::new());
     // CPU seconds of each map: the process's CPU time between one map's end and the next's (the
     // maps run one after the other; the clock restarts once a scenario's sequences are read and
     // its motion map is learned).
@@ -233,7 +236,14 @@ pub fn occupancy_with_bar(
             if let Ok(mut guard) = cpu.lock() {
                 guard.0 = crate::scene::cpu_time::process_total_cpu_secs();
             }
-            Ok(occupancy_methods(&kind.sample_params(seed), map))
+            let samples = kind.sample_params(seed);
+            let dgpom = map.map(|map| dgpom_method(&samples, map));
+            if let Some(method) = &dgpom {
+                dgpom_methods
+                    .borrow_mut()
+                    .insert(sequence.name.clone(), method.clone());
+            }
+            Ok(occupancy_methods_with(&samples, dgpom))
         };
     let on_map = |scenario: &str, method: &str, _t: usize| {
         bar.inc(1);
@@ -258,7 +268,14 @@ pub fn occupancy_with_bar(
     }
     report.motion_maps = motion_maps.into_inner();
     bar.set_message("DGPOM predicting ahead");
-    predict_ahead(dataset, &mut report, ahead, &|| bar.inc(1))?;
+    // A start time that is also a query time reuses that map's fit.
+    predict_ahead_with(
+        dataset,
+        &mut report,
+        ahead,
+        &|| bar.inc(1),
+        &dgpom_methods.into_inner(),
+    )?;
     bar.finish_and_clear();
     report.notes = occupancy_notes(params);
     if report

@@ -4,12 +4,11 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::blocked::{lower_gram, lower_solve};
 use super::fitc::Evaluation;
 use super::hyper::{Hyper, HyperGrad};
 use super::kernel::{Kernel, OwnedPoints, self_covariance};
-use super::linalg::{
-    cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse, symmetric_mul_t,
-};
+use super::linalg::{cholesky_with_jitter, colsum_product, log_diag_sum, lower_inverse};
 use super::train_data::TrainData;
 use crate::{GpError, Result};
 
@@ -45,8 +44,7 @@ pub(crate) fn objective<K: Kernel>(
 ) -> Result<Evaluation> {
     let (k, l, _) = factor(data, h, jitter)?;
     let l_inv = lower_inverse(&l, "chol(K + σ²I)")?;
-    let l_inv_t = l_inv.transpose();
-    let c_inv = symmetric_mul_t(&l_inv_t, &l_inv_t); // C⁻¹ = L⁻ᵀL⁻¹
+    let c_inv = lower_gram(&l_inv); // C⁻¹ = L⁻ᵀL⁻¹
     let alpha = &c_inv * &data.y;
     let n = data.len() as f64;
     let nlml =
@@ -107,10 +105,10 @@ impl FullPosterior {
         let test = OwnedPoints::of_rows(x_test, &h.kernel);
         let k_star = h.kernel.cross(train.points(), test.points());
         let mean = k_star.tr_mul(&self.alpha);
-        let v = self
-            .l
-            .solve_lower_triangular(&k_star)
-            .ok_or_else(|| GpError::Numerical("chol(K + σ²I) has a zero pivot".into()))?;
+        let v = lower_solve(&self.l, &k_star);
+        if !v.iter().all(|x| x.is_finite()) {
+            return Err(GpError::Numerical("chol(K + σ²I) has a zero pivot".into()));
+        }
         let prior = h.kernel.diag(test.points());
         let var = DVector::from_iterator(
             prior.len(),

@@ -12,7 +12,6 @@ use crate::{GpError, Result};
 /// How many times the jitter is multiplied by 10 before a factorisation is declared failed.
 const JITTER_RETRIES: usize = 5;
 
-use super::gemm::SMALL_DIM;
 pub(crate) use super::gemm::mul;
 
 /// A view of the transpose of the column-major `rows × cols` matrix stored in `data`.
@@ -25,25 +24,6 @@ pub(crate) fn transposed(data: &[f64], rows: usize, cols: usize) -> StridedView<
 /// The transpose of `a` as a view (see [`transposed`]).
 pub(crate) fn t_view(a: &DMatrix<f64>) -> StridedView<'_> {
     transposed(a.as_slice(), a.nrows(), a.ncols())
-}
-
-/// `a * bᵀ` when the product is known to be symmetric: three of its four quarter blocks.
-pub(crate) fn symmetric_mul_t(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
-    let n = a.nrows();
-    if n < 4 * SMALL_DIM {
-        return mul(a, &t_view(b));
-    }
-    let h = n / 2;
-    let bt = t_view(b);
-    // [C11; C21] = A [B1]ᵀ, C22 = A2 B2ᵀ, C12 = C21ᵀ.
-    let left = mul(a, &bt.columns(0, h));
-    let c22 = mul(&a.rows(h, n - h), &bt.columns(h, n - h));
-    let mut out = DMatrix::zeros(n, n);
-    out.columns_mut(0, h).copy_from(&left);
-    out.view_mut((h, h), (n - h, n - h)).copy_from(&c22);
-    let c21 = left.rows(h, n - h).transpose();
-    out.view_mut((0, h), (h, n - h)).copy_from(&c21);
-    out
 }
 
 /// `a`ᵀ, written column after column into a fresh buffer (no zero-fill). Each destination column
@@ -171,20 +151,6 @@ mod tests {
         let got = mul(&t_view(&a), &b);
         let want = a.transpose() * &b;
         assert!((got - want).amax() < 1e-12);
-    }
-
-    #[test]
-    fn the_symmetric_product_equals_the_full_one() {
-        for n in [7, 30, 41] {
-            let b = DMatrix::from_fn(n, 13, |i, j| ((i + 2 * j) % 7) as f64 * 0.3 - 1.0);
-            // B diag(w) Bᵀ is symmetric.
-            let scaled = DMatrix::from_fn(n, 13, |i, j| b[(i, j)] * (1.0 + (j % 3) as f64));
-            let want = &scaled * b.transpose();
-            assert!(
-                (symmetric_mul_t(&scaled, &b) - want).amax() < 1e-12,
-                "sym n={n}"
-            );
-        }
     }
 
     #[test]

@@ -65,12 +65,16 @@ impl<F> Clone for MotionAdapted<F> {
     }
 }
 
-/// One input as the kernel sees it: carried position, time, log error.
+/// One input as the kernel sees it: carried position, time, log error, and at the current a, b
+/// its l_t (seconds) with the slope of log l_t by the unbounded log a·ε^(−1/b) (computed once per
+/// point, not per pair).
 #[derive(Clone, Copy)]
 pub(crate) struct Carried {
     z: [f64; 2],
     t: f64,
     log_error: f64,
+    lt: f64,
+    slope: f64,
 }
 
 impl<F: MotionField> MotionAdapted<F> {
@@ -198,10 +202,16 @@ impl<F: MotionField> MotionAdapted<F> {
             }
         };
         (0..p.len())
-            .map(|i| Carried {
-                z: [extra[(0, i)], extra[(1, i)]],
-                t: coords[i * 3 + 2],
-                log_error: extra[(2, i)],
+            .map(|i| {
+                let log_error = extra[(2, i)];
+                let (log_lt, slope) = self.log_temporal(log_error);
+                Carried {
+                    z: [extra[(0, i)], extra[(1, i)]],
+                    t: coords[i * 3 + 2],
+                    log_error,
+                    lt: log_lt.exp(),
+                    slope,
+                }
             })
             .collect()
     }
@@ -229,15 +239,13 @@ impl<F: MotionField> MotionAdapted<F> {
             ((p.z[1] - q.z[1]) / ly).powi(2),
         );
         let se = self.signal_variance * (-0.5 * (rx + ry)).exp();
-        let (lp, p_slope) = self.log_temporal(p.log_error);
-        let (lq, q_slope) = self.log_temporal(q.log_error);
-        let (kt, dp, dq) = nonstationary_matern32(p.t - q.t, lp.exp(), lq.exp());
+        let (kt, dp, dq) = nonstationary_matern32(p.t - q.t, p.lt, q.lt);
         let k = se * kt;
         if !with_gradient {
             return (k, [0.0; 5]);
         }
         // log l_t = log a − log ε / b: ∂/∂log a = 1, ∂/∂log b = log ε / b.
-        let (dp, dq) = (dp * p_slope, dq * q_slope);
+        let (dp, dq) = (dp * p.slope, dq * q.slope);
         let b = self.decay_b;
         (
             k,

@@ -16,6 +16,22 @@ use crate::{GpError, Result};
 /// Output columns per parallel task.
 const COLUMNS_PER_TASK: usize = 64;
 
+/// Whether `a` and `b` are the very same point set (k(a, b) is then symmetric).
+fn same_points(a: Points<'_>, b: Points<'_>) -> bool {
+    let (x, y) = (a.coord_slice(), b.coord_slice());
+    x.len() == y.len() && std::ptr::eq(x.as_ptr(), y.as_ptr()) && a.dims() == b.dims()
+}
+
+/// Copies the upper triangle of the square `k` onto its lower triangle.
+fn mirror_upper(k: &mut DMatrix<f64>) {
+    let n = k.nrows();
+    for j in 0..n {
+        for i in j + 1..n {
+            k[(i, j)] = k[(j, i)];
+        }
+    }
+}
+
 impl<F: MotionField> Kernel for MotionAdapted<F> {
     fn n_params(&self) -> usize {
         5
@@ -76,17 +92,24 @@ impl<F: MotionField> Kernel for MotionAdapted<F> {
         let (ca, cb) = (self.carried(a), self.carried(b));
         let mut k = DMatrix::zeros(ca.len(), cb.len());
         let rows = ca.len().max(1);
+        // k(a, a) is symmetric: each column up to the diagonal, then mirrored.
+        let same = same_points(a, b);
         k.as_mut_slice()
             .par_chunks_mut(rows * COLUMNS_PER_TASK)
             .enumerate()
             .for_each(|(task, chunk)| {
                 for (j, col) in chunk.chunks_mut(rows).enumerate() {
-                    let q = &cb[task * COLUMNS_PER_TASK + j];
-                    for (v, p) in col.iter_mut().zip(&ca) {
+                    let column = task * COLUMNS_PER_TASK + j;
+                    let q = &cb[column];
+                    let upto = if same { column + 1 } else { rows };
+                    for (v, p) in col[..upto].iter_mut().zip(&ca) {
                         *v = self.pair(p, q, false).0;
                     }
                 }
             });
+        if same {
+            mirror_upper(&mut k);
+        }
         k
     }
 
@@ -106,15 +129,31 @@ impl<F: MotionField> Kernel for MotionAdapted<F> {
     ) -> DVector<f64> {
         let (ca, cb) = (self.carried(a), self.carried(b));
         let rows = ca.len().max(1);
-        let partial: Vec<[f64; 5]> = adjoint
+        // Over one point set the pair terms are symmetric: Σ_ij G_ij ∂k_ij = Σ_{i≤j} W_ij ∂k_ij
+        // with W = G + Gᵀ off the diagonal and G on it, so half the pairs are evaluated.
+        let same = same_points(a, b);
+        let folded;
+        let weights = if same {
+            let mut w = adjoint + adjoint.transpose();
+            for i in 0..w.nrows() {
+                w[(i, i)] *= 0.5;
+            }
+            folded = w;
+            &folded
+        } else {
+            adjoint
+        };
+        let partial: Vec<[f64; 5]> = weights
             .as_slice()
             .par_chunks(rows * COLUMNS_PER_TASK)
             .enumerate()
             .map(|(task, chunk)| {
                 let mut acc = [0.0; 5];
                 for (j, col) in chunk.chunks(rows).enumerate() {
-                    let q = &cb[task * COLUMNS_PER_TASK + j];
-                    for (g, p) in col.iter().zip(&ca) {
+                    let column = task * COLUMNS_PER_TASK + j;
+                    let q = &cb[column];
+                    let upto = if same { column + 1 } else { rows };
+                    for (g, p) in col[..upto].iter().zip(&ca) {
                         let (_, d) = self.pair(p, q, true);
                         for (s, dv) in acc.iter_mut().zip(d) {
                             *s += g * dv;

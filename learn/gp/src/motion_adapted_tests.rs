@@ -246,3 +246,27 @@ fn a_temporal_range_holds_every_local_length_scale_inside_it() {
             .is_err()
     );
 }
+
+#[test]
+fn over_one_point_set_the_half_evaluated_covariance_and_gradient_equal_the_full_ones() {
+    // The same points as one set (the kernel evaluates i ≤ j and mirrors) and as two copies
+    // (every pair evaluated), with an adjoint that is not symmetric.
+    let k = kernel(Lanes);
+    let a = points(150, 3);
+    let copy = a.clone();
+    let (ea, ec) = (k.point_data(&a), k.point_data(&copy));
+    let (pa, pc) = (
+        Points::new(&a, ea.as_ref()),
+        Points::new(&copy, ec.as_ref()),
+    );
+    let (own, full) = (k.cross(pa, pa), k.cross(pa, pc));
+    assert!((&own - &full).amax() < 1e-15, "covariance");
+    assert_eq!(own, own.transpose());
+    let adjoint = DMatrix::from_fn(150, 150, |i, j| ((i * 3 + j * 7) % 13) as f64 / 6.0 - 1.0);
+    let g_own = k.cross_gradient(pa, pa, &own, &adjoint, None);
+    let g_full = k.cross_gradient(pa, pc, &full, &adjoint, None);
+    for (o, f) in g_own.iter().zip(g_full.iter()) {
+        // Relative 1e-12 on max(|gradient|, 1): only the order of the sums differs.
+        assert!((o - f).abs() < 1e-12 * f.abs().max(1.0), "{o} vs {f}");
+    }
+}

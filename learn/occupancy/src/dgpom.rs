@@ -6,7 +6,10 @@
 //! flow has taken its earlier returns; ℓ, s, a and b are learned per map by maximising the
 //! marginal likelihood.
 
-use std::sync::Arc;
+use std::collections::BTreeMap;
+use std::collections::hash_map::DefaultHasher;
+use std::hash::{Hash, Hasher};
+use std::sync::{Arc, Mutex};
 
 use nalgebra::DMatrix;
 use patchflow_gp::{MotionAdapted, PlsClassifier, PlsParams};
@@ -52,21 +55,83 @@ impl Default for DgpomParams {
 /// The errors ε (m/s) at which the report states the learned l_t(ε) = a·ε^(−1/b).
 pub const LT_ERRORS_MPS: [f64; 5] = [0.1, 0.25, 0.5, 1.0, 2.0];
 
-/// DGPOM as a map method.
+/// DGPOM as a map method. Clones share the fits already made (see [`DgpomMethod::new`]).
 #[derive(Debug, Clone)]
 pub struct DgpomMethod {
     /// The settings.
     pub params: DgpomParams,
     /// The motion map learned from the training run.
     pub motion_map: Arc<MotionMap>,
+    fits: FitCache,
 }
 
 type Classifier = PlsClassifier<MotionAdapted<MotionMap>>;
 
+/// A fit and its (training, drawn) point counts.
+type Fit = Arc<(Classifier, [usize; 2])>;
+
+/// Fits already made, by what determines them: the window's scans and the reference time.
+/// Predicting ahead from start time t fits exactly the map of query time t (the same scans
+/// carried to the same time), so that fit is made once.
+#[derive(Debug, Clone, Default)]
+struct FitCache(Arc<Mutex<BTreeMap<u64, Fit>>>);
+
+impl FitCache {
+    /// The key of a fit: a hash of every beam and stamp of the window and the reference time.
+    fn key(window: &ScanWindow<'_>, reference_secs: f64) -> u64 {
+        let mut h = DefaultHasher::new();
+        reference_secs.to_bits().hash(&mut h);
+        for scan in window.scans {
+            (scan.index, scan.stamp_secs.to_bits(), scan.beams.len()).hash(&mut h);
+            for b in &scan.beams {
+                (
+                    b.start_m.map(f64::to_bits),
+                    b.end_m.map(f64::to_bits),
+                    b.hit,
+                )
+                    .hash(&mut h);
+            }
+        }
+        h.finish()
+    }
+
+    fn get(&self, key: u64) -> Option<Fit> {
+        self.0.lock().ok()?.get(&key).cloned()
+    }
+
+    fn put(&self, key: u64, fit: Fit) {
+        if let Ok(mut fits) = self.0.lock() {
+            fits.insert(key, fit);
+        }
+    }
+}
+
 impl DgpomMethod {
-    /// DGPOM with `params` on `motion_map`.
+    /// DGPOM with `params` on `motion_map`. The method keeps the fits it makes (a few per
+    /// sequence, each holding its N×N Cholesky factor), so predicting ahead of a query time
+    /// reuses that time's fit; clones share them.
     pub fn new(params: DgpomParams, motion_map: Arc<MotionMap>) -> Self {
-        Self { params, motion_map }
+        Self {
+            params,
+            motion_map,
+            fits: FitCache::default(),
+        }
+    }
+
+    /// How many fits the method (and its clones) keep.
+    pub fn fits_kept(&self) -> usize {
+        self.fits.0.lock().map_or(0, |fits| fits.len())
+    }
+
+    /// The fit of `window` with its observations carried to `reference_secs`, made once.
+    fn fit_once(&self, window: &ScanWindow<'_>, reference_secs: f64) -> Result<Fit> {
+        let key = FitCache::key(window, reference_secs);
+        if let Some(fit) = self.fits.get(key) {
+            return Ok(fit);
+        }
+        let fit = Arc::new(self.fit(window, reference_secs)?);
+        self.fits.put(key, Arc::clone(&fit));
+        Ok(fit)
     }
 
     /// Fits the classifier to the window's samples, observations carried to `reference_secs`.
@@ -164,8 +229,8 @@ impl MapMethod for DgpomMethod {
 
     fn map(&self, window: &ScanWindow<'_>, points_m: &[[f64; 2]]) -> Result<MapOutput> {
         let scan = window.query_scan().map_or(0, |s| s.index);
-        let (classifier, n) = self.fit(window, window.query_secs)?;
-        self.predict(&classifier, points_m, window.query_secs, n, scan)
+        let fit = self.fit_once(window, window.query_secs)?;
+        self.predict(&fit.0, points_m, window.query_secs, fit.1, scan)
     }
 
     /// One fit with the observations carried to the last scan, then predictions at each later
@@ -180,10 +245,10 @@ impl MapMethod for DgpomMethod {
         let last = window
             .query_scan()
             .map_or(window.query_secs, |s| s.stamp_secs);
-        let (classifier, n) = self.fit(window, last)?;
+        let fit = self.fit_once(window, last)?;
         times_secs
             .iter()
-            .map(|&t| self.predict(&classifier, points_m, t, n, scan))
+            .map(|&t| self.predict(&fit.0, points_m, t, fit.1, scan))
             .collect()
     }
 }

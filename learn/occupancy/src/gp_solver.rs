@@ -9,7 +9,7 @@ use patchflow_gp::{FULL_GP_MAX_SAMPLES, GpKind, GpParams};
 use serde::{Deserialize, Serialize};
 
 /// The switch between the exact GP and SPGP.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct GpSolver {
     /// Maps with at most this many training points fit the exact GP (at most
@@ -17,6 +17,13 @@ pub struct GpSolver {
     pub exact_up_to: usize,
     /// Pseudo-inputs of the SPGP used above `exact_up_to`.
     pub pseudo_inputs: usize,
+    /// Smallest noise variance of the regression on the ±1 labels, in the standardised labels'
+    /// units (their variance is 1). Left free, the marginal likelihood of the exact GP drives it
+    /// to 0 on the T-junction (σ² = 0.000 in every DGPOM fit): the regression interpolates every
+    /// label, returns and free samples 0.3 m apart included, and the sub-metre length-scales it
+    /// then picks cost DGPOM 0.03 AUC (issue 25; docs/occupancy.md). The exact GP's only: on
+    /// the busy intersection's SPGP maps the same floor cost DGPOM 0.009 (0.864 to 0.855).
+    pub noise_floor: f64,
 }
 
 impl Default for GpSolver {
@@ -24,6 +31,7 @@ impl Default for GpSolver {
         Self {
             exact_up_to: FULL_GP_MAX_SAMPLES,
             pseudo_inputs: 250,
+            noise_floor: 0.05,
         }
     }
 }
@@ -37,7 +45,7 @@ impl GpSolver {
     /// The GP parameters for a map of `n` training points (`seed` places the pseudo-inputs).
     pub fn params(&self, n: usize, seed: u64) -> GpParams {
         if self.is_exact(n) {
-            GpParams::new(GpKind::Full)
+            GpParams::new(GpKind::Full).noise_floor(self.noise_floor)
         } else {
             GpParams::new(GpKind::Spgp)
                 .pseudo_inputs(self.pseudo_inputs)
@@ -59,8 +67,8 @@ impl GpSolver {
     pub fn describe(&self) -> String {
         let up_to = self.exact_up_to.min(FULL_GP_MAX_SAMPLES);
         format!(
-            "the exact GP (Cholesky of the full kernel matrix, jitter retried) for maps of up to {up_to} training points, SPGP with {} pseudo-inputs held at a seeded subset of the training points above that",
-            self.pseudo_inputs
+            "the exact GP (Cholesky of the full kernel matrix, jitter retried) for maps of up to {up_to} training points, SPGP with {} pseudo-inputs held at a seeded subset of the training points above that; the exact GP's noise variance of the regression on the ±1 labels is held at or above {} of the standardised labels' variance",
+            self.pseudo_inputs, self.noise_floor
         )
     }
 }
@@ -74,6 +82,7 @@ mod tests {
         let solver = GpSolver {
             exact_up_to: 1000,
             pseudo_inputs: 50,
+            ..GpSolver::default()
         };
         assert!(solver.is_exact(1000));
         assert!(!solver.is_exact(1001));
@@ -82,10 +91,22 @@ mod tests {
     }
 
     #[test]
+    fn exact_maps_hold_the_noise_floor_and_sparse_ones_keep_the_gp_default() {
+        let solver = GpSolver::default();
+        let exact = solver.params(100, 7).check().expect("valid");
+        assert_eq!(exact.noise_floor(), solver.noise_floor);
+        let sparse = solver.params(10_000, 7).check().expect("valid");
+        let default = GpParams::new(GpKind::Spgp).check().expect("valid");
+        assert_eq!(sparse.noise_floor(), default.noise_floor());
+        assert!(solver.describe().contains("0.05"));
+    }
+
+    #[test]
     fn the_threshold_never_exceeds_what_the_exact_gp_accepts() {
         let solver = GpSolver {
             exact_up_to: usize::MAX,
             pseudo_inputs: 50,
+            ..GpSolver::default()
         };
         assert!(!solver.is_exact(FULL_GP_MAX_SAMPLES + 1));
     }

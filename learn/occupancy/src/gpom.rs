@@ -219,6 +219,7 @@ mod tests {
             solver: GpSolver {
                 exact_up_to: 0,
                 pseudo_inputs: 80,
+                ..GpSolver::default()
             },
             max_iters: 40,
         }

@@ -1,6 +1,9 @@
 //! Development check: learn the motion map of `<name>_train` in DATASET and score DGPOM and the
 //! GPOMs on `<name>` at t = 3 … 9. `cargo run --release -p patchflow-occupancy --example
-//! dgpom_check -- DATASET [NAME]`.
+//! dgpom_check -- DATASET [NAME]`. Environment: `ITERS` (DGPOM's L-BFGS iterations, 50),
+//! `NOISE_FLOOR` (all GPs), `FREE` (free-sample spacing, m), `PAST_FREE=0`, `SCANS`, `METHODS`,
+//! `QUERY`, `FITS` (print every fit), `DIAG` (1 − AUC by class of query point), `ORACLE=ε` (the
+//! exact T-junction lane velocities with error ε), `MIN_CELLS`, `CROSSING`, `DUMP`.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -8,6 +11,9 @@ use std::time::Instant;
 use patchflow_dataset::Dataset;
 use patchflow_gp::MotionField;
 use patchflow_occupancy::*;
+
+mod diagnose;
+use diagnose::diagnose;
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -92,22 +98,51 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         dump(&map);
         return Ok(());
     }
+    let mut map = map;
+    if let Ok(eps) = std::env::var("ORACLE") {
+        // The exact lane velocities (T-junction), error `eps` everywhere.
+        let eps: f64 = eps.parse()?;
+        let nodes = map.raster.nodes();
+        let vx = |p: &[f64; 2]| match p[1] {
+            y if (3.5..=5.5).contains(&y) => 2.0,
+            y if (6.5..=8.5).contains(&y) => -1.0,
+            _ => 0.0,
+        };
+        map.raster.values = vec![
+            nodes.iter().map(vx).collect(),
+            vec![0.0; nodes.len()],
+            vec![eps; nodes.len()],
+        ];
+    }
     let map = Arc::new(map);
     let samples = SampleParams {
         past_free: std::env::var("PAST_FREE").map_or(true, |v| v != "0"),
+        free_spacing_m: std::env::var("FREE").map_or(Ok(3.0), |v| v.parse())?,
         ..SampleParams::default()
+    };
+    let solver = GpSolver {
+        noise_floor: std::env::var("NOISE_FLOOR")
+            .map_or(Ok(GpSolver::default().noise_floor), |v| v.parse())?,
+        ..GpSolver::default()
     };
     let methods: Vec<Box<dyn MapMethod>> = vec![
         Box::new(DgpomMethod::new(
             DgpomParams {
+                solver,
                 samples: samples.clone(),
                 max_iters: std::env::var("ITERS").map_or(Ok(50), |v| v.parse())?,
                 ..DgpomParams::default()
             },
             map,
         )),
-        Box::new(GpomMethod::space(samples.clone())),
-        Box::new(GpomMethod::space_time(samples)),
+        Box::new(GpomMethod {
+            solver,
+            ..GpomMethod::space(samples.clone())
+        }),
+        Box::new(GpomMethod {
+            solver,
+            ..GpomMethod::space_time(samples)
+        }),
     ];
     // METHODS=DGPOM,GPOM-RD keeps only those; QUERY=5,6 only those query times.
     let only = std::env::var("METHODS").ok();
@@ -130,7 +165,15 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     if let Ok(n) = std::env::var("SCANS") {
         params.scans_per_map = n.parse()?;
     }
+    if std::env::var("DIAG").is_ok() {
+        params.figure_scans = params.query_scans.clone();
+    }
     let scores = evaluate_sequence(&seq, &refs, &params, &|_, _| {})?;
+    if std::env::var("DIAG").is_ok() {
+        for fig in &scores.figures {
+            diagnose(&seq, fig);
+        }
+    }
     for (name, m) in &scores.methods {
         let aucs: Vec<String> = m
             .auc_by_query_scan

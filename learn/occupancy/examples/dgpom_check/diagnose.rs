@@ -1,0 +1,119 @@
+//! `DIAG=1` of the development check: where each method's ROC AUC is lost at a query time.
+
+use patchflow_occupancy::{MapFigure, OccupancySequence, OrientedBox};
+
+/// Where each method's AUC is lost at one query time: 1 − AUC split over classes of occupied
+/// points (static, actor seen by the query scan, actor hidden) and of free points (next to an
+/// actor, crossed by a beam of the query scan, not crossed).
+pub fn diagnose(seq: &OccupancySequence, fig: &MapFigure) {
+    let t = fig.scan.stamp_secs;
+    let statics = seq.truth.static_boxes();
+    let boxes = seq.truth.boxes_at(t);
+    let actors = &boxes[statics.len()..];
+    let h = seq.scan_height_m();
+    let hits: Vec<[f64; 2]> = fig
+        .scan
+        .beams
+        .iter()
+        .filter(|b| b.hit)
+        .map(|b| b.end_m)
+        .collect();
+    let near = |p: [f64; 2], q: [f64; 2], r: f64| (p[0] - q[0]).hypot(p[1] - q[1]) <= r;
+    let crossed = |p: [f64; 2]| {
+        fig.scan.beams.iter().any(|b| {
+            let (dx, dy) = (b.end_m[0] - b.start_m[0], b.end_m[1] - b.start_m[1]);
+            let len2 = dx * dx + dy * dy;
+            let u = ((p[0] - b.start_m[0]) * dx + (p[1] - b.start_m[1]) * dy) / len2;
+            let u_end = if b.hit { 1.0 - 0.5 / len2.sqrt() } else { 1.0 };
+            if !(0.0..=u_end).contains(&u) {
+                return false;
+            }
+            let q = [b.start_m[0] + u * dx, b.start_m[1] + u * dy];
+            near(p, q, 0.35)
+        })
+    };
+    let inflated = |b: &OrientedBox, m: f64| OrientedBox {
+        half_extents_m: [b.half_extents_m[0] + m, b.half_extents_m[1] + m],
+        ..*b
+    };
+    let class: Vec<usize> = fig
+        .grid
+        .points_m
+        .iter()
+        .zip(&fig.truth)
+        .map(|(&p, &occ)| {
+            if occ {
+                if statics.iter().any(|b| b.contains(p, h)) {
+                    0
+                } else if hits.iter().any(|&q| near(p, q, 0.75)) {
+                    1
+                } else {
+                    2
+                }
+            } else if actors.iter().any(|b| inflated(b, 1.0).contains(p, h)) {
+                3
+            } else if crossed(p) {
+                4
+            } else {
+                5
+            }
+        })
+        .collect();
+    let names = [
+        "static",
+        "car seen",
+        "car hidden",
+        "free by car",
+        "free crossed",
+        "free unseen",
+    ];
+    let counts: Vec<usize> = (0..6)
+        .map(|c| class.iter().filter(|&&k| k == c).count())
+        .collect();
+    println!(
+        "t {t}: counts {:?}",
+        names.iter().zip(&counts).collect::<Vec<_>>()
+    );
+    for (id, map) in &fig.maps {
+        let p = &map.probability;
+        let occ: Vec<usize> = (0..p.len()).filter(|&i| fig.truth[i]).collect();
+        let free: Vec<usize> = (0..p.len()).filter(|&i| !fig.truth[i]).collect();
+        let (no, nf) = (occ.len() as f64, free.len() as f64);
+        let mut loss = [0.0; 6];
+        for &i in &occ {
+            for &j in &free {
+                let l = if p[j] > p[i] {
+                    1.0
+                } else if p[j] == p[i] {
+                    0.5
+                } else {
+                    0.0
+                };
+                loss[class[i]] += l / (no * nf);
+                loss[class[j]] += l / (no * nf);
+            }
+        }
+        let mean_p = |c: usize| {
+            let v: Vec<f64> = (0..p.len())
+                .filter(|&i| class[i] == c)
+                .map(|i| p[i])
+                .collect();
+            v.iter().sum::<f64>() / v.len().max(1) as f64
+        };
+        println!(
+            "  {:>9}: 1-AUC {:.4} | by occupied {:.4} {:.4} {:.4} | by free {:.4} {:.4} {:.4} | mean p {}",
+            id.name(),
+            (loss[0] + loss[1] + loss[2] + loss[3] + loss[4] + loss[5]) / 2.0,
+            loss[0],
+            loss[1],
+            loss[2],
+            loss[3],
+            loss[4],
+            loss[5],
+            (0..6)
+                .map(|c| format!("{:.2}", mean_p(c)))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+    }
+}
