@@ -13,7 +13,7 @@ use super::full::FullPosterior;
 use super::hyper::Hyper;
 use super::kernel::Kernel;
 use super::model::{FitReport, GpModel, Posterior};
-use super::params::GpKind;
+use super::params::{GpKind, MAX_PSEUDO_INPUTS};
 use super::shape::Factor;
 use super::sparse_posterior::SparsePosterior;
 use super::stationary::Stationary;
@@ -139,6 +139,13 @@ impl GpModelRecord {
                 &format!("{what} transform is invalid"),
             )?;
         }
+        check(
+            self.pseudo_inputs.len() <= MAX_PSEUDO_INPUTS,
+            &format!(
+                "{} pseudo-inputs; a sparse GP has at most {MAX_PSEUDO_INPUTS}",
+                self.pseudo_inputs.len()
+            ),
+        )?;
         let z = matrix(&self.pseudo_inputs, d, "pseudo_inputs")?;
         let m = z.nrows();
         check(finite(z.as_slice()), "pseudo-inputs must be finite")?;
@@ -180,7 +187,9 @@ impl GpModelRecord {
                     m > 0 && weights.len() == m && var_matrix.len() == m,
                     "posterior does not match the pseudo-inputs",
                 )?;
-                let var_matrix = matrix(&var_matrix, m, "var_matrix")?;
+                let rows = var_matrix;
+                let var_matrix = matrix(&rows, m, "var_matrix")?;
+                drop(rows);
                 check(
                     finite(&weights) && finite(var_matrix.as_slice()),
                     "posterior must be finite",

@@ -198,3 +198,14 @@ fn predictions_at_the_extremes_of_the_finite_numbers_have_a_positive_variance_or
         }
     }
 }
+
+#[test]
+fn a_sparse_model_with_more_pseudo_inputs_than_the_bound_is_refused_before_its_check() {
+    let mut value = fitted(GpKind::Spgp).to_json_value().expect("serialises");
+    let row = value["pseudo_inputs"][0].clone();
+    value["pseudo_inputs"] = serde_json::json!(vec![row; crate::params::MAX_PSEUDO_INPUTS + 1]);
+    let err = GpModel::from_json_value(value, std::path::Path::new("wide.json"))
+        .expect_err("refused")
+        .to_string();
+    assert!(err.contains("wide.json") && err.contains("4000"), "{err}");
+}

@@ -226,6 +226,10 @@ impl<K: Kernel> GpParams<K> {
     }
 }
 
+/// Most pseudo-inputs a sparse GP has: its posterior matrix is M × M, checked at load in O(M³),
+/// so the bound is the full GP's sample limit.
+pub const MAX_PSEUDO_INPUTS: usize = crate::FULL_GP_MAX_SAMPLES;
+
 /// Checked [`GpParams`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpValidParams<K = Stationary>(GpParams<K>);
