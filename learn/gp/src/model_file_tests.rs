@@ -207,5 +207,5 @@ fn a_sparse_model_with_more_pseudo_inputs_than_the_bound_is_refused_before_its_c
     let err = GpModel::from_json_value(value, std::path::Path::new("wide.json"))
         .expect_err("refused")
         .to_string();
-    assert!(err.contains("wide.json") && err.contains("4000"), "{err}");
+    assert!(err.contains("wide.json") && err.contains("2000"), "{err}");
 }
