@@ -130,7 +130,7 @@ impl SequenceReader {
                 _ => Err(DatasetError::corrupt(
                     &times_path,
                     format!(
-                        "line {}: not a number within ±{MAX_STAMP_SECS:e} s",
+                        "line {}: not a finite number within ±{MAX_STAMP_SECS:e} s",
                         i + 1
                     ),
                 )),

@@ -111,7 +111,7 @@ mod tests {
     use super::*;
 
     fn tiny() -> Scenario {
-        let text = "sweeps = 3\n[lidar]\nchannels = 8\nazimuth_steps = 100\nblocks = 10\n\
+        let text = "sweeps = 3\nrealism = \"ideal\"\n[lidar]\nchannels = 8\nazimuth_steps = 100\nblocks = 10\n\
             [ego]\npath_m = [[0.0, 0.0], [40.0, 0.0]]\nspeed_mps = 2.0\n\
             [[actors]]\nname = \"car\"\npath_m = [[8.0, -6.0], [8.0, 40.0]]\nspeed_mps = 6.0\n";
         Scenario::from_toml(text, "tiny.toml", "tiny").unwrap()
@@ -122,9 +122,11 @@ mod tests {
         let e = WorkEstimate::of(&tiny());
         assert_eq!((e.sweeps, e.rays_per_sweep, e.actors), (3, 800, 1));
         assert_eq!(e.rays(), 2400);
-        // Every ray a point of 38 bytes, plus objects, lines and the fixed files.
+        // Every ray a point of 38 bytes, plus objects, lines and the fixed files (no street
+        // world on the ideal rung).
         assert!(e.disk_bytes >= 2400 * 38, "{}", e.disk_bytes);
         assert!(e.disk_bytes < 2400 * 38 + (1 << 20), "{}", e.disk_bytes);
+        assert_eq!((e.ground_cells, e.street_segments), (0.0, 0));
         assert!(e.summary().contains("3 sweeps × 800 rays"), "{}", e.summary());
     }
 
