@@ -176,7 +176,12 @@ fn a_sweep_beyond_the_address_space_limit_is_refused_naming_the_limit_never_abor
     let tiny = common::tiny_scenario();
     let run = patchflow_limited(
         16 << 30,
-        &["generate", tiny.to_str().unwrap(), "--out", out.to_str().unwrap()],
+        &[
+            "generate",
+            tiny.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
     )
     .unwrap();
     common::assert_success(&run);

@@ -137,7 +137,10 @@ fn a_scenario_that_would_fill_the_disk_is_refused_before_any_work() {
         [ego]\npath_m = [[0.0, 0.0], [50.0, 0.0]]\nspeed_mps = 0.0001\n";
     let dir = tempfile::tempdir().unwrap();
     // A relative --out as well: its free space is read from the working folder.
-    for out in [dir.path().join("data"), PathBuf::from("no-such-relative-folder/data")] {
+    for out in [
+        dir.path().join("data"),
+        PathBuf::from("no-such-relative-folder/data"),
+    ] {
         let options = GenerateOptions {
             out: out.clone(),
             seed: 1,
@@ -188,5 +191,8 @@ fn huge_finite_values_in_a_dataset_are_refused_naming_the_file() {
     bytes[..4].copy_from_slice(&1e35f32.to_le_bytes());
     std::fs::write(&flow, bytes).unwrap();
     let err = read(dir.path()).unwrap_err().to_string();
-    assert!(err.contains("flow/000001.bin") && err.contains("m/s"), "{err}");
+    assert!(
+        err.contains("flow/000001.bin") && err.contains("m/s"),
+        "{err}"
+    );
 }

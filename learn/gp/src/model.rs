@@ -171,7 +171,7 @@ impl<K: Kernel> GpModel<K> {
         let t = &self.inputs;
         for (row, col, v) in values {
             let standardised = (v - t.mean[col]) / t.scale[col];
-            if !(standardised.abs() <= MAX_STANDARDISED_INPUT) {
+            if standardised.is_nan() || standardised.abs() > MAX_STANDARDISED_INPUT {
                 return Err(GpError::DegenerateData(format!(
                     "test input row {row}, column '{}' = {v:e} lies {:e} standard deviations from \
                      the training data (at most {MAX_STANDARDISED_INPUT:e})",

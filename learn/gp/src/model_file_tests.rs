@@ -131,7 +131,8 @@ fn with_var_matrix(kind: GpKind, edit: impl Fn(&mut Vec<Vec<f64>>)) -> serde_jso
 #[test]
 fn a_var_matrix_that_is_not_symmetric_or_not_a_fits_is_refused_naming_the_file() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let cases: [(&str, fn(&mut Vec<Vec<f64>>)); 4] = [
+    type Edit = fn(&mut Vec<Vec<f64>>);
+    let cases: [(&str, Edit); 4] = [
         ("asymmetric", |w| w[0][1] += 1.0),
         ("negated", |w| {
             w.iter_mut().flatten().for_each(|v| *v = -*v);

@@ -152,7 +152,8 @@ fn refusal(bytes: &[u8], err: &serde_json::Error) -> String {
         format!(
             "not a patchflow motion model (format '{format}'; a single GP from `patchflow gp fit` is not an estimator)"
         )
-    } else if version != u64::from(MOTION_MODEL_VERSION) && version != u64::from(FLAT_GROUND_VERSION)
+    } else if version != u64::from(MOTION_MODEL_VERSION)
+        && version != u64::from(FLAT_GROUND_VERSION)
     {
         format!(
             "motion model version {version} is not supported (this build reads versions {FLAT_GROUND_VERSION} and {MOTION_MODEL_VERSION}); retrain it with `patchflow train`"

@@ -124,7 +124,14 @@ impl ObjectTruth {
             .size_m
             .iter()
             .find_map(|&v| huge("a size of", v, MAX_OBJECT_SIZE_M, "m"))
-            .or_else(|| huge("a yaw rate of", self.yaw_rate_radps, MAX_YAW_RATE_RADPS, "rad/s"))
+            .or_else(|| {
+                huge(
+                    "a yaw rate of",
+                    self.yaw_rate_radps,
+                    MAX_YAW_RATE_RADPS,
+                    "rad/s",
+                )
+            })
             .or_else(|| huge("a yaw of", self.yaw_rad, MAX_ANGLE_RAD, "rad"))
             .or_else(|| huge("a heading of", self.heading_rad, MAX_ANGLE_RAD, "rad"));
         if finite && let Some(reason) = absurd {
@@ -165,7 +172,8 @@ mod tests {
     #[test]
     fn an_astronomical_size_yaw_rate_or_heading_is_refused_naming_the_field() {
         let base = crate::reader::tests::sample_sweep(0).objects[0].clone();
-        let cases: [(&str, fn(&mut super::ObjectTruth)); 4] = [
+        type Edit = fn(&mut super::ObjectTruth);
+        let cases: [(&str, Edit); 4] = [
             ("size", |o| o.size_m[1] = 3e200),
             ("yaw rate", |o| o.yaw_rate_radps = -1e250),
             ("yaw", |o| o.yaw_rad = 7e120),
@@ -175,7 +183,10 @@ mod tests {
             let mut object = base.clone();
             edit(&mut object);
             let reason = object.problem().unwrap();
-            assert!(reason.contains(field) && reason.contains("e"), "{field}: {reason}");
+            assert!(
+                reason.contains(field) && reason.contains("e"),
+                "{field}: {reason}"
+            );
         }
         assert_eq!(base.problem(), None);
     }

@@ -109,7 +109,10 @@ mod tests {
         ] {
             std::fs::write(&path, text).unwrap();
             let err = seq.static_obstacles().unwrap_err().to_string();
-            assert!(err.contains("static.json") && err.contains("obstacle 0"), "{err}");
+            assert!(
+                err.contains("static.json") && err.contains("obstacle 0"),
+                "{err}"
+            );
         }
     }
 }

@@ -101,7 +101,10 @@ impl Sweep {
             let mut values = values;
             let bad = |v: &f32| !v.is_finite() || f64::from(v.abs()) > limit;
             values.position(|v| bad(&v)).map(|k| {
-                format!("{name} of point {} is not finite or beyond ±{limit} {unit}", k / per)
+                format!(
+                    "{name} of point {} is not finite or beyond ±{limit} {unit}",
+                    k / per
+                )
             })
         }
         let problem = first_bad(

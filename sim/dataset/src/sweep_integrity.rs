@@ -45,7 +45,12 @@ pub(crate) const SWEEP_FILE_KINDS: [(&str, &str); 6] = [
 
 /// Reads sweep `i` of sequence folder `dir` with every check; errors name the file.
 pub(crate) fn read_sweep_files(dir: &Path, i: u32) -> Result<SweepFiles> {
-    let velodyne = read_f32s(&sweep_path(dir, "velodyne", i, "bin"), 4, None, VELODYNE_LIMIT)?;
+    let velodyne = read_f32s(
+        &sweep_path(dir, "velodyne", i, "bin"),
+        4,
+        None,
+        VELODYNE_LIMIT,
+    )?;
     let n = velodyne.len() / 4;
     let labels_path = sweep_path(dir, "labels", i, "label");
     let labels: Vec<PointLabel> = read_words(&labels_path, 1, Some(n))?

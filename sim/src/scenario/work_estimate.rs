@@ -127,7 +127,11 @@ mod tests {
         assert!(e.disk_bytes >= 2400 * 38, "{}", e.disk_bytes);
         assert!(e.disk_bytes < 2400 * 38 + (1 << 20), "{}", e.disk_bytes);
         assert_eq!((e.ground_cells, e.street_segments), (0.0, 0));
-        assert!(e.summary().contains("3 sweeps × 800 rays"), "{}", e.summary());
+        assert!(
+            e.summary().contains("3 sweeps × 800 rays"),
+            "{}",
+            e.summary()
+        );
     }
 
     #[test]

@@ -100,7 +100,10 @@ mod tests {
     fn a_target_estimate_of_any_estimator_is_checked_on_its_own() {
         let estimate = motion(1e200).clusters[1].unwrap();
         let reason = implausible_estimate(&estimate, "the target").unwrap();
-        assert!(reason.contains("the target") && reason.contains("1e200"), "{reason}");
+        assert!(
+            reason.contains("the target") && reason.contains("1e200"),
+            "{reason}"
+        );
         let street = motion(12.0).clusters[1].unwrap();
         assert_eq!(implausible_estimate(&street, "the target"), None);
     }
