@@ -121,3 +121,68 @@ fn a_sensor_buried_in_a_building_gives_no_points_and_is_refused() {
         &["sequences/case", "sweep 0 has no points"],
     );
 }
+
+/// `patchflow ARGS` under an address-space limit of `bytes`: through `prlimit --as` where the
+/// machine has it, else `ulimit -v` in `sh`; `None` where neither can set it.
+fn patchflow_limited(bytes: u64, args: &[&str]) -> Option<std::process::Output> {
+    use std::process::Command;
+    let bin = env!("CARGO_BIN_EXE_patchflow");
+    let prlimit = Command::new("prlimit").arg("--version").output();
+    if prlimit.is_ok_and(|o| o.status.success()) {
+        let run = Command::new("prlimit")
+            .arg(format!("--as={bytes}"))
+            .arg(bin)
+            .args(args)
+            .output()
+            .ok()?;
+        return Some(run);
+    }
+    let script = format!("ulimit -v {} || exit 99; exec \"$0\" \"$@\"", bytes / 1024);
+    let run = Command::new("sh")
+        .args(["-c", &script, bin])
+        .args(args)
+        .output()
+        .ok()?;
+    (run.status.code() != Some(99)).then_some(run)
+}
+
+#[test]
+fn a_sweep_beyond_the_address_space_limit_is_refused_naming_the_limit_never_aborting() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("wide.toml");
+    // 128 × 20,000 rays: one sweep needs about 312 MB.
+    std::fs::write(
+        &scenario,
+        format!("sweeps = 2\n[lidar]\nchannels = 128\nazimuth_steps = 20000\nblocks = 100\n{EGO}"),
+    )
+    .unwrap();
+    let out = dir.path().join("data");
+    let args = [
+        "generate",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    // 330-370 MB once passed the check and aborted (SIGABRT) mid-sweep.
+    for limit_mb in [150, 250, 330, 370] {
+        let Some(run) = patchflow_limited(limit_mb << 20, &args) else {
+            println!("note: no address-space limit can be set on this machine; test skipped");
+            return;
+        };
+        assert_clean_failure(&run, &["address-space limit", "128 × 20000 rays"]);
+        assert!(!out.join("sequences").exists(), "{limit_mb} MB: work began");
+    }
+    // A limit the tiny scene fits in (with every thread's reserve) lets it through.
+    let tiny = common::tiny_scenario();
+    let run = patchflow_limited(
+        16 << 30,
+        &[
+            "generate",
+            tiny.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    )
+    .unwrap();
+    common::assert_success(&run);
+}

@@ -6,11 +6,14 @@ use patchflow_dataset::{
     FolderLock, Manifest, SequenceReader, SequenceWriter, Sweep, remove_written_files,
 };
 
+use crate::disk_space::{bytes_under, check_disk_space, free_bytes};
 use crate::error::{Result, SimError};
 use crate::memory_budget::check_memory;
 use crate::output_folder::{check_manifest_is_ours, check_sequence_folder};
 use crate::provenance::{Provenance, provenance};
-use crate::scenario::{EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario};
+use crate::scenario::{
+    EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, WorkEstimate,
+};
 pub use crate::shard::Shard;
 use crate::simulation::Simulation;
 
@@ -98,6 +101,29 @@ pub enum Progress {
         /// Sequence name.
         name: String,
     },
+    /// Before any work: what a sequence of this shard implies (reported for every one, finished
+    /// or not, once every check passed).
+    Estimate {
+        /// Sequence name.
+        name: String,
+        /// Rays, actors, world and bytes on disk.
+        estimate: WorkEstimate,
+    },
+    /// The sequence's world (ground, streets, pieces, actors' bodies) is being built: with a
+    /// large world or many actors this takes seconds to minutes before the first sweep.
+    WorldBuilding {
+        /// Sequence name.
+        name: String,
+        /// True when the estimate says it may take more than a few seconds.
+        long: bool,
+    },
+    /// The world is built.
+    WorldBuilt {
+        /// Sequence name.
+        name: String,
+        /// Wall time it took, seconds.
+        secs: f64,
+    },
     /// A sequence starts: its name and sweep count.
     SequenceStarted {
         /// Sequence name.
@@ -133,7 +159,8 @@ pub enum Progress {
 }
 
 /// Generates the dataset: validates every scenario first (errors name the file and line), checks
-/// that a sweep fits in the machine's memory, sorts them by name, takes this shard's share,
+/// that a sweep fits in the machine's memory and that what this shard would write fits on the
+/// disk (reporting each sequence's [`WorkEstimate`]), sorts them by name, takes this shard's share,
 /// skips finished sequences and finished sweeps of an unfinished one (of the same request;
 /// another request's sequence is an error unless `overwrite`), then rewrites `manifest.json`
 /// from the completion markers.
@@ -159,6 +186,27 @@ pub fn generate_dataset(
     check_manifest_is_ours(&options.out, options.overwrite)?;
     for scenario in &scenarios {
         check_sequence_folder(&options.out, &scenario.name)?;
+    }
+    // The work up front: what this shard's sequences would still write must fit on the disk.
+    let ours: Vec<(&Scenario, WorkEstimate)> = scenarios
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| options.shard.takes(*i))
+        .map(|(_, s)| (s, WorkEstimate::of(s)))
+        .collect();
+    let to_write: u64 = ours
+        .iter()
+        .map(|(s, e)| {
+            let written = bytes_under(&options.out.join("sequences").join(&s.name));
+            e.disk_bytes.saturating_sub(written)
+        })
+        .fold(0, u64::saturating_add);
+    check_disk_space(&options.out, to_write, free_bytes(&options.out))?;
+    for (scenario, estimate) in &ours {
+        progress(Progress::Estimate {
+            name: scenario.name.clone(),
+            estimate: *estimate,
+        });
     }
     std::fs::create_dir_all(&options.out).map_err(|source| SimError::Io {
         path: options.out.clone(),
@@ -231,7 +279,16 @@ pub fn generate_sequence(
     });
     let writer = SequenceWriter::open(root, &name)?;
     writer.write_scenario(&text)?;
+    progress(Progress::WorldBuilding {
+        name: name.clone(),
+        long: WorkEstimate::of(scenario).world_build_is_long(),
+    });
+    let building = std::time::Instant::now();
     let mut sim = Simulation::new(scenario, seed)?;
+    progress(Progress::WorldBuilt {
+        name: name.clone(),
+        secs: building.elapsed().as_secs_f64(),
+    });
     writer.write_static_obstacles(&sim.scene().static_obstacles())?;
     writer.write_sensor(&crate::lidar::sensor_info(&scenario.lidar))?;
     // Sweep k is written on a thread of its own while sweep k + 1 is cast: the files go out in

@@ -8,6 +8,7 @@
 //! assert_eq!(sweep.labels.len(), sweep.len());
 //! ```
 
+mod disk_space;
 mod error;
 mod generate;
 #[cfg(test)]
@@ -43,7 +44,7 @@ pub use scenario::{
     LidarConfig, MAX_MESH_TRIANGLES, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M,
     PLANAR_MOUNT_HEIGHT_M, PoseErrorConfig, PoseErrorKnobs, Realism, RoadConfig, Scenario,
     SensorConfig, SensorKind, SensorKnobs, StructureConfig, StructureKind, TrafficConfig,
-    VehicleMesh, WorldConfig, WorldKnobs,
+    VehicleMesh, WorkEstimate, WorldConfig, WorldKnobs,
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;

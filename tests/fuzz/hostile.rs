@@ -129,3 +129,70 @@ fn the_memory_budget_is_read_and_names_its_limit() {
     let budget = patchflow_sim::memory_budget().expect("Linux exposes MemAvailable");
     assert!(budget.bytes > 0 && !budget.source.is_empty());
 }
+
+#[test]
+fn a_scenario_that_would_fill_the_disk_is_refused_before_any_work() {
+    // 100,000 sweeps of 640,000 rays: about 2.4 PB of points.
+    let text = "sweeps = 100000\n[lidar]\nchannels = 64\nazimuth_steps = 10000\nblocks = 100\n\
+        [ego]\npath_m = [[0.0, 0.0], [50.0, 0.0]]\nspeed_mps = 0.0001\n";
+    let dir = tempfile::tempdir().unwrap();
+    // A relative --out as well: its free space is read from the working folder.
+    for out in [
+        dir.path().join("data"),
+        PathBuf::from("no-such-relative-folder/data"),
+    ] {
+        let options = GenerateOptions {
+            out: out.clone(),
+            seed: 1,
+            shard: Shard::ALL,
+            realism: None,
+            overwrite: false,
+        };
+        let source = ScenarioSource::Embedded("vast", text);
+        let err = generate_dataset(&[source], &options, &|_| {})
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(out.to_str().unwrap()) && err.contains("free") && err.contains("GB"),
+            "{err}"
+        );
+        assert!(!out.exists(), "{}: work began", out.display());
+    }
+}
+
+#[test]
+fn huge_finite_values_in_a_dataset_are_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    generate(dir.path(), false).unwrap();
+    let seq = dir.path().join("sequences/tiny");
+    let objects = seq.join("objects/000001.json");
+    let original = std::fs::read_to_string(&objects).unwrap();
+    let read = |root: &Path| {
+        patchflow_dataset::Dataset::open(root)
+            .and_then(|d| d.sequence("tiny"))
+            .and_then(|s| s.read_sweep(1))
+            .map(|_| ())
+    };
+    for (field, value) in [
+        ("size_m", "[4.5, 7e250, 1.5]"),
+        ("yaw_rate_radps", "-3e200"),
+        ("velocity_mps", "[0.0, 2e30, 0.0]"),
+        ("centre_m", "[1e15, 0.0, 0.0]"),
+    ] {
+        let mut json: serde_json::Value = serde_json::from_str(&original).unwrap();
+        json[0][field] = serde_json::from_str(value).unwrap();
+        std::fs::write(&objects, json.to_string()).unwrap();
+        let err = read(dir.path()).unwrap_err().to_string();
+        assert!(err.contains("objects/000001.json"), "{field}: {err}");
+    }
+    std::fs::write(&objects, original).unwrap();
+    let flow = seq.join("flow/000001.bin");
+    let mut bytes = std::fs::read(&flow).unwrap();
+    bytes[..4].copy_from_slice(&1e35f32.to_le_bytes());
+    std::fs::write(&flow, bytes).unwrap();
+    let err = read(dir.path()).unwrap_err().to_string();
+    assert!(
+        err.contains("flow/000001.bin") && err.contains("m/s"),
+        "{err}"
+    );
+}

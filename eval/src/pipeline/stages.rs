@@ -38,6 +38,8 @@ pub fn generate_with_progress(
     .unwrap_or_else(|_| ProgressStyle::default_bar())
     .progress_chars("=> ");
     let open: Mutex<HashMap<String, ProgressBar>> = Mutex::new(HashMap::new());
+    // On a log, a line at every tenth of a sequence's sweeps: a long one shows it is moving.
+    let logged: Mutex<HashMap<String, (ProgressLines, usize, usize)>> = Mutex::new(HashMap::new());
     // Without a terminal the bars are hidden: a line per finished sequence shows the progress.
     let (lines, start) = (!stderr_is_terminal(), std::time::Instant::now());
     let on_progress = |event: Progress| {
@@ -55,6 +57,46 @@ pub fn generate_with_progress(
                 let _ = bars.println(format!(
                     "{name:>12} is being written by another run; waiting for it"
                 ));
+            }
+            Progress::Estimate { name, estimate } => {
+                let text = format!("{name:>12} will take {}", estimate.summary());
+                if lines {
+                    progress_line(start, text.trim_start());
+                } else {
+                    let _ = bars.println(text);
+                }
+            }
+            Progress::WorldBuilding { name, long } => {
+                if let Some(bar) = open.get(&name) {
+                    // The elapsed time keeps moving while the world is built.
+                    bar.enable_steady_tick(std::time::Duration::from_millis(500));
+                    bar.set_message("building the world");
+                }
+                if lines && long {
+                    progress_line(start, &format!("  {name}: building the world"));
+                }
+            }
+            Progress::WorldBuilt { name, secs } => {
+                if let Some(bar) = open.get(&name) {
+                    bar.set_message(format!("world built in {secs:.1} s"));
+                }
+                if lines && secs >= 2.0 {
+                    progress_line(start, &format!("  {name}: world built in {secs:.1} s"));
+                }
+            }
+            Progress::SequenceStarted { name, sweeps } if lines => {
+                if let Ok(mut logged) = logged.lock() {
+                    let label = format!("{name} sweeps");
+                    logged.insert(name, (ProgressLines::new(&label), 0, sweeps as usize));
+                }
+            }
+            Progress::SweepDone { name, .. } if lines => {
+                if let Ok(mut logged) = logged.lock()
+                    && let Some((log, done, total)) = logged.get_mut(&name)
+                {
+                    *done += 1;
+                    log.update(*done, *total);
+                }
             }
             Progress::SequenceStarted { name, sweeps } => {
                 let bar = bars.add(

@@ -107,6 +107,11 @@ mod tests {
 
     /// Tracks of a car at several headings past a sensor at the origin, 6 sweeps each.
     fn dataset(root: &Path, headings: &[f64]) -> Dataset {
+        dataset_with_target(root, headings, false)
+    }
+
+    /// [`dataset`], with the car marked as the sequence's target when `target`.
+    fn dataset_with_target(root: &Path, headings: &[f64], target: bool) -> Dataset {
         let lidar = SyntheticLidar::with_resolution(24, 720);
         for (k, &heading) in headings.iter().enumerate() {
             let writer = SequenceWriter::open(root, &format!("track{k}")).unwrap();
@@ -115,7 +120,8 @@ mod tests {
             };
             let (mut poses, mut stamps): (Vec<Pose>, Vec<f64>) = (Vec::new(), Vec::new());
             for i in 0..6 {
-                let sweep = scene.scan(&lidar, [0.0, 0.0], 0.0, i);
+                let mut sweep = scene.scan(&lidar, [0.0, 0.0], 0.0, i);
+                sweep.objects[0].target = target;
                 writer.write_sweep(&sweep).unwrap();
                 poses.push(sweep.world_from_sensor);
                 stamps.push(sweep.stamp_secs);
@@ -153,8 +159,13 @@ mod tests {
 
     /// A model trained on `data` whose speed GP's targets were standardised around 1e200 m/s.
     fn broken_model(dir: &Path, data: &Dataset) -> MotionEstimator {
+        broken_model_with(dir, data, &tiny_params())
+    }
+
+    /// [`broken_model`] trained with `params`.
+    fn broken_model_with(dir: &Path, data: &Dataset, params: &EstimatorParams) -> MotionEstimator {
         let model = dir.join("m.json");
-        MotionEstimator::train(data, &tiny_params())
+        MotionEstimator::train(data, params)
             .unwrap()
             .save(&model)
             .unwrap();
@@ -205,6 +216,31 @@ mod tests {
         let err = err.to_string();
         assert!(
             err.contains("track0") && err.contains("1000 m/s") && err.contains("broken"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_broken_model_with_other_feature_parameters_than_the_first_is_refused_too() {
+        let dir = tempfile::tempdir().unwrap();
+        let data = dataset_with_target(&dir.path().join("data"), &[0.4], true);
+        let good = MotionEstimator::train(&data, &tiny_params()).unwrap();
+        let mut other = tiny_params();
+        other.features.half_extent_m = 18.0; // its own maps: it predicts the target only
+        let broken = broken_model_with(dir.path(), &data, &other);
+        let sequence = data.sequence("track0").unwrap();
+        let Err(err) = crate::scene::scene_evaluation::evaluate_sequence(
+            &sequence,
+            &[good, broken],
+            &crate::BaselineParams::default(),
+            None,
+            &|| {},
+        ) else {
+            panic!("the second model's 1e200 m/s target estimate was evaluated");
+        };
+        let err = err.to_string();
+        assert!(
+            err.contains("track0") && err.contains("model 2 of 2") && err.contains("1000 m/s"),
             "{err}"
         );
     }

@@ -18,7 +18,7 @@ use crate::methods::baselines::baseline_step::{BaselineScan, BaselineTrackers, C
 use crate::methods::baselines::velocity_measurement::VelocityFloors;
 use crate::methods::estimate::{MotionEstimate, to_estimate};
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
-use crate::methods::learned::plausible_motion::implausible_motion;
+use crate::methods::learned::plausible_motion::{implausible_estimate, implausible_motion};
 use crate::methods::method::{GpReadout, Method};
 use crate::scene::cpu_time::process_cpu_secs;
 use crate::scene::objects::ObjectScan;
@@ -214,12 +214,21 @@ fn evaluate_scan(
     let start = Instant::now();
     let mut target_gp = Vec::new();
     if target.is_some() {
-        for (estimator, &group) in estimators.iter().zip(group_of) {
+        for (k, (estimator, &group)) in estimators.iter().zip(group_of).enumerate() {
             let own = &scan.features[group];
             let estimate = match target_cluster(own, &scan.sweep) {
                 Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
                 None => ClusterEstimate::default(),
             };
+            // Estimators of other feature parameters predict only here: checked here too.
+            let what = format!("the target (model {} of {})", k + 1, estimators.len());
+            if let Some(reason) = implausible_estimate(&estimate, &what) {
+                return Err(EvalError::BadObservation {
+                    situation: situation.map_or_else(|| "-".to_owned(), String::clone),
+                    scan: scan.index,
+                    reason,
+                });
+            }
             target_gp.push((estimator.gp_kind(), estimate));
         }
         timing.target_secs = start.elapsed().as_secs_f64() / estimators.len() as f64;

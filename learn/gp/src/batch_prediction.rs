@@ -106,12 +106,7 @@ impl<K: Kernel> GpModel<K> {
                 (DVector::from_vec(mean), DVector::from_vec(var))
             }
         };
-        let noisy = var.map(|v| v + self.hyper.noise_variance);
-        Ok(GpPrediction {
-            mean: self.target.invert_vector(&mean),
-            var_latent: self.target.invert_variance(&var),
-            var_y: self.target.invert_variance(&noisy),
-        })
+        self.prediction(&mean, &var)
     }
 
     /// The number of rows in `rows`; errors if it is not whole rows of `d` finite values.
@@ -129,6 +124,8 @@ impl<K: Kernel> GpModel<K> {
                 self.input_names[pos % d]
             )));
         }
+        let cells = rows.iter().enumerate().map(|(i, &v)| (i / d, i % d, v));
+        self.check_input_range(cells)?;
         Ok(rows.len() / d)
     }
 

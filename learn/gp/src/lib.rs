@@ -62,7 +62,7 @@ pub use full::FULL_GP_MAX_SAMPLES;
 pub use kernel::{Kernel, Points};
 pub use loo::LooMoments;
 pub use model::{FitReport, GpModel, GpPrediction};
-pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION};
+pub use model_file::{GP_MODEL_FORMAT, GP_MODEL_VERSION, GpModelRecord};
 pub use motion_adapted::MotionAdapted;
 pub use motion_field::{MotionField, transported};
 pub use objective::GpObjective;

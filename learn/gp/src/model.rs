@@ -12,6 +12,11 @@ use super::stationary::Stationary;
 use super::transform::Standardiser;
 use crate::{GpError, Result};
 
+/// Largest distance of a test input from the training mean, in the fit's standardised units (or
+/// the inputs' own units for kernels that take them unscaled): squared distances stay finite,
+/// and every decaying kernel is exactly 0 long before it.
+pub(crate) const MAX_STANDARDISED_INPUT: f64 = 1e100;
+
 /// Predictive distribution at many test inputs, in the target's units.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpPrediction {
@@ -146,17 +151,63 @@ impl<K: Kernel> GpModel<K> {
                 self.input_names[col]
             )));
         }
+        let cells = (0..x.ncols()).flat_map(|c| (0..x.nrows()).map(move |r| (r, c)));
+        self.check_input_range(cells.map(|(r, c)| (r, c, x[(r, c)])))?;
         let xs = self.inputs.apply(x);
         let (mean, var) = match &self.posterior {
             Posterior::Sparse(p) => p.predict(&self.hyper, &xs),
             Posterior::Full(p) => p.predict(&self.hyper, &xs)?,
         };
+        self.prediction(&mean, &var)
+    }
+
+    /// Refuses a test input that lies more than [`MAX_STANDARDISED_INPUT`] of the fit's
+    /// standardised units from the training mean: the kernel's squared distances would overflow
+    /// (at ±1e308 a full GP predicted a variance of 0). Takes `(row, column, value)`.
+    pub(crate) fn check_input_range(
+        &self,
+        values: impl Iterator<Item = (usize, usize, f64)>,
+    ) -> Result<()> {
+        let t = &self.inputs;
+        for (row, col, v) in values {
+            let standardised = (v - t.mean[col]) / t.scale[col];
+            if standardised.is_nan() || standardised.abs() > MAX_STANDARDISED_INPUT {
+                return Err(GpError::DegenerateData(format!(
+                    "test input row {row}, column '{}' = {v:e} lies {:e} standard deviations from \
+                     the training data (at most {MAX_STANDARDISED_INPUT:e})",
+                    self.input_names[col],
+                    standardised.abs()
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The prediction in the target's units from standardised mean and latent variance; a value
+    /// that is not finite there (a broken target transform) is an error, never a result.
+    pub(crate) fn prediction(
+        &self,
+        mean: &DVector<f64>,
+        var: &DVector<f64>,
+    ) -> Result<GpPrediction> {
         let noisy = var.map(|v| v + self.hyper.noise_variance);
-        Ok(GpPrediction {
-            mean: self.target.invert_vector(&mean),
-            var_latent: self.target.invert_variance(&var),
+        let p = GpPrediction {
+            mean: self.target.invert_vector(mean),
+            var_latent: self.target.invert_variance(var),
             var_y: self.target.invert_variance(&noisy),
-        })
+        };
+        let finite = |v: &DVector<f64>| v.iter().position(|x| !x.is_finite());
+        if let Some(row) = finite(&p.mean)
+            .or(finite(&p.var_y))
+            .or(finite(&p.var_latent))
+        {
+            return Err(GpError::DegenerateData(format!(
+                "the prediction at test input row {row} is not finite (mean {:e}, variance {:e}): \
+                 the model's target transform is broken",
+                p.mean[row], p.var_y[row]
+            )));
+        }
+        Ok(p)
     }
 
     /// Predicts at rows given as `f32` slices (each of length D), e.g. feature patches, through

@@ -13,7 +13,7 @@ use super::full::FullPosterior;
 use super::hyper::Hyper;
 use super::kernel::Kernel;
 use super::model::{FitReport, GpModel, Posterior};
-use super::params::GpKind;
+use super::params::{GpKind, MAX_PSEUDO_INPUTS};
 use super::shape::Factor;
 use super::sparse_posterior::SparsePosterior;
 use super::stationary::Stationary;
@@ -30,7 +30,7 @@ pub const GP_MODEL_VERSION: u32 = 2;
 /// The version of SE-ARD model files (no `kernel` field).
 const SE_ARD_VERSION: u32 = 1;
 
-#[derive(Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "kebab-case")]
 enum PosteriorFile {
     Sparse {
@@ -43,8 +43,11 @@ enum PosteriorFile {
     },
 }
 
-#[derive(Serialize, Deserialize)]
-struct ModelFile {
+/// A GP model file's contents as typed fields, read straight from the file's bytes (no generic
+/// JSON tree, which costs ~17× the file in memory) and checked by [`GpModel::from_record`]. A
+/// larger model file (the motion estimator's) embeds it as a field.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct GpModelRecord {
     format: String,
     version: u32,
     kind: GpKind,
@@ -87,7 +90,7 @@ fn finite(values: &[f64]) -> bool {
     values.iter().all(|v| v.is_finite())
 }
 
-impl ModelFile {
+impl GpModelRecord {
     fn into_model(self) -> std::result::Result<GpModel, String> {
         check(
             self.format == GP_MODEL_FORMAT,
@@ -136,6 +139,13 @@ impl ModelFile {
                 &format!("{what} transform is invalid"),
             )?;
         }
+        check(
+            self.pseudo_inputs.len() <= MAX_PSEUDO_INPUTS,
+            &format!(
+                "{} pseudo-inputs; a sparse GP has at most {MAX_PSEUDO_INPUTS}",
+                self.pseudo_inputs.len()
+            ),
+        )?;
         let z = matrix(&self.pseudo_inputs, d, "pseudo_inputs")?;
         let m = z.nrows();
         check(finite(z.as_slice()), "pseudo-inputs must be finite")?;
@@ -177,15 +187,19 @@ impl ModelFile {
                     m > 0 && weights.len() == m && var_matrix.len() == m,
                     "posterior does not match the pseudo-inputs",
                 )?;
-                let var_matrix = matrix(&var_matrix, m, "var_matrix")?;
+                let rows = var_matrix;
+                let var_matrix = matrix(&rows, m, "var_matrix")?;
+                drop(rows);
                 check(
                     finite(&weights) && finite(var_matrix.as_slice()),
                     "posterior must be finite",
                 )?;
-                Posterior::Sparse(SparsePosterior {
+                let posterior = SparsePosterior {
                     weights: DVector::from_vec(weights),
                     var_matrix,
-                })
+                };
+                posterior.check(&hyper, self.jitter)?;
+                Posterior::Sparse(posterior)
             }
             (GpKind::Full, PosteriorFile::Full { x_train, y_train }) => {
                 let x = matrix(&x_train, d, "x_train")?;
@@ -219,10 +233,11 @@ impl ModelFile {
 }
 
 impl GpModel {
-    fn to_file(&self) -> ModelFile {
+    /// The model as the typed record of its file, e.g. to embed it in a larger model file.
+    pub fn to_record(&self) -> GpModelRecord {
         let h = &self.hyper;
         let se_ard = h.kernel.is_se_ard();
-        ModelFile {
+        GpModelRecord {
             format: GP_MODEL_FORMAT.into(),
             version: if se_ard {
                 SE_ARD_VERSION
@@ -255,11 +270,20 @@ impl GpModel {
         }
     }
 
-    /// The model as a JSON value, e.g. to embed it in a larger model file.
+    /// The model as a JSON value.
     pub fn to_json_value(&self) -> Result<serde_json::Value> {
-        serde_json::to_value(self.to_file()).map_err(|e| GpError::Model {
+        serde_json::to_value(self.to_record()).map_err(|e| GpError::Model {
             path: "<GP model>".into(),
             reason: e.to_string(),
+        })
+    }
+
+    /// Reads a model from its typed record, checking every field; `origin` names the file it came
+    /// from in errors.
+    pub fn from_record(record: GpModelRecord, origin: &Path) -> Result<Self> {
+        record.into_model().map_err(|reason| GpError::Model {
+            path: origin.to_path_buf(),
+            reason,
         })
     }
 
@@ -273,9 +297,9 @@ impl GpModel {
         if format != GP_MODEL_FORMAT {
             return Err(err(format!("not a patchflow GP model (format '{format}')")));
         }
-        let file: ModelFile =
+        let record: GpModelRecord =
             serde_json::from_value(value).map_err(|e| err(format!("corrupt GP model: {e}")))?;
-        file.into_model().map_err(err)
+        Self::from_record(record, origin)
     }
 
     /// Writes the model to `path` (atomically: a temporary file renamed into place).
@@ -284,7 +308,7 @@ impl GpModel {
             path: path.to_path_buf(),
             source,
         };
-        let mut bytes = serde_json::to_vec(&self.to_file()).map_err(|e| GpError::Model {
+        let mut bytes = serde_json::to_vec(&self.to_record()).map_err(|e| GpError::Model {
             path: path.to_path_buf(),
             reason: e.to_string(),
         })?;
@@ -318,12 +342,37 @@ impl GpModel {
             )));
         }
         let bytes = std::fs::read(path).map_err(io)?;
-        let value: serde_json::Value =
-            serde_json::from_slice(&bytes).map_err(|e| GpError::Model {
-                path: path.to_path_buf(),
-                reason: format!("not valid JSON: {e}"),
-            })?;
-        Self::from_json_value(value, path)
+        let record = GpModelRecord::parse(&bytes).map_err(refuse)?;
+        drop(bytes);
+        Self::from_record(record, path)
+    }
+}
+
+/// The fields a reader looks at first, to say what a file is when it is not a GP model.
+#[derive(Deserialize)]
+struct Header {
+    #[serde(default)]
+    format: Option<String>,
+}
+
+impl GpModelRecord {
+    /// Parses a GP model file's bytes straight into the record; a file of another format or
+    /// broken JSON is named as such.
+    fn parse(bytes: &[u8]) -> std::result::Result<Self, String> {
+        serde_json::from_slice(bytes).map_err(|e| {
+            if e.is_syntax() || e.is_eof() {
+                return format!("not valid JSON: {e}");
+            }
+            let format = serde_json::from_slice::<Header>(bytes)
+                .ok()
+                .and_then(|h| h.format)
+                .unwrap_or_default();
+            if format != GP_MODEL_FORMAT {
+                format!("not a patchflow GP model (format '{format}')")
+            } else {
+                format!("corrupt GP model: {e}")
+            }
+        })
     }
 }
 

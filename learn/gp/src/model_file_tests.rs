@@ -117,3 +117,96 @@ fn two_identical_fits_write_byte_identical_files() {
     assert_eq!(bytes, std::fs::read(&b).expect("reads"));
     assert!(!String::from_utf8_lossy(&bytes).contains("seconds"));
 }
+
+/// `value` with its sparse posterior's var_matrix changed by `edit`.
+fn with_var_matrix(kind: GpKind, edit: impl Fn(&mut Vec<Vec<f64>>)) -> serde_json::Value {
+    let mut value = fitted(kind).to_json_value().expect("serialises");
+    let mut w: Vec<Vec<f64>> =
+        serde_json::from_value(value["posterior"]["var_matrix"].clone()).expect("matrix");
+    edit(&mut w);
+    value["posterior"]["var_matrix"] = serde_json::json!(w);
+    value
+}
+
+#[test]
+fn a_var_matrix_that_is_not_symmetric_or_not_a_fits_is_refused_naming_the_file() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    type Edit = fn(&mut Vec<Vec<f64>>);
+    let cases: [(&str, Edit); 4] = [
+        ("asymmetric", |w| w[0][1] += 1.0),
+        ("negated", |w| {
+            w.iter_mut().flatten().for_each(|v| *v = -*v);
+        }),
+        ("tenfold", |w| {
+            w.iter_mut().flatten().for_each(|v| *v *= 10.0);
+        }),
+        ("spiked", |w| w[2][2] += 1e6),
+    ];
+    for kind in [GpKind::Spgp, GpKind::SpgpHet] {
+        for (name, edit) in cases {
+            let path = dir.path().join(format!("{name}-{kind}.json"));
+            let value = with_var_matrix(kind, edit);
+            std::fs::write(&path, value.to_string()).expect("writes");
+            let err = GpModel::load(&path).expect_err(name).to_string();
+            assert!(
+                err.contains(&format!("{name}-{kind}.json")) && err.contains("var_matrix"),
+                "{name}: {err}"
+            );
+        }
+        // Untouched, it loads.
+        let path = dir.path().join(format!("fitted-{kind}.json"));
+        std::fs::write(&path, with_var_matrix(kind, |_| {}).to_string()).expect("writes");
+        GpModel::load(&path).expect("a fitted model loads");
+    }
+}
+
+#[test]
+fn predictions_at_the_extremes_of_the_finite_numbers_have_a_positive_variance_or_are_refused() {
+    for kind in [GpKind::Full, GpKind::Spgp, GpKind::SpgpHet] {
+        let model = fitted(kind);
+        for v in [
+            1e308,
+            -1e308,
+            f64::MAX,
+            f64::MIN,
+            1e200,
+            -3e154,
+            1e50,
+            -1e90,
+            1e6,
+        ] {
+            let x = DMatrix::from_row_slice(2, 2, &[v, 0.0, 0.5, v]);
+            match model.predict(&x) {
+                Ok(p) => {
+                    for i in 0..2 {
+                        assert!(
+                            p.mean[i].is_finite()
+                                && p.var_latent[i] > 0.0
+                                && p.var_y[i] > p.var_latent[i]
+                                && p.var_y[i].is_finite(),
+                            "{kind} at {v:e}: mean {} var {} var_y {}",
+                            p.mean[i],
+                            p.var_latent[i],
+                            p.var_y[i]
+                        );
+                    }
+                }
+                Err(err) => assert!(
+                    v.abs() > 1e100 && err.to_string().contains("column"),
+                    "{kind} at {v:e}: {err}"
+                ),
+            }
+        }
+    }
+}
+
+#[test]
+fn a_sparse_model_with_more_pseudo_inputs_than_the_bound_is_refused_before_its_check() {
+    let mut value = fitted(GpKind::Spgp).to_json_value().expect("serialises");
+    let row = value["pseudo_inputs"][0].clone();
+    value["pseudo_inputs"] = serde_json::json!(vec![row; crate::params::MAX_PSEUDO_INPUTS + 1]);
+    let err = GpModel::from_json_value(value, std::path::Path::new("wide.json"))
+        .expect_err("refused")
+        .to_string();
+    assert!(err.contains("wide.json") && err.contains("2000"), "{err}");
+}

@@ -10,7 +10,7 @@ use super::full;
 use super::hyper::{Hyper, Layout};
 use super::init::initial_hyper;
 use super::kernel::Kernel;
-use super::params::{GpKind, GpValidParams};
+use super::params::{GpKind, GpValidParams, MAX_PSEUDO_INPUTS};
 use super::stationary::Stationary;
 use super::train_data::TrainData;
 use super::transform::Standardiser;
@@ -57,6 +57,13 @@ impl<K: Kernel> GpObjective<K> {
                 "starting pseudo-inputs have {} columns, the inputs {}",
                 z.ncols(),
                 data.dims()
+            )));
+        }
+        let m = start.pseudo_inputs.nrows();
+        if kind != GpKind::Full && m > MAX_PSEUDO_INPUTS {
+            return Err(GpError::InvalidParams(format!(
+                "{m} pseudo-inputs; a sparse GP takes at most {MAX_PSEUDO_INPUTS} (its M × M \
+                 posterior is then as large as a full GP's)"
             )));
         }
         let moving = params.optimise_pseudo_inputs() && kind != GpKind::Full;

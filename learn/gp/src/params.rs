@@ -226,6 +226,11 @@ impl<K: Kernel> GpParams<K> {
     }
 }
 
+/// Most pseudo-inputs a sparse GP has: its M × M posterior is checked at load in about 5 M³
+/// operations (a Cholesky factoring, two products, two more factorings), so at 2000 a model loads
+/// in about the time a full GP at its 4000-sample limit takes (one factoring). The thesis uses 100.
+pub const MAX_PSEUDO_INPUTS: usize = 2000;
+
 /// Checked [`GpParams`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpValidParams<K = Stationary>(GpParams<K>);

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
+use patchflow_gp::GpModelRecord;
 use serde::{Deserialize, Serialize};
-use serde_json::Value;
 
 use super::motion_estimator::{MotionEstimator, TrainingRecord};
 use super::projection::Projection;
@@ -32,9 +32,9 @@ struct ModelFile {
     feature: String,
     features: FeatureRecord,
     training: TrainingRecord,
-    heading_sin: Value,
-    heading_cos: Value,
-    speed: Value,
+    heading_sin: GpModelRecord,
+    heading_cos: GpModelRecord,
+    speed: GpModelRecord,
     /// Each regression's PLS projection and noise GP (sin, cos, speed), when the model has any
     /// (thesis Ch. 6 options); absent for the thesis' plain GPs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -48,7 +48,7 @@ struct RegressorExtras {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     projection: Option<Projection>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    noise_gp: Option<Value>,
+    noise_gp: Option<GpModelRecord>,
     #[serde(default)]
     noise_offset: f64,
 }
@@ -127,20 +127,40 @@ fn ground_of(version: u32, name: Option<&str>) -> std::result::Result<GroundMode
 /// Largest model file read: 512 MiB, above three full GPs at their sample limit.
 const MAX_MODEL_BYTES: u64 = 512 << 20;
 
-/// A GP's JSON without its fit's wall-clock seconds: identical runs give identical files.
-fn without_timing(mut gp: Value) -> Value {
-    if let Some(report) = gp.get_mut("fit_report").and_then(Value::as_object_mut) {
-        report.remove("seconds");
-    }
-    gp
+/// The fields read first, to say what a file is when it is not a model this build reads.
+#[derive(Deserialize)]
+struct Header {
+    #[serde(default)]
+    format: Option<String>,
+    #[serde(default)]
+    version: Option<u64>,
 }
 
-/// The inverse of [`without_timing`] for GP code that still expects the field (0 s).
-fn with_timing(mut gp: Value) -> Value {
-    if let Some(report) = gp.get_mut("fit_report").and_then(Value::as_object_mut) {
-        report.entry("seconds").or_insert(Value::from(0.0));
+/// Why `bytes` are not a motion model this build reads: another format or version (from the
+/// header alone), broken JSON, or a field of the wrong type or shape.
+fn refusal(bytes: &[u8], err: &serde_json::Error) -> String {
+    if err.is_syntax() || err.is_eof() {
+        return format!("not valid JSON: {err}");
     }
-    gp
+    let header = serde_json::from_slice::<Header>(bytes).unwrap_or(Header {
+        format: None,
+        version: None,
+    });
+    let format = header.format.unwrap_or_default();
+    let version = header.version.unwrap_or(0);
+    if format != MOTION_MODEL_FORMAT {
+        format!(
+            "not a patchflow motion model (format '{format}'; a single GP from `patchflow gp fit` is not an estimator)"
+        )
+    } else if version != u64::from(MOTION_MODEL_VERSION)
+        && version != u64::from(FLAT_GROUND_VERSION)
+    {
+        format!(
+            "motion model version {version} is not supported (this build reads versions {FLAT_GROUND_VERSION} and {MOTION_MODEL_VERSION}); retrain it with `patchflow train`"
+        )
+    } else {
+        format!("corrupt motion model: {err}")
+    }
 }
 
 fn feature_name(kind: FeatureKind) -> &'static str {
@@ -161,10 +181,10 @@ impl MotionEstimator {
             feature: feature_name(self.feature).to_owned(),
             features: FeatureRecord::from(self.features.params()),
             training: self.training.clone(),
-            heading_sin: without_timing(self.heading_sin.gp.to_json_value()?),
-            heading_cos: without_timing(self.heading_cos.gp.to_json_value()?),
-            speed: without_timing(self.speed.gp.to_json_value()?),
-            extras: self.extras_record()?,
+            heading_sin: self.heading_sin.gp.to_record(),
+            heading_cos: self.heading_cos.gp.to_record(),
+            speed: self.speed.gp.to_record(),
+            extras: self.extras_record(),
         };
         let model_err = |reason: String| LearnError::model(path, reason);
         let mut bytes = serde_json::to_vec(&file).map_err(|e| model_err(e.to_string()))?;
@@ -178,22 +198,18 @@ impl MotionEstimator {
     pub fn load(path: &Path) -> Result<Self> {
         let model_err = |reason: String| LearnError::model(path, reason);
         let bytes = patchflow_dataset::read_limited(path, MAX_MODEL_BYTES)?;
-        let value: Value = serde_json::from_slice(&bytes)
-            .map_err(|e| model_err(format!("not valid JSON: {e}")))?;
-        let format = value.get("format").and_then(Value::as_str).unwrap_or("");
-        if format != MOTION_MODEL_FORMAT {
+        // Straight into typed fields: a generic JSON tree of a large model costs ~17× its size.
+        let file: ModelFile =
+            serde_json::from_slice(&bytes).map_err(|e| model_err(refusal(&bytes, &e)))?;
+        drop(bytes);
+        if file.format != MOTION_MODEL_FORMAT
+            || (file.version != MOTION_MODEL_VERSION && file.version != FLAT_GROUND_VERSION)
+        {
             return Err(model_err(format!(
-                "not a patchflow motion model (format '{format}'; a single GP from `patchflow gp fit` is not an estimator)"
+                "format '{}' version {} is not a motion model this build reads (versions {FLAT_GROUND_VERSION} and {MOTION_MODEL_VERSION} of {MOTION_MODEL_FORMAT})",
+                file.format, file.version
             )));
         }
-        let version = value.get("version").and_then(Value::as_u64).unwrap_or(0);
-        if version != u64::from(MOTION_MODEL_VERSION) && version != u64::from(FLAT_GROUND_VERSION) {
-            return Err(model_err(format!(
-                "motion model version {version} is not supported (this build reads versions {FLAT_GROUND_VERSION} and {MOTION_MODEL_VERSION}); retrain it with `patchflow train`"
-            )));
-        }
-        let file: ModelFile = serde_json::from_value(value)
-            .map_err(|e| model_err(format!("corrupt motion model: {e}")))?;
         let feature = match file.feature.as_str() {
             "patch" => FeatureKind::Patch,
             "gabor" => FeatureKind::Gabor,
@@ -218,7 +234,7 @@ impl MotionEstimator {
         };
         let mut regressors = Vec::with_capacity(3);
         for (gp, extra) in gps.into_iter().zip(extras) {
-            let mut r = Regressor::plain(GpModel::from_json_value(with_timing(gp), path)?);
+            let mut r = Regressor::plain(GpModel::from_record(gp, path)?);
             if let Some(extra) = extra {
                 if let Some(p) = &extra.projection
                     && !p.is_consistent()
@@ -228,7 +244,7 @@ impl MotionEstimator {
                 r.projection = extra.projection;
                 if let Some(noise) = extra.noise_gp {
                     r.noise = Some(NoiseModel {
-                        gp: GpModel::from_json_value(with_timing(noise), path)?,
+                        gp: GpModel::from_record(noise, path)?,
                         offset: extra.noise_offset,
                     });
                 }
@@ -251,31 +267,26 @@ impl MotionEstimator {
         Ok(estimator)
     }
 
-    /// The labels written in the file must agree with what the GPs are: `gp` with each GP's
-    /// kind (so a file cannot be edited to report one method's results under another's name),
-    /// `feature` with their input columns, and the targets in their order.
-    fn extras_record(&self) -> Result<Option<Vec<RegressorExtras>>> {
+    /// What the regressions hold beside their GPs, `None` for the thesis' plain GPs.
+    fn extras_record(&self) -> Option<Vec<RegressorExtras>> {
         let regressors = self.regressors();
         if regressors
             .iter()
             .all(|r| r.projection.is_none() && r.noise.is_none())
         {
-            return Ok(None);
+            return None;
         }
-        let mut out = Vec::with_capacity(3);
-        for r in regressors {
-            out.push(RegressorExtras {
-                projection: r.projection.clone(),
-                noise_gp: match &r.noise {
-                    Some(n) => Some(without_timing(n.gp.to_json_value()?)),
-                    None => None,
-                },
-                noise_offset: r.noise.as_ref().map_or(0.0, |n| n.offset),
-            });
-        }
-        Ok(Some(out))
+        let extras = regressors.into_iter().map(|r| RegressorExtras {
+            projection: r.projection.clone(),
+            noise_gp: r.noise.as_ref().map(|n| n.gp.to_record()),
+            noise_offset: r.noise.as_ref().map_or(0.0, |n| n.offset),
+        });
+        Some(extras.collect())
     }
 
+    /// The labels written in the file must agree with what the GPs are: `gp` with each GP's
+    /// kind (so a file cannot be edited to report one method's results under another's name),
+    /// `feature` with their input columns, and the targets in their order.
     fn check_content(&self) -> std::result::Result<(), String> {
         let feature_names = self.feature.names();
         for (r, target) in self

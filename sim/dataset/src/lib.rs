@@ -40,7 +40,7 @@ pub use folder_lock::{FolderLock, LOCK_FILE};
 pub use input_file::check_input_file;
 pub use limits::{MAX_POINTS_PER_SWEEP, MAX_SWEEPS, read_limited};
 pub use manifest::{FORMAT_NAME, FORMAT_VERSION, Manifest, SequenceInfo};
-pub use object::{ActorClass, MAX_OBJECT_SPEED_MPS, ObjectTruth};
+pub use object::{ActorClass, MAX_OBJECT_SIZE_M, MAX_OBJECT_SPEED_MPS, ObjectTruth};
 pub use pose::{format_kitti_pose, parse_kitti_pose};
 pub use reader::{Dataset, SequenceReader};
 pub use seed_mix::{GOLDEN_GAMMA, fnv1a, splitmix64, splitmix64_finalize};

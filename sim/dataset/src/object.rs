@@ -72,6 +72,13 @@ pub struct ObjectTruth {
 /// Fastest an object may move, m/s: far above any road user (a record car is below 150 m/s).
 pub const MAX_OBJECT_SPEED_MPS: f64 = 1000.0;
 
+/// Largest object box side, metres: far above any vehicle (a road train is about 50 m).
+pub const MAX_OBJECT_SIZE_M: f64 = 1000.0;
+/// Fastest yaw rate an object may have, rad/s (a car turning hard stays below 3).
+const MAX_YAW_RATE_RADPS: f64 = 1000.0;
+/// Largest yaw or heading magnitude, radians (they are written within ±π).
+const MAX_ANGLE_RAD: f64 = 1000.0;
+
 impl ObjectTruth {
     /// What is wrong with this record, if anything: an id of 0 (the static world's instance) or
     /// a value that is not finite.
@@ -95,14 +102,40 @@ impl ObjectTruth {
             ]);
         let finite = values.clone().all(|v| v.is_finite());
         let sized = self.size_m.iter().all(|v| *v > 0.0) && self.speed_mps >= 0.0;
-        let velocity = self.velocity_mps.iter().map(|v| v * v).sum::<f64>().sqrt();
+        // hypot: a velocity of 4e250 m/s is named as such, not as "inf".
+        let velocity = self.velocity_mps.iter().fold(0.0f64, |a, v| a.hypot(*v));
         if finite && (velocity > MAX_OBJECT_SPEED_MPS || self.speed_mps > MAX_OBJECT_SPEED_MPS) {
             return Some(format!(
-                "object {} ({:?}) moves at {} m/s, more than the {MAX_OBJECT_SPEED_MPS} m/s any road user reaches",
+                "object {} ({:?}) moves at {:e} m/s, more than the {MAX_OBJECT_SPEED_MPS} m/s any road user reaches",
                 self.id,
                 self.name,
                 velocity.max(self.speed_mps)
             ));
+        }
+        let huge = |what: &str, v: f64, limit: f64, unit: &str| {
+            (v.abs() > limit).then(|| {
+                format!(
+                    "object {} ({:?}) has {what} {v:e} {unit}, beyond the ±{limit} {unit} any road user has",
+                    self.id, self.name
+                )
+            })
+        };
+        let absurd = self
+            .size_m
+            .iter()
+            .find_map(|&v| huge("a size of", v, MAX_OBJECT_SIZE_M, "m"))
+            .or_else(|| {
+                huge(
+                    "a yaw rate of",
+                    self.yaw_rate_radps,
+                    MAX_YAW_RATE_RADPS,
+                    "rad/s",
+                )
+            })
+            .or_else(|| huge("a yaw of", self.yaw_rad, MAX_ANGLE_RAD, "rad"))
+            .or_else(|| huge("a heading of", self.heading_rad, MAX_ANGLE_RAD, "rad"));
+        if finite && let Some(reason) = absurd {
+            return Some(reason);
         }
         let far = self
             .centre_m
@@ -131,8 +164,30 @@ mod tests {
     #[test]
     fn an_object_faster_than_any_road_user_is_refused() {
         let mut sweep = crate::reader::tests::sample_sweep(0);
-        sweep.objects[0].velocity_mps = [1e300, 0.0, 0.0];
+        sweep.objects[0].velocity_mps = [0.0, 4e250, 0.0];
         let reason = sweep.objects[0].problem().unwrap();
-        assert!(reason.contains("m/s"), "{reason}");
+        assert!(reason.contains("4e250 m/s"), "{reason}");
+    }
+
+    #[test]
+    fn an_astronomical_size_yaw_rate_or_heading_is_refused_naming_the_field() {
+        let base = crate::reader::tests::sample_sweep(0).objects[0].clone();
+        type Edit = fn(&mut super::ObjectTruth);
+        let cases: [(&str, Edit); 4] = [
+            ("size", |o| o.size_m[1] = 3e200),
+            ("yaw rate", |o| o.yaw_rate_radps = -1e250),
+            ("yaw", |o| o.yaw_rad = 7e120),
+            ("heading", |o| o.heading_rad = 1e300),
+        ];
+        for (field, edit) in cases {
+            let mut object = base.clone();
+            edit(&mut object);
+            let reason = object.problem().unwrap();
+            assert!(
+                reason.contains(field) && reason.contains("e"),
+                "{field}: {reason}"
+            );
+        }
+        assert_eq!(base.problem(), None);
     }
 }

@@ -102,6 +102,9 @@ pub struct SequenceReader {
     stamps_secs: Vec<f64>,
 }
 
+/// Largest time stamp magnitude in `times.txt`, seconds (about 32 years).
+const MAX_STAMP_SECS: f64 = 1e9;
+
 impl SequenceReader {
     /// Opens a sequence folder (`DIR/sequences/<name>`), checking the marker against the
     /// folder: one pose and one stamp per sweep, every sweep's files present, and the points
@@ -123,13 +126,26 @@ impl SequenceReader {
             .iter()
             .enumerate()
             .map(|(i, line)| match line.trim().parse::<f64>() {
-                Ok(t) if t.is_finite() => Ok(t),
+                Ok(t) if t.abs() <= MAX_STAMP_SECS => Ok(t),
                 _ => Err(DatasetError::corrupt(
                     &times_path,
-                    format!("line {}: not a finite number", i + 1),
+                    format!(
+                        "line {}: not a finite number within ±{MAX_STAMP_SECS:e} s",
+                        i + 1
+                    ),
                 )),
             })
             .collect::<Result<Vec<_>>>()?;
+        if let Some(i) = stamps_secs.windows(2).position(|w| w[1] <= w[0]) {
+            let reason = format!(
+                "line {}: time {} s does not follow line {}'s {} s (sweeps are in time order)",
+                i + 2,
+                stamps_secs[i + 1],
+                i + 1,
+                stamps_secs[i]
+            );
+            return Err(DatasetError::corrupt(&times_path, reason));
+        }
         for (path, count) in [(&poses_path, poses.len()), (&times_path, stamps_secs.len())] {
             if count != info.sweeps as usize {
                 let reason = format!("{count} lines, but the sequence has {} sweeps", info.sweeps);

@@ -49,8 +49,14 @@ pub(crate) fn read_words(path: &Path, per_record: usize, n: Option<usize>) -> Re
         .collect())
 }
 
-/// Like [`read_words`], as finite `f32` values.
-pub(crate) fn read_f32s(path: &Path, per_record: usize, n: Option<usize>) -> Result<Vec<f32>> {
+/// Like [`read_words`], as finite `f32` values of magnitude at most `limit` (what the file holds
+/// in physical sense, e.g. no 1e38 m/s flow), named with their `unit` in the error.
+pub(crate) fn read_f32s(
+    path: &Path,
+    per_record: usize,
+    n: Option<usize>,
+    (limit, unit): (f64, &str),
+) -> Result<Vec<f32>> {
     let values: Vec<f32> = read_words(path, per_record, n)?
         .into_iter()
         .map(f32::from_bits)
@@ -58,6 +64,14 @@ pub(crate) fn read_f32s(path: &Path, per_record: usize, n: Option<usize>) -> Res
     if let Some(k) = values.iter().position(|v| !v.is_finite()) {
         let reason = format!(
             "point {} holds {}, not a finite number",
+            k / per_record,
+            values[k]
+        );
+        return Err(DatasetError::corrupt(path, reason));
+    }
+    if let Some(k) = values.iter().position(|v| f64::from(v.abs()) > limit) {
+        let reason = format!(
+            "point {} holds {:e}, beyond the ±{limit} {unit} this file may hold",
             k / per_record,
             values[k]
         );

@@ -16,9 +16,13 @@ impl SequenceReader {
         let obstacles: Vec<StaticObstacle> = read_json_file(&path, "static-world truth")?;
         if let Some(i) = obstacles.iter().position(|o| {
             let numbers = o.centre_m.iter().chain(&o.size_m).chain([&o.yaw_rad]);
-            numbers.clone().any(|v| !v.is_finite()) || o.size_m.iter().any(|&v| v < 0.0)
+            let huge = numbers.clone().any(|v| v.abs() > crate::MAX_COORDINATE_M);
+            numbers.clone().any(|v| !v.is_finite()) || o.size_m.iter().any(|&v| v < 0.0) || huge
         }) {
-            let reason = format!("obstacle {i} has a non-finite number or a negative size");
+            let reason = format!(
+                "obstacle {i} has a non-finite number, a negative size or a value beyond ±{} m",
+                crate::MAX_COORDINATE_M
+            );
             return Err(DatasetError::corrupt(&path, reason));
         }
         Ok(obstacles)
@@ -91,5 +95,24 @@ mod tests {
         writer.write_sensor(&sensor).unwrap();
         assert_eq!(seq.static_obstacles().unwrap(), vec![wall]);
         assert_eq!(seq.sensor().unwrap(), sensor);
+    }
+
+    #[test]
+    fn a_static_obstacle_of_astronomical_size_or_place_is_refused_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        write_sequence(dir.path(), &[sample_sweep(0)]);
+        let seq = Dataset::open(dir.path()).unwrap().sequence("seq").unwrap();
+        let path = seq.dir().join(STATIC_JSON);
+        for text in [
+            r#"[{"semantic": 51, "centre_m": [1e300, 0, 1], "size_m": [1, 1, 1], "yaw_rad": 0, "exact": true}]"#,
+            r#"[{"semantic": 51, "centre_m": [3, 0, 1], "size_m": [1, 2e9, 1], "yaw_rad": 0, "exact": true}]"#,
+        ] {
+            std::fs::write(&path, text).unwrap();
+            let err = seq.static_obstacles().unwrap_err().to_string();
+            assert!(
+                err.contains("static.json") && err.contains("obstacle 0"),
+                "{err}"
+            );
+        }
     }
 }

@@ -1,6 +1,11 @@
 //! One lidar sweep: points in the sensor frame with per-point labels, flow and timing, plus object truth.
 
-use crate::{MAX_POINTS_PER_SWEEP, ObjectTruth, PointLabel, Pose};
+use crate::{MAX_OBJECT_SPEED_MPS, MAX_POINTS_PER_SWEEP, ObjectTruth, PointLabel, Pose};
+
+/// Largest intensity a point may carry (they are reflectivities near 0 to 1, or 0 to 255).
+const MAX_INTENSITY: f64 = 1e6;
+/// Latest a point may fire after its sweep's reference time, seconds (a turn takes 0.1 s).
+pub(crate) const MAX_TIME_IN_SWEEP_SECS: f64 = 3600.0;
 
 /// One labelled sweep as stored on disk (SPEC §4).
 ///
@@ -86,26 +91,44 @@ impl Sweep {
                 self.len()
             ));
         }
-        fn first_bad(name: &str, values: impl Iterator<Item = f32>, per: usize) -> Option<String> {
+        // Finite, and within physical sense: a 1e38 m/s flow is finite in f32 but no truth.
+        fn first_bad(
+            name: &str,
+            values: impl Iterator<Item = f32>,
+            per: usize,
+            (limit, unit): (f64, &str),
+        ) -> Option<String> {
             let mut values = values;
-            values
-                .position(|v| !v.is_finite())
-                .map(|k| format!("{name} of point {} is not finite", k / per))
+            let bad = |v: &f32| !v.is_finite() || f64::from(v.abs()) > limit;
+            values.position(|v| bad(&v)).map(|k| {
+                format!(
+                    "{name} of point {} is not finite or beyond ±{limit} {unit}",
+                    k / per
+                )
+            })
         }
         let problem = first_bad(
             "a coordinate",
             self.points_in_sensor.iter().flatten().copied(),
             3,
+            (crate::MAX_COORDINATE_M, "m"),
         )
-        .or_else(|| first_bad("the intensity", self.intensities.iter().copied(), 1))
+        .or_else(|| {
+            let intensities = self.intensities.iter().copied();
+            first_bad("the intensity", intensities, 1, (MAX_INTENSITY, ""))
+        })
         .or_else(|| {
             first_bad(
                 "the flow",
                 self.flow_in_world_mps.iter().flatten().copied(),
                 3,
+                (MAX_OBJECT_SPEED_MPS, "m/s"),
             )
         })
-        .or_else(|| first_bad("the time", self.time_in_sweep_secs.iter().copied(), 1))
+        .or_else(|| {
+            let times = self.time_in_sweep_secs.iter().copied();
+            first_bad("the time", times, 1, (MAX_TIME_IN_SWEEP_SECS, "s"))
+        })
         .or_else(|| self.objects.iter().find_map(ObjectTruth::problem));
         match problem {
             Some(reason) => Err(reason),

@@ -8,6 +8,15 @@ use std::path::{Path, PathBuf};
 
 use crate::limits::{MAX_JSON_BYTES, read_limited};
 use crate::record_files::{read_f32s, read_u16s, read_words};
+use crate::sweep::MAX_TIME_IN_SWEEP_SECS;
+
+/// What a `velodyne` file's values may reach: coordinates within the dataset's span (and
+/// intensities far below it).
+const VELODYNE_LIMIT: (f64, &str) = (crate::MAX_COORDINATE_M, "m");
+/// What a `flow` file's values may reach: no road user moves faster.
+const FLOW_LIMIT: (f64, &str) = (crate::MAX_OBJECT_SPEED_MPS, "m/s");
+/// What a `time` file's values may reach.
+const TIME_LIMIT: (f64, &str) = (MAX_TIME_IN_SWEEP_SECS, "s");
 use crate::sweep_checks::check_objects;
 use sha2::{Digest, Sha256};
 
@@ -36,15 +45,20 @@ pub(crate) const SWEEP_FILE_KINDS: [(&str, &str); 6] = [
 
 /// Reads sweep `i` of sequence folder `dir` with every check; errors name the file.
 pub(crate) fn read_sweep_files(dir: &Path, i: u32) -> Result<SweepFiles> {
-    let velodyne = read_f32s(&sweep_path(dir, "velodyne", i, "bin"), 4, None)?;
+    let velodyne = read_f32s(
+        &sweep_path(dir, "velodyne", i, "bin"),
+        4,
+        None,
+        VELODYNE_LIMIT,
+    )?;
     let n = velodyne.len() / 4;
     let labels_path = sweep_path(dir, "labels", i, "label");
     let labels: Vec<PointLabel> = read_words(&labels_path, 1, Some(n))?
         .into_iter()
         .map(PointLabel)
         .collect();
-    let flow = read_f32s(&sweep_path(dir, "flow", i, "bin"), 3, Some(n))?;
-    let time = read_f32s(&sweep_path(dir, "time", i, "bin"), 1, Some(n))?;
+    let flow = read_f32s(&sweep_path(dir, "flow", i, "bin"), 3, Some(n), FLOW_LIMIT)?;
+    let time = read_f32s(&sweep_path(dir, "time", i, "bin"), 1, Some(n), TIME_LIMIT)?;
     let ring_path = sweep_path(dir, "ring", i, "bin");
     let rings = match ring_path.is_file() {
         true => read_u16s(&ring_path, n)?,
@@ -122,6 +136,58 @@ pub(crate) fn sweep_path(dir: &Path, folder: &str, index: u32, ext: &str) -> Pat
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    use crate::reader::tests::{sample_sweep, write_sequence};
+
+    /// The error reading sweep 0 of `root`'s sequence `seq`, or opening it.
+    fn read_err(root: &Path) -> String {
+        let opened = crate::Dataset::open(root).and_then(|d| d.sequence("seq"));
+        match opened.and_then(|s| s.read_sweep(0)) {
+            Ok(_) => panic!("the sweep was read"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn finite_but_absurd_point_values_are_refused_naming_the_file_and_the_bound() {
+        // (file, value index, value): a flow of 3e38 m/s, a coordinate of 1e30 m, a time of 1e9 s.
+        for (file, k, value, unit) in [
+            ("flow", 0, 3e38f32, "m/s"),
+            ("flow", 4, -2000.0, "m/s"),
+            ("velodyne", 1, 1e30, "m"),
+            ("time", 0, 1e9, "s"),
+        ] {
+            let dir = tempfile::tempdir().unwrap();
+            write_sequence(dir.path(), &[sample_sweep(0), sample_sweep(1)]);
+            let path = dir.path().join(format!("sequences/seq/{file}/000000.bin"));
+            let mut bytes = std::fs::read(&path).unwrap();
+            bytes[4 * k..4 * k + 4].copy_from_slice(&value.to_le_bytes());
+            std::fs::write(&path, bytes).unwrap();
+            let err = read_err(dir.path());
+            assert!(
+                err.contains(&format!("{file}/000000.bin")) && err.contains(unit),
+                "{file}: {err}"
+            );
+        }
+    }
+
+    #[test]
+    fn times_beyond_the_bound_or_out_of_order_are_refused_naming_the_line() {
+        for (line, text) in [(2, "1e300"), (2, "-0.5"), (1, "4e9")] {
+            let dir = tempfile::tempdir().unwrap();
+            write_sequence(dir.path(), &[sample_sweep(0), sample_sweep(1)]);
+            let path = dir.path().join("sequences/seq/times.txt");
+            let old = std::fs::read_to_string(&path).unwrap();
+            let mut lines: Vec<&str> = old.lines().collect();
+            lines[line - 1] = text;
+            std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+            let err = read_err(dir.path());
+            assert!(
+                err.contains("times.txt") && err.contains(&format!("line {line}")),
+                "{text}: {err}"
+            );
+        }
+    }
 
     #[test]
     fn the_scenario_hash_is_what_sha256sum_prints() {

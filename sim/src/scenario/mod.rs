@@ -18,6 +18,7 @@ mod sensor_config;
 mod structure_config;
 mod traffic;
 mod vehicle_mesh;
+mod work_estimate;
 mod world_config;
 mod world_limits;
 
@@ -35,5 +36,6 @@ pub use sensor_config::{SensorConfig, SensorKnobs};
 pub use structure_config::{StructureConfig, StructureKind};
 pub use traffic::random_traffic;
 pub use vehicle_mesh::{MAX_MESH_TRIANGLES, VehicleMesh};
+pub use work_estimate::WorkEstimate;
 pub use world_config::{WorldConfig, WorldKnobs};
 pub(crate) use world_limits::{GROUND_CELL_M, MAX_GROUND_CELLS, lidar_reach};

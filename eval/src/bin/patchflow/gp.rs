@@ -165,7 +165,7 @@ fn refuse_astronomical_inputs(
             .find(|(_, v)| !v.is_finite() || v.abs() > MAX_GP_INPUT)
         {
             anyhow::bail!(
-                "{}: data row {}: column '{}' = {v} is beyond ±{MAX_GP_INPUT:e}, where a GP's distances overflow; no prediction written",
+                "{}: data row {}: column '{}' = {v:e} is beyond ±{MAX_GP_INPUT:e}, where a GP's distances overflow; no prediction written",
                 csv.display(),
                 row + 1,
                 names.get(col).map_or("?", String::as_str)

@@ -3,17 +3,36 @@
 //! those would print 300-digit numbers into reports, `null` into metrics.json and hang the
 //! plotting library (issue 26). The bound is `flow`'s: no road user moves at 1000 m/s.
 
-use patchflow_learn::ScanMotion;
+use patchflow_learn::{ClusterEstimate, ScanMotion};
 
 /// Fastest believable predicted speed, m/s (the bound `flow` and `score` use as well).
 pub(crate) const MAX_PREDICTED_MPS: f64 = 1000.0;
 
+/// Why a model's estimate for one cluster is not believable, or `None`: the check every
+/// estimator's target estimate passes, including those of estimators trained with other feature
+/// parameters than the first (they predict the target only, not the whole scan).
+pub(crate) fn implausible_estimate(estimate: &ClusterEstimate, what: &str) -> Option<String> {
+    [estimate.all, estimate.best]
+        .into_iter()
+        .flatten()
+        .find(|m| bad(m.heading_rad, m.speed_mps))
+        .map(|m| refusal(m.speed_mps, m.heading_rad, what))
+}
+
+fn bad(heading_rad: f64, speed_mps: f64) -> bool {
+    !heading_rad.is_finite() || !speed_mps.is_finite() || speed_mps.abs() > MAX_PREDICTED_MPS
+}
+
+fn refusal(speed: f64, heading: f64, what: &str) -> String {
+    format!(
+        "the model predicts a speed of {speed:e} m/s at heading {heading:e} rad for {what} \
+         (more than {MAX_PREDICTED_MPS} m/s, or not a number): the model file is broken"
+    )
+}
+
 /// Why `motion` is not believable, or `None` when every cluster's and point's heading is finite
 /// and its speed finite and at most [`MAX_PREDICTED_MPS`].
 pub(crate) fn implausible_motion(motion: &ScanMotion) -> Option<String> {
-    let bad = |heading_rad: f64, speed_mps: f64| {
-        !heading_rad.is_finite() || !speed_mps.is_finite() || speed_mps.abs() > MAX_PREDICTED_MPS
-    };
     let merged = motion.clusters.iter().enumerate().flat_map(|(c, e)| {
         e.iter()
             .flat_map(|e| [e.all, e.best])
@@ -28,12 +47,7 @@ pub(crate) fn implausible_motion(motion: &ScanMotion) -> Option<String> {
     merged
         .chain(points)
         .find(|(_, heading, speed)| bad(*heading, *speed))
-        .map(|(what, heading, speed)| {
-            format!(
-                "the model predicts a speed of {speed} m/s at heading {heading} rad for {what} \
-                 (more than {MAX_PREDICTED_MPS} m/s, or not a number): the model file is broken"
-            )
-        })
+        .map(|(what, heading, speed)| refusal(speed, heading, &what))
 }
 
 #[cfg(test)]
@@ -80,6 +94,18 @@ mod tests {
             reason.contains("cluster 1") && reason.contains("1000"),
             "{reason}"
         );
+    }
+
+    #[test]
+    fn a_target_estimate_of_any_estimator_is_checked_on_its_own() {
+        let estimate = motion(1e200).clusters[1].unwrap();
+        let reason = implausible_estimate(&estimate, "the target").unwrap();
+        assert!(
+            reason.contains("the target") && reason.contains("1e200"),
+            "{reason}"
+        );
+        let street = motion(12.0).clusters[1].unwrap();
+        assert_eq!(implausible_estimate(&street, "the target"), None);
     }
 
     #[test]
