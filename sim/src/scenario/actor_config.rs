@@ -8,7 +8,7 @@ use crate::motion::{Path, SpeedProfile, Trajectory};
 
 use super::bounds::{
     Bound, COORD_M, MAX_PATH_POINTS, SIZE_M, TIME_SECS, TURN_RADIUS_M, check_count,
-    reflectivity_problem,
+    reflectivity_problem, show,
 };
 
 /// Acceleration and braking limit of any actor.
@@ -220,7 +220,9 @@ impl ActorConfig {
                 "speed_mps",
                 format!(
                     "speed must be 0 to {} m/s for a {:?}, got {}",
-                    limits.max_speed_mps, self.class, self.speed_mps
+                    limits.max_speed_mps,
+                    self.class,
+                    show(self.speed_mps)
                 ),
             ));
         }
@@ -230,8 +232,10 @@ impl ActorConfig {
             out.push((
                 "initial_speed_mps",
                 format!(
-                    "speed must be 0 to {} m/s for a {:?}, got {v}",
-                    limits.max_speed_mps, self.class
+                    "speed must be 0 to {} m/s for a {:?}, got {}",
+                    limits.max_speed_mps,
+                    self.class,
+                    show(v)
                 ),
             ));
         }

@@ -43,6 +43,16 @@ fn a_negative_speed_is_rejected_with_its_line() {
 }
 
 #[test]
+fn an_astronomical_speed_is_named_in_a_few_characters() {
+    let (line, reason) = error_of(&with_actor(
+        "path_m = [[0.0, 5.0], [50.0, 5.0]]\nspeed_mps = 7e280",
+    ));
+    assert_eq!(line, 9);
+    assert!(reason.contains("got 7e280"), "{reason}");
+    assert!(reason.len() < 100, "{reason}");
+}
+
+#[test]
 fn a_path_with_one_point_is_rejected_with_its_line() {
     let (line, reason) = error_of(&with_actor("path_m = [[0.0, 5.0]]\nspeed_mps = 3.0"));
     assert_eq!(line, 8);
