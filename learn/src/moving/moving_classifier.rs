@@ -249,7 +249,8 @@ impl MovingClassifier {
             .collect())
     }
 
-    /// The probability above which a cluster is called moving ([`iou_threshold`]).
+    /// The probability above which a cluster is called moving: the one that maximised the moving
+    /// IoU on the training clusters (`decision_threshold.rs`).
     pub fn threshold(&self) -> f64 {
         self.threshold
     }
