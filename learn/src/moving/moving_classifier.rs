@@ -19,7 +19,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use super::change_evidence::{CHANGE_BASELINE_SCANS, ChangeEvidence};
-use super::cluster_inputs::{MOVING_INPUTS, cluster_inputs, cluster_is_moving};
+use super::cluster_inputs::{MOVING_INPUTS, cluster_inputs};
 use super::decision_threshold::{ScoredCluster, iou_threshold};
 use crate::{
     FeatureParams, FeatureValidParams, GpKind, GpParams, HeightSlice, LearnError, Result,
@@ -52,7 +52,7 @@ impl Default for MovingParams {
 pub struct MovingRow {
     /// Its [`cluster_inputs`].
     pub inputs: [f64; MOVING_INPUTS],
-    /// Whether most of its points move ([`cluster_is_moving`]).
+    /// Whether most of its points move ([`super::cluster_is_moving`]).
     pub moving: bool,
     /// Its points that truly move.
     pub moving_points: usize,
@@ -73,7 +73,8 @@ impl MovingRow {
             .count();
         Self {
             inputs: cluster_inputs(features, change, c),
-            moving: cluster_is_moving(features, sweep, c),
+            // As `cluster_is_moving`: most of its points move (counted once, above).
+            moving: 2 * moving_points > members.len(),
             moving_points,
             static_points: members.len() - moving_points,
         }

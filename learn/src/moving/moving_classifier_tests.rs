@@ -1,7 +1,7 @@
 //! Tests of the moving classifier: decisions on a scene with a moving and a parked car, the file.
 
 use super::*;
-use crate::moving::MOVING_FILE_NAME;
+use crate::moving::{MOVING_FILE_NAME, cluster_is_moving};
 use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
 
 /// Features of a scene with one car at `speed_mps` and one parked car, the observed change over
