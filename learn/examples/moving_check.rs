@@ -13,7 +13,8 @@ use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
 use patchflow_learn::{
-    ChangeEvidence, FeatureParams, MOVING_SPEED_MPS, MovingClassifier, MovingParams, ScanStream,
+    ChangeEvidence, FeatureParams, MOVING_SPEED_MPS, MovingBelief, MovingClassifier, MovingParams,
+    ScanStream,
 };
 
 type Failure = Box<dyn std::error::Error>;
@@ -47,16 +48,34 @@ fn main() -> Result<(), Failure> {
         "fitted on {rows} clusters ({moving_rows} moving); threshold {:.2}",
         classifier.threshold()
     );
+    if let Ok(list) = std::env::var("MEMORIES") {
+        let memories: Vec<f64> = list.split(',').filter_map(|v| v.parse().ok()).collect();
+        let split = std::env::var("SPLIT").unwrap_or_else(|_| "situations".into());
+        return sweep_memories(
+            &classifier,
+            &root.join("data").join(split),
+            &params,
+            &memories,
+        );
+    }
+    // BELIEF=γ smooths the probabilities along the clusters' own tracks (MovingBelief).
+    let memory: f64 = std::env::var("BELIEF")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.0);
+    println!("belief memory {memory}");
     let situations = Dataset::open(&root.join("data/situations"))?;
     let (mut scored, mut moving_total): (Vec<Scored>, u64) = (Vec::new(), 0);
     for info in situations.sequences() {
         let sequence = situations.sequence(&info.name)?;
         let mut stream = ScanStream::new(&sequence, vec![params.clone()])?;
         let (mut tp, mut fp, mut fn_) = (0u64, 0u64, 0u64);
+        let mut belief = MovingBelief::new(memory);
         while let Some((_, sweep)) = stream.read_next()? {
             let features = stream.features_of(&sweep)?.remove(0);
             let change = ChangeEvidence::of_stream(&stream).ok_or("no slice")?;
             let probabilities = classifier.cluster_probabilities(&features, &change)?;
+            let probabilities = belief.update_features(&features, &probabilities, sweep.stamp_secs);
             if std::env::var("TARGET").is_ok()
                 && let Some(target) = sweep.target()
             {
@@ -124,5 +143,61 @@ fn main() -> Result<(), Failure> {
         *by_class.entry(s.3).or_default() += s.2;
     }
     println!("static points called moving, by SemanticKITTI class: {by_class:?}");
+    Ok(())
+}
+
+/// MEMORIES=γ1,γ2,… (SPLIT=train|situations): the moving IoU per point over a split's sequences
+/// for each belief memory, from one pass of the classifier.
+fn sweep_memories(
+    classifier: &MovingClassifier,
+    folder: &std::path::Path,
+    params: &FeatureParams,
+    memories: &[f64],
+) -> Result<(), Failure> {
+    let data = Dataset::open(folder)?;
+    // Per memory: TP, FP, FN.
+    let mut tallies = vec![[0u64; 3]; memories.len()];
+    for info in data.sequences() {
+        let sequence = data.sequence(&info.name)?;
+        let mut stream = ScanStream::new(&sequence, vec![params.clone()])?;
+        let mut beliefs: Vec<MovingBelief> =
+            memories.iter().map(|&m| MovingBelief::new(m)).collect();
+        while let Some((_, sweep)) = stream.read_next()? {
+            let features = stream.features_of(&sweep)?.remove(0);
+            let change = ChangeEvidence::of_stream(&stream).ok_or("no slice")?;
+            let raw = classifier.cluster_probabilities(&features, &change)?;
+            let truly = |i: usize| {
+                let v = sweep.flow_in_world_mps[features.points()[i].index];
+                f64::from(v[0]).hypot(f64::from(v[1])) > MOVING_SPEED_MPS
+            };
+            let counts: Vec<(u64, u64)> = (0..raw.len())
+                .map(|c| {
+                    let members = features.clusters().members(c);
+                    let moving = members.iter().filter(|&&i| truly(i)).count() as u64;
+                    (moving, members.len() as u64)
+                })
+                .collect();
+            for (belief, tally) in beliefs.iter_mut().zip(&mut tallies) {
+                let p = belief.update_features(&features, &raw, sweep.stamp_secs);
+                for (c, &(moving, total)) in counts.iter().enumerate() {
+                    if p[c].is_some_and(|p| p > classifier.threshold()) {
+                        tally[0] += moving;
+                        tally[1] += total - moving;
+                    } else {
+                        tally[2] += moving;
+                    }
+                }
+            }
+        }
+        print!(".");
+    }
+    println!();
+    for (m, t) in memories.iter().zip(&tallies) {
+        let iou = t[0] as f64 / (t[0] + t[1] + t[2]).max(1) as f64;
+        println!(
+            "memory {m:.2}: TP {} FP {} FN {} IoU {iou:.3}",
+            t[0], t[1], t[2]
+        );
+    }
     Ok(())
 }

@@ -81,9 +81,9 @@ pub use estimator::{
 
 // ── Moving or static, learned (issue 27) ──────────────────────────────────────────────────
 pub use moving::{
-    CHANGE_BASELINE_SCANS, ChangeEvidence, MOVING_FILE_NAME, MOVING_FORMAT, MOVING_INPUT_NAMES,
-    MOVING_INPUTS, MOVING_SPEED_MPS, MOVING_VERSION, MovingClassifier, MovingParams, MovingRow,
-    cluster_inputs, cluster_is_moving,
+    BELIEF_MEMORY, CHANGE_BASELINE_SCANS, ChangeEvidence, MOVING_FILE_NAME, MOVING_FORMAT,
+    MOVING_INPUT_NAMES, MOVING_INPUTS, MOVING_SPEED_MPS, MOVING_VERSION, MovingBelief,
+    MovingClassifier, MovingParams, MovingRow, cluster_inputs, cluster_is_moving,
 };
 
 // ── The GPs (`patchflow-gp`) ─────────────────────────────────────────────────────────────────

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use patchflow_dataset::{Dataset, SequenceReader};
 use patchflow_learn::{
     ChangeEvidence, ClusterEstimate, FeatureParams, FeaturedSweep, MergeRule, MotionEstimator,
-    MovingClassifier, ScanStream,
+    MovingBelief, MovingClassifier, ScanStream,
 };
 use rayon::prelude::*;
 
@@ -121,6 +121,7 @@ fn evaluate_target(
     // Per scan: the target's moving decision; per run and scan: its first GP's ALL estimate.
     let mut target_moving: Vec<Option<bool>> = Vec::new();
     let mut target_all: Vec<Vec<Option<MotionEstimate>>> = vec![Vec::new(); runs.len()];
+    let mut belief = MovingBelief::default();
     let mut stream = ScanStream::new(sequence, params)?;
     while let Some((index, sweep)) = stream.read_next()? {
         let features = stream.features_of(&sweep)?;
@@ -137,12 +138,19 @@ fn evaluate_target(
             let target = observation.target_actor;
             observation.actors.retain(|&actor, _| Some(actor) == target);
             let change = moving.and_then(|_| ChangeEvidence::of_stream(&stream));
-            let decision = match (moving, change, observation.target_cluster()) {
-                (Some(classifier), Some(change), Some(c)) => {
-                    classifier.cluster_decisions(&scan.features[0], &change)?[c]
-                }
-                _ => None,
+            // Every cluster's decision, so that the belief follows every track.
+            let decisions = match (moving, change) {
+                (Some(classifier), Some(change)) => classifier.tracked_decisions(
+                    &mut belief,
+                    &scan.features[0],
+                    &change,
+                    scan.sweep.stamp_secs,
+                )?,
+                _ => Vec::new(),
             };
+            let decision = observation
+                .target_cluster()
+                .and_then(|c| decisions.get(c).copied().flatten());
             target_moving.push(decision);
             observations.push(observation);
         }

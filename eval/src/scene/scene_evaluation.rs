@@ -8,7 +8,7 @@ use std::time::Instant;
 use patchflow_dataset::SequenceReader;
 use patchflow_learn::{
     ChangeEvidence, ClusterEstimate, ClusterMotion, FeatureParams, FeaturedSweep, MotionEstimator,
-    MovingClassifier, ScanMotion, ScanStream, SweepFeatures,
+    MovingBelief, MovingClassifier, ScanMotion, ScanStream, SweepFeatures,
 };
 
 use crate::error::EvalError;
@@ -52,6 +52,8 @@ struct Scores {
 struct Trackers {
     baselines: BaselineTrackers,
     learned: LearnedTrackers,
+    /// The moving classifier's probabilities smoothed along the clusters' own tracks.
+    belief: MovingBelief,
 }
 
 /// Evaluates every estimator and baseline on one sequence. Scan `k` of the result is sweep
@@ -93,6 +95,7 @@ pub fn evaluate_sequence(
     let mut trackers = Trackers {
         baselines: BaselineTrackers::new(&name, baselines)?,
         learned: LearnedTrackers::new(baselines, VelocityFloors::default())?,
+        belief: MovingBelief::default(),
     };
     let mut scores = Scores {
         tallies: BTreeMap::new(),
@@ -199,7 +202,12 @@ fn evaluate_scan(
     // Moving or static, per object hypothesis (issue 27).
     let start = Instant::now();
     let decisions: Vec<Option<bool>> = match moving {
-        Some((classifier, change)) => classifier.cluster_decisions(features, change)?,
+        Some((classifier, change)) => classifier.tracked_decisions(
+            &mut trackers.belief,
+            features,
+            change,
+            scan.sweep.stamp_secs,
+        )?,
         None => vec![None; features.clusters().len()],
     };
     timing.segmentation_secs = start.elapsed().as_secs_f64();

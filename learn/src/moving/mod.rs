@@ -9,12 +9,14 @@
 //! | `change_evidence.rs` | m_t − m_{t−5} where both sweeps observed the cell |
 //! | `cluster_inputs.rs` | the classifier's inputs per cluster and the training label |
 //! | `decision_threshold.rs` | the threshold that maximises the moving IoU on the training mix |
+//! | `moving_belief.rs` | the per-scan probabilities smoothed along the clusters' own tracks |
 //! | `moving_classifier.rs` | training and the per-scan decision |
 //! | `moving_file.rs` | the model file |
 
 mod change_evidence;
 mod cluster_inputs;
 mod decision_threshold;
+mod moving_belief;
 mod moving_classifier;
 mod moving_file;
 
@@ -22,5 +24,6 @@ pub use change_evidence::{CHANGE_BASELINE_SCANS, ChangeEvidence};
 pub use cluster_inputs::{
     MOVING_INPUT_NAMES, MOVING_INPUTS, MOVING_SPEED_MPS, cluster_inputs, cluster_is_moving,
 };
+pub use moving_belief::{BELIEF_MEMORY, MovingBelief};
 pub use moving_classifier::{MovingClassifier, MovingParams, MovingRow};
 pub use moving_file::{MOVING_FILE_NAME, MOVING_FORMAT, MOVING_VERSION};

@@ -21,6 +21,7 @@ use rayon::prelude::*;
 use super::change_evidence::{CHANGE_BASELINE_SCANS, ChangeEvidence};
 use super::cluster_inputs::{MOVING_INPUTS, cluster_inputs};
 use super::decision_threshold::{ScoredCluster, iou_threshold};
+use super::moving_belief::MovingBelief;
 use crate::{
     FeatureParams, FeatureValidParams, GpKind, GpParams, HeightSlice, LearnError, Result,
     SweepFeatures,
@@ -245,6 +246,24 @@ impl MovingClassifier {
     ) -> Result<Vec<Option<bool>>> {
         Ok(self
             .cluster_probabilities(features, change)?
+            .into_iter()
+            .map(|p| p.map(|p| p > self.threshold))
+            .collect())
+    }
+
+    /// [`Self::cluster_decisions`] on the probabilities smoothed along the clusters' own tracks
+    /// ([`MovingBelief`]; the scans of one sequence in order, `stamp_secs` increasing): what the
+    /// benchmark's learned methods decide with.
+    pub fn tracked_decisions(
+        &self,
+        belief: &mut MovingBelief,
+        features: &SweepFeatures,
+        change: &ChangeEvidence,
+        stamp_secs: f64,
+    ) -> Result<Vec<Option<bool>>> {
+        let probabilities = self.cluster_probabilities(features, change)?;
+        Ok(belief
+            .update_features(features, &probabilities, stamp_secs)
             .into_iter()
             .map(|p| p.map(|p| p > self.threshold))
             .collect())

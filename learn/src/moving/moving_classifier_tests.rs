@@ -54,6 +54,44 @@ fn a_moving_car_is_decided_moving_and_a_parked_car_static() {
 }
 
 #[test]
+fn along_their_tracks_a_moving_car_stays_moving_and_a_parked_car_static() {
+    let classifier = trained();
+    let cars = SyntheticScene {
+        boxes: vec![
+            SceneBox::car(1, [13.0, 4.0], 0.3, 10.0),
+            SceneBox::car(2, [-13.0, -4.0], 1.2, 0.0),
+        ],
+    };
+    let lidar = SyntheticLidar::with_resolution(32, 720);
+    let valid = FeatureParams::default().check().unwrap();
+    let slice = |t: f64, index: u32| {
+        HeightSlice::cut(
+            &cars.advanced(t).scan(&lidar, [0.0, 0.0], 0.0, index),
+            &valid,
+        )
+        .unwrap()
+    };
+    let mut belief = MovingBelief::default();
+    for k in 5..12u32 {
+        let t = 0.1 * f64::from(k);
+        let now = cars.advanced(t).scan(&lidar, [0.0, 0.0], 0.0, k);
+        let current = HeightSlice::cut(&now, &valid).unwrap();
+        let f = SweepFeatures::from_slices(&slice(t - 0.1, k - 1), &current, &valid).unwrap();
+        let change = ChangeEvidence::build(&slice(t - 0.5, k - 5), &current, &valid);
+        let decisions = classifier
+            .tracked_decisions(&mut belief, &f, &change, t)
+            .unwrap();
+        for c in f.object_hypotheses() {
+            assert_eq!(
+                decisions[c],
+                Some(cluster_is_moving(&f, &now, c)),
+                "scan {k}, cluster {c}"
+            );
+        }
+    }
+}
+
+#[test]
 fn the_decision_threshold_lies_between_even_odds_and_certainty() {
     let t = trained().threshold();
     assert!((0.5..1.0).contains(&t), "threshold {t}");

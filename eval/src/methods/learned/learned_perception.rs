@@ -5,7 +5,7 @@
 //! (and the Criterion bench of the whole learned scan).
 
 use patchflow_learn::{
-    ChangeEvidence, MotionEstimator, MovingClassifier, ScanMotion, SweepFeatures,
+    ChangeEvidence, MotionEstimator, MovingBelief, MovingClassifier, ScanMotion, SweepFeatures,
 };
 
 use crate::error::EvalError;
@@ -35,6 +35,7 @@ pub struct LearnedScan {
 pub struct LearnedPerception<'a> {
     estimator: &'a MotionEstimator,
     moving: Option<&'a MovingClassifier>,
+    belief: MovingBelief,
     trackers: LearnedTrackers,
     scans: usize,
 }
@@ -49,6 +50,7 @@ impl<'a> LearnedPerception<'a> {
         Ok(Self {
             estimator,
             moving,
+            belief: MovingBelief::default(),
             trackers: LearnedTrackers::new(params, VelocityFloors::default())?,
             scans: 0,
         })
@@ -72,7 +74,9 @@ impl<'a> LearnedPerception<'a> {
             });
         }
         let moving: Vec<Option<bool>> = match self.moving {
-            Some(classifier) => classifier.cluster_decisions(features, change)?,
+            Some(classifier) => {
+                classifier.tracked_decisions(&mut self.belief, features, change, stamp_secs)?
+            }
             None => vec![None; features.clusters().len()],
         };
         let observation = ScanObservation {
