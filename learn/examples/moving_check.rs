@@ -155,8 +155,12 @@ fn sweep_memories(
     memories: &[f64],
 ) -> Result<(), Failure> {
     let data = Dataset::open(folder)?;
-    // Per memory: TP, FP, FN.
-    let mut tallies = vec![[0u64; 3]; memories.len()];
+    // THRESHOLDS=t1,t2,… besides the classifier's own; per memory and threshold: TP, FP, FN.
+    let mut thresholds = vec![classifier.threshold()];
+    if let Ok(list) = std::env::var("THRESHOLDS") {
+        thresholds.extend(list.split(',').filter_map(|v| v.parse::<f64>().ok()));
+    }
+    let mut tallies = vec![vec![[0u64; 3]; thresholds.len()]; memories.len()];
     for info in data.sequences() {
         let sequence = data.sequence(&info.name)?;
         let mut stream = ScanStream::new(&sequence, vec![params.clone()])?;
@@ -177,14 +181,16 @@ fn sweep_memories(
                     (moving, members.len() as u64)
                 })
                 .collect();
-            for (belief, tally) in beliefs.iter_mut().zip(&mut tallies) {
+            for (belief, per_threshold) in beliefs.iter_mut().zip(&mut tallies) {
                 let p = belief.update_features(&features, &raw, sweep.stamp_secs);
-                for (c, &(moving, total)) in counts.iter().enumerate() {
-                    if p[c].is_some_and(|p| p > classifier.threshold()) {
-                        tally[0] += moving;
-                        tally[1] += total - moving;
-                    } else {
-                        tally[2] += moving;
+                for (t, tally) in thresholds.iter().zip(per_threshold.iter_mut()) {
+                    for (c, &(moving, total)) in counts.iter().enumerate() {
+                        if p[c].is_some_and(|p| p > *t) {
+                            tally[0] += moving;
+                            tally[1] += total - moving;
+                        } else {
+                            tally[2] += moving;
+                        }
                     }
                 }
             }
@@ -192,12 +198,14 @@ fn sweep_memories(
         print!(".");
     }
     println!();
-    for (m, t) in memories.iter().zip(&tallies) {
-        let iou = t[0] as f64 / (t[0] + t[1] + t[2]).max(1) as f64;
-        println!(
-            "memory {m:.2}: TP {} FP {} FN {} IoU {iou:.3}",
-            t[0], t[1], t[2]
-        );
+    for (m, per_threshold) in memories.iter().zip(&tallies) {
+        for (threshold, t) in thresholds.iter().zip(per_threshold) {
+            let iou = t[0] as f64 / (t[0] + t[1] + t[2]).max(1) as f64;
+            println!(
+                "memory {m:.2} threshold {threshold:.2}: TP {} FP {} FN {} IoU {iou:.3}",
+                t[0], t[1], t[2]
+            );
+        }
     }
     Ok(())
 }
