@@ -4,7 +4,8 @@
 //! `v = s·(cos h, sin h)`; its covariance by first-order propagation,
 //! `Σ_v = J diag(σ_s², σ_h²) Jᵀ`, `J = [[cos h, −s sin h], [sin h, s cos h]]`. The merged
 //! variances are products over hundreds of points that are far from independent, so they are
-//! floored (`min_heading_std_rad`, `min_speed_std_mps`) before they enter the filter.
+//! floored (`min_heading_std_rad`, `min_speed_std_mps`) before they enter the filter; a cluster the
+//! moving classifier calls static is measured at rest with the speed floor.
 
 use nalgebra::Matrix2;
 
@@ -77,6 +78,14 @@ impl VelocityMeasurement {
         Self {
             velocity_xy_mps: [speed * c, speed * s],
             covariance: j * d * j.transpose(),
+        }
+    }
+
+    /// A measurement at rest, `min_speed_std_mps` per axis.
+    pub fn at_rest(floors: &VelocityFloors) -> Self {
+        Self {
+            velocity_xy_mps: [0.0, 0.0],
+            covariance: Matrix2::identity() * floors.min_speed_std_mps.powi(2),
         }
     }
 }

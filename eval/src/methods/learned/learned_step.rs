@@ -11,8 +11,8 @@
 //!   local minimum nearest its start, so neither start alone is safe: the centroid shift is off
 //!   when the visible side of an object changes, the GP's motion when the GP is.
 //!
-//! With a moving classifier, a cluster decided static gets zero flow from both (GP-KF's track
-//! goes on measuring the GP, so that a decision flipping back finds its motion model intact). Neither reads the truth: the target id only picks the estimate to score.
+//! With a moving classifier, a cluster decided static is measured at rest by GP-KF and gets zero
+//! flow from both. Neither reads the truth: the target id only picks the estimate to score.
 
 use std::collections::BTreeMap;
 
@@ -97,12 +97,14 @@ impl LearnedTrackers {
     ) -> Result<Vec<Option<ClusterFlow>>, EvalError> {
         let n = scan.clusters.len();
         let of = |c: usize| learned.get(c).copied().unwrap_or_default();
-        // GP-KF: the centroid and, where the GP speaks, the velocity. The moving decision gates
-        // what a track reports, not what it measures: a track the decision flips on and off keeps
-        // one continuous motion model instead of being pulled to rest and back.
+        // GP-KF: the centroid and, where the GP or the classifier speaks, the velocity.
         let velocities: Vec<Option<VelocityMeasurement>> = (0..n)
             .map(|c| {
-                let gp = of(c).gp?;
+                let cluster = of(c);
+                if cluster.moving == Some(false) {
+                    return Some(VelocityMeasurement::at_rest(&self.floors));
+                }
+                let gp = cluster.gp?;
                 Some(VelocityMeasurement::from_heading_speed(
                     gp.heading_rad,
                     gp.heading_var?,
