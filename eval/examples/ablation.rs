@@ -11,8 +11,9 @@
 //! DIRs are `bench --quick --keep-data`'s `data/situations` and `data/train`; the default sizes are
 //! `bench --quick`'s. Variants: `default`, `thesis` (its own draws, no speed jitter), `zero-mean`,
 //! `pls<K>` (e.g. `pls20`), `mlhgp`, joined with `+` (`pls20+mlhgp`), and `x<F>` to train on F
-//! times the samples (`pls20+x3`; the samples drawn once at the largest size, each variant
-//! taking the first ones).
+//! times the samples (`pls20+x3`; each sample count is its own importance draw, as `bench`
+//! draws it: a set's samples are in dataset order, so the first N of a larger draw would hold
+//! only the first tracks' samples).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -83,18 +84,24 @@ fn main() -> Result<(), Failure> {
         .iter()
         .map(|n| variant(n, &base))
         .collect::<Result<_, _>>()?;
-    let most = variants.iter().map(|v| v.1).max().unwrap_or(1);
-    // One pass over the training maps per feature setting, every seed at once.
+    // One pass over the training maps per sample count and feature setting, every seed at once.
     let draws: Vec<(f64, u64)> = seeds.iter().map(|&s| (0.5, s)).collect();
     let clock = std::time::Instant::now();
-    let default_sets = SampleSet::collect_draws(
-        &train,
-        &base.features,
-        &draws,
-        FeatureKind::Patch,
-        base.samples * most,
-        &|_, _| {},
-    )?;
+    let mut factors: Vec<usize> = variants.iter().filter(|v| !v.2).map(|v| v.1).collect();
+    factors.sort_unstable();
+    factors.dedup();
+    let mut default_sets: BTreeMap<usize, Vec<SampleSet>> = BTreeMap::new();
+    for &factor in &factors {
+        let sets = SampleSet::collect_draws(
+            &train,
+            &base.features,
+            &draws,
+            FeatureKind::Patch,
+            base.samples * factor,
+            &|_, _| {},
+        )?;
+        default_sets.insert(factor, sets);
+    }
     let thesis_sets = if variants.iter().any(|v| v.2) {
         SampleSet::collect_draws(
             &train,
@@ -115,19 +122,20 @@ fn main() -> Result<(), Failure> {
     let models = jobs
         .par_iter()
         .map(|&(v, s)| {
-            let (params, _, thesis) = &variants[v];
+            let (params, factor, thesis) = &variants[v];
             let set = if *thesis {
-                &thesis_sets[s]
+                thesis_sets.get(s)
             } else {
-                &default_sets[s]
-            };
+                default_sets.get(factor).and_then(|sets| sets.get(s))
+            }
+            .ok_or_else(|| "no sample set drawn for a variant".to_owned())?;
             let params = EstimatorParams {
                 seed: seeds[s],
                 ..params.clone()
             };
-            MotionEstimator::fit_samples(set, &params)
+            MotionEstimator::fit_samples(set, &params).map_err(|e| e.to_string())
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, String>>()?;
     eprintln!(
         "{} models fitted in {:.1} s",
         models.len(),
@@ -154,7 +162,7 @@ fn main() -> Result<(), Failure> {
     }
     let stats = |xs: &[f64]| {
         let mean = xs.iter().sum::<f64>() / xs.len() as f64;
-        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / xs.len().max(2) as f64;
+        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (xs.len().max(2) - 1) as f64;
         (mean, var.sqrt())
     };
     let situation_names: Vec<String> = figures

@@ -13,7 +13,7 @@ use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 use crate::bench::notes::notes;
 use crate::bench::run_report::write_run_report;
 use crate::bench::seed_spread::SeedSpread;
-use crate::bench::training::{first, target_runs_with_thesis, train_seeds};
+use crate::bench::training::{first, target_runs_with_thesis, thesis_tracks, train_seeds};
 use crate::cv::cv_report::CvReport;
 use crate::error::EvalError;
 use crate::methods::method::Method;
@@ -115,11 +115,16 @@ pub fn run_bench(
         sets = collect_draws_with_bar(&train, &draws, plan.samples)?;
         further_sets = sets.split_off(plan.cv.priors.len());
         // The thesis preset's own draws: its speed patches carry no heading jitter.
+        // They come from the thesis' data alone: the nine tracks, not the generated traffic.
         if plan.thesis_preset {
             let thesis = EstimatorParams::thesis();
             let draws: Vec<(f64, u64)> = seeds.iter().map(|&seed| (0.5, seed)).collect();
-            thesis_sets =
-                collect_feature_draws_with_bar(&train, &thesis.features, &draws, plan.samples)?;
+            thesis_sets = collect_feature_draws_with_bar(
+                &thesis_tracks(&train)?,
+                &thesis.features,
+                &draws,
+                plan.samples,
+            )?;
         }
         Ok(())
     })?;
@@ -137,7 +142,14 @@ pub fn run_bench(
             draws.extend(further_sets.iter().zip(further_seeds.iter().copied()));
             let thesis_draws: Vec<(&SampleSet, u64)> =
                 thesis_sets.iter().zip(seeds.iter().copied()).collect();
-            let (runs, thesis_runs) = train_seeds(&train, &draws, &thesis_draws, plan, out)?;
+            let (runs, thesis_runs) = train_seeds(
+                &train,
+                &thesis_tracks(&train)?,
+                &draws,
+                &thesis_draws,
+                plan,
+                out,
+            )?;
             let mut runs = runs.into_iter();
             estimators = runs.next().unwrap_or_default();
             further = runs.collect();

@@ -1,6 +1,6 @@
 //! The GP fits of a benchmark run: one estimator per GP kind and training seed (thesis 3.1.3),
-//! the thesis preset's models beside them, all fitted in parallel and saved under `OUT/models`;
-//! and how the further seeds' target runs pair them.
+//! the thesis preset's models beside them (on the nine tracks only), all fitted in parallel and
+//! saved under `OUT/models`; and how the further seeds' target runs pair them.
 
 use std::path::Path;
 
@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::bench::run_files::model_file;
 use crate::error::EvalError;
-use crate::pipeline::plan::BenchPlan;
+use crate::pipeline::plan::{BenchPlan, THESIS_TRACKS};
 use crate::pipeline::progress::spinner;
 
 /// Trains one estimator per GP kind of the plan for each `(samples, seed)` draw, all fits in
@@ -18,6 +18,7 @@ use crate::pipeline::progress::spinner;
 /// them to `out/models`; one vector per draw, GP kinds in plan order.
 pub(crate) fn train_seeds(
     dataset: &Dataset,
+    thesis_dataset: &Dataset,
     draws: &[(&SampleSet, u64)],
     thesis_draws: &[(&SampleSet, u64)],
     plan: &BenchPlan,
@@ -55,7 +56,8 @@ pub(crate) fn train_seeds(
                 seed,
                 ..base
             };
-            MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(dataset))
+            let data = if thesis { thesis_dataset } else { dataset };
+            MotionEstimator::fit_samples(set, &params).map(|e| e.with_sequences(data))
         })
         .collect::<Result<Vec<_>, _>>();
     spinner.finish_and_clear();
@@ -72,6 +74,12 @@ pub(crate) fn train_seeds(
         }
     }
     Ok((runs, thesis_runs))
+}
+
+/// The thesis preset's training data in `train`: its sequences named in [`THESIS_TRACKS`] (the
+/// thesis' data as the nine tracks hold it; the generated training traffic is the default's).
+pub(crate) fn thesis_tracks(train: &Dataset) -> Result<Dataset, EvalError> {
+    Ok(train.restricted_to(&|name| THESIS_TRACKS.contains(&name))?)
 }
 
 /// The target runs of the further seeds with the thesis preset's models: the first seed's

@@ -48,6 +48,24 @@ impl Dataset {
         })
     }
 
+    /// The same dataset with only the sequences whose names `keep` accepts (e.g. the thesis
+    /// preset's nine training tracks of a folder that holds more); an error naming the folder if
+    /// none is left.
+    pub fn restricted_to(&self, keep: &dyn Fn(&str) -> bool) -> Result<Self> {
+        let mut manifest = self.manifest.clone();
+        manifest.sequences.retain(|s| keep(&s.name));
+        if manifest.sequences.is_empty() {
+            return Err(DatasetError::Missing {
+                path: self.root.join("sequences"),
+                what: "sequence of the requested ones".into(),
+            });
+        }
+        Ok(Self {
+            root: self.root.clone(),
+            manifest,
+        })
+    }
+
     /// The dataset folder.
     pub fn root(&self) -> &Path {
         &self.root

@@ -81,6 +81,17 @@ fn a_written_sequence_reads_back_identically() {
 }
 
 #[test]
+fn a_restricted_dataset_lists_only_the_kept_sequences_and_refuses_to_be_empty() {
+    let dir = tempfile::tempdir().unwrap();
+    write_sequence(dir.path(), &[sample_sweep(0)]);
+    let dataset = Dataset::open(dir.path()).unwrap();
+    let kept = dataset.restricted_to(&|name| name == "seq").unwrap();
+    assert_eq!(kept.sequences().len(), 1);
+    let err = dataset.restricted_to(&|_| false).unwrap_err().to_string();
+    assert!(err.contains("sequences"), "{err}");
+}
+
+#[test]
 fn without_an_estimate_file_the_estimated_poses_are_the_truth() {
     let dir = tempfile::tempdir().unwrap();
     write_sequence(dir.path(), &[sample_sweep(0), sample_sweep(1)]);

@@ -1,8 +1,12 @@
 //! The shipped scenario files, embedded in the binary so `patchflow generate` works anywhere.
 
 /// `(name, TOML text)` of every shipped scenario, sorted by name: the five evaluation situations
-/// and the nine training tracks. (`scenarios/tiny.toml`, for tests, is not among them.)
-pub const EMBEDDED_SCENARIOS: [(&str, &str); 14] = [
+/// and the training tracks: the nine of SPEC §3 (`train01` … `train09`, the thesis preset's data)
+/// and the training traffic of issue 24 (`train10`, `train12`: cross traffic of both directions
+/// between parked cars at 10-45 m; docs/estimator.md, "Training at simulator scale").
+/// (`scenarios/tiny.toml`, for tests, the `traffic_*` tracks, measured but not adopted, and the
+/// `unseen_*` checks, which no model may train on, are not among them.)
+pub const EMBEDDED_SCENARIOS: [(&str, &str); 16] = [
     (
         "situation1",
         include_str!("../../../scenarios/situation1.toml"),
@@ -32,6 +36,8 @@ pub const EMBEDDED_SCENARIOS: [(&str, &str); 14] = [
     ("train07", include_str!("../../../scenarios/train07.toml")),
     ("train08", include_str!("../../../scenarios/train08.toml")),
     ("train09", include_str!("../../../scenarios/train09.toml")),
+    ("train10", include_str!("../../../scenarios/train10.toml")),
+    ("train12", include_str!("../../../scenarios/train12.toml")),
 ];
 
 /// `(name, TOML text)` of the shipped occupancy-map scenarios (the DGPOM paper's T-junction with
