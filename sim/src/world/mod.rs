@@ -39,11 +39,13 @@ pub use surface::{Glass, Material, Surface, SurfaceKind};
 // Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
 // heights and materials); a larger reach gets larger cells.
 use crate::scenario::{
-    ActorConfig, GROUND_CELL_M, MAX_GROUND_CELLS, Scenario, StructureKind, lidar_reach,
+    ActorConfig, GROUND_CELL_M, MAX_GROUND_CELLS, Scenario, StructureKind, VehicleBody, fleet_key,
+    lidar_reach,
 };
 use crate::seed::{hash_name, mix, sub_seed};
 use clearance::Clearance;
 use ground_field::GroundRecipe;
+use patchflow_dataset::ActorClass;
 use street_furniture::SideBuilder;
 use street_map::{Street, StreetMap};
 
@@ -183,8 +185,16 @@ fn structure_pieces(scenario: &Scenario, field: &GroundField, seed: u64) -> Vec<
                     ));
                 }
                 StructureKind::ParkedCar if knobs.shapes => {
+                    let drawn = (knobs.fleet && structure.size_m.is_none())
+                        .then(|| {
+                            let place = format!("structures[{i}][{j}]");
+                            let key = fleet_key(seed, &scenario.name, &place);
+                            VehicleBody::draw(ActorClass::Car, None, key)
+                        })
+                        .flatten();
+                    let body = drawn.map_or((size, None), |b| (b.size_m, Some(b.belt_m)));
                     out.extend(body_shapes::parked_car_parts(
-                        size,
+                        body,
                         reflectivity as f32,
                         [c[0], c[1]],
                         yaw,
