@@ -227,9 +227,17 @@ pub(crate) fn reopen_for_fleet(actors: &mut [ActorConfig]) {
     }
 }
 
-/// The stream of the vehicle `vehicle` (an actor's name, or a parked car's place) of `scenario`
-/// under run seed `seed`.
-pub(crate) fn fleet_key(seed: u64, scenario: &str, vehicle: &str) -> u64 {
+/// The stream of the vehicle `vehicle` (an actor's name, or `structures[i][j]` for box `j` of
+/// the `i`-th structure entry, a parked car) of `scenario` under run seed `seed`: with it,
+/// [`VehicleBody::draw`] gives the body a generated sequence holds.
+///
+/// ```
+/// use patchflow_sim::{CarModel, VehicleBody, dataset::ActorClass, fleet_key};
+/// let key = fleet_key(7, "situation1", "oncoming");
+/// let body = VehicleBody::draw(ActorClass::Car, Some(CarModel::Sedan), key);
+/// assert!(body.is_some_and(|b| (4.2..5.1).contains(&b.size_m[0])));
+/// ```
+pub fn fleet_key(seed: u64, scenario: &str, vehicle: &str) -> u64 {
     sub_seed(
         mix(seed ^ hash_name(scenario)),
         0xF1EE7 ^ hash_name(vehicle),
