@@ -39,12 +39,13 @@ pub use memory_budget::{MemoryBudget, memory_budget};
 pub use motion::MOVING_SPEED_MPS;
 pub use motion::{MotionState, Path, PathPoint, ProfileState, SpeedProfile, Trajectory};
 pub use patchflow_dataset as dataset;
+pub use scenario::fleet_key;
 pub use scenario::{
     ActorConfig, CarModel, EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, ElevationSpacing,
     LidarConfig, MAX_MESH_TRIANGLES, PLANAR_BEAMS, PLANAR_FOV_DEG, PLANAR_MAX_RANGE_M,
     PLANAR_MOUNT_HEIGHT_M, PoseErrorConfig, PoseErrorKnobs, Realism, RoadConfig, Scenario,
     SensorConfig, SensorKind, SensorKnobs, StructureConfig, StructureKind, TrafficConfig,
-    VehicleMesh, WorkEstimate, WorldConfig, WorldKnobs,
+    VehicleBody, VehicleMesh, WorkEstimate, WorldConfig, WorldKnobs,
 };
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;

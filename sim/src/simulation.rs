@@ -7,7 +7,7 @@ use patchflow_dataset::{ObjectTruth, Pose, Sweep};
 use crate::error::Result;
 use crate::lidar::Lidar;
 use crate::motion::{MOVING_SPEED_MPS, MotionState};
-use crate::scenario::{ActorConfig, Scenario, random_traffic};
+use crate::scenario::{ActorConfig, Scenario, random_traffic, reopen_for_fleet};
 use crate::scene::{Scene, SceneActor};
 use crate::seed::sweep_key;
 
@@ -34,12 +34,11 @@ impl Simulation {
         scenario.validate()?;
         let mut actors: Vec<ActorConfig> = scenario.actors.clone();
         let horizon_secs = scenario.sweep_start_secs(scenario.sweeps) + 1.0;
-        actors.extend(random_traffic(
-            &scenario.traffic,
-            seed,
-            &scenario.name,
-            horizon_secs,
-        ));
+        let mut traffic = random_traffic(&scenario.traffic, seed, &scenario.name, horizon_secs);
+        if scenario.world.knobs().fleet {
+            reopen_for_fleet(&mut traffic);
+        }
+        actors.extend(traffic);
         let scene = Scene::build_seeded(scenario, &actors, seed)?;
         Ok(Self {
             scenario: scenario.clone(),
@@ -194,6 +193,28 @@ mod tests {
     }
 
     #[test]
+    fn on_urban_the_object_size_is_the_drawn_body_and_an_explicit_size_is_kept() {
+        let drawn = crate::scenario::VehicleBody::draw(
+            patchflow_dataset::ActorClass::Car,
+            None,
+            crate::scenario::fleet_key(5, "tiny", "crossing"),
+        )
+        .unwrap();
+        let target = tiny("").sweep(0).target().unwrap().clone();
+        assert_eq!(target.size_m, drawn.size_m);
+        assert_ne!(target.size_m, [4.7, 1.8, 1.45]);
+        let text = TINY.replace(
+            "target = true\n",
+            "target = true\nsize_m = [4.2, 1.75, 1.5]\n",
+        );
+        let scenario = Scenario::from_toml(&text, "tiny.toml", "tiny").unwrap();
+        let sweep = Simulation::new(&scenario, 5).unwrap().sweep(0);
+        assert_eq!(sweep.target().unwrap().size_m, [4.2, 1.75, 1.5]);
+        let ideal = tiny("realism = \"ideal\"").sweep(0);
+        assert_eq!(ideal.target().unwrap().size_m, [4.7, 1.8, 1.45]);
+    }
+
+    #[test]
     fn no_point_lies_inside_the_ego_car() {
         let mut sim = tiny("");
         let sweep = sim.sweep(2);
@@ -273,10 +294,12 @@ mod tests {
         let without_counts = |s: &Sweep| {
             let mut objects = s.objects.clone();
             // The street world is drawn from the seed, and each actor stands on its ground:
-            // only the height of a box centre may change with it.
+            // only the height of a box centre may change with it; so does the body the fleet
+            // draws for a car without a size.
             objects.iter_mut().for_each(|o| {
                 o.point_count = 0;
                 o.centre_m[2] = 0.0;
+                o.size_m = [0.0; 3];
             });
             objects
         };

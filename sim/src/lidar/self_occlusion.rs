@@ -24,7 +24,7 @@ pub(super) fn occluded_beams(rays: &[Vector], ego: &ActorConfig, mount_height_m:
         return vec![false; rays.len()];
     }
     let drop_m = (mount_height_m - size[2] / 2.0) as f32;
-    let body: Vec<GridPiece> = body_parts(ego.class, size, 0.5)
+    let body: Vec<GridPiece> = body_parts(ego.class, size, None, 0.5)
         .into_iter()
         .filter_map(|mut part| {
             // Box frame (origin at the box centre) to the sensor frame.

@@ -158,12 +158,24 @@ impl ActorConfig {
 
     /// Fills every optional field with its class default, so the written scenario is explicit.
     pub(crate) fn resolve(&mut self) {
+        self.resolve_in(false);
+    }
+
+    /// [`ActorConfig::resolve`] on a world whose `fleet` knob is `fleet`: there a car or truck
+    /// without `size_m` keeps none (and a car without `model` none), since its body is drawn
+    /// per vehicle from the run seed when the scene is built (`VehicleBody`).
+    pub(crate) fn resolve_in(&mut self, fleet: bool) {
         let limits = class_limits(self.class);
-        if self.class == ActorClass::Car && self.model.is_none() && self.size_m.is_none() {
-            self.model = Some(CarModel::Sedan);
+        let drawn = fleet
+            && self.size_m.is_none()
+            && matches!(self.class, ActorClass::Car | ActorClass::Truck);
+        if !drawn {
+            if self.class == ActorClass::Car && self.model.is_none() && self.size_m.is_none() {
+                self.model = Some(CarModel::Sedan);
+            }
+            self.size_m
+                .get_or_insert(default_size(self.class, self.model));
         }
-        self.size_m
-            .get_or_insert(default_size(self.class, self.model));
         self.turn_radius_m.get_or_insert(limits.turn_radius_m);
         self.initial_speed_mps.get_or_insert(self.speed_mps);
         self.accel_mps2.get_or_insert(limits.accel_mps2);

@@ -103,20 +103,22 @@ impl Scenario {
 
     /// Fills every optional field with its default.
     fn resolve(&mut self) {
+        self.world.resolve(self.realism);
+        let fleet = self.world.knobs().fleet;
+        // The ego car is the sensor's own car: one fixed body on every rung.
         self.ego.resolve();
         if self.ego.name.is_empty() {
             self.ego.name = "ego".to_owned();
         }
         for (i, actor) in self.actors.iter_mut().enumerate() {
-            actor.resolve();
+            actor.resolve_in(fleet);
             if actor.name.is_empty() {
                 actor.name = format!("actor{}", i + 1);
             }
         }
         for structure in &mut self.structures {
-            structure.resolve();
+            structure.resolve(fleet);
         }
-        self.world.resolve(self.realism);
         self.sensor.resolve(self.realism);
         self.pose_error.resolve(self.realism);
     }

@@ -86,9 +86,15 @@ impl StructureKind {
 }
 
 impl StructureConfig {
-    /// Fills size, spacing and reflectivity with their defaults.
-    pub(crate) fn resolve(&mut self) {
-        let size = *self.size_m.get_or_insert(self.kind.default_size());
+    /// Fills size, spacing and reflectivity with their defaults; on a world whose `fleet` knob is
+    /// on, a parked car without `size_m` keeps none (each car's body is drawn when the world is
+    /// built, `VehicleBody`) and a row of them is spaced by the default size.
+    pub(crate) fn resolve(&mut self, fleet: bool) {
+        let size = if fleet && self.kind == StructureKind::ParkedCar {
+            self.size_m.unwrap_or(self.kind.default_size())
+        } else {
+            *self.size_m.get_or_insert(self.kind.default_size())
+        };
         if self.repeat_to_m.is_some() {
             self.spacing_m.get_or_insert(size[0] + 1.0);
         }

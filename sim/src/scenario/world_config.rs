@@ -45,6 +45,10 @@ pub struct WorldConfig {
     /// Vehicles, cyclists and pedestrians as compound shapes instead of boxes.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shapes: Option<bool>,
+    /// Cars and trucks without an explicit `size_m` get their dimensions and belt-line height
+    /// drawn per vehicle from published fleet statistics (`VehicleBody`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fleet: Option<bool>,
 }
 
 /// The resolved `[world]` knobs as plain values.
@@ -72,6 +76,8 @@ pub struct WorldKnobs {
     pub facade_detail: bool,
     /// See [`WorldConfig::shapes`].
     pub shapes: bool,
+    /// See [`WorldConfig::fleet`].
+    pub fleet: bool,
 }
 
 impl WorldKnobs {
@@ -90,6 +96,7 @@ impl WorldKnobs {
                 parked_cars_per_100m: 0.0,
                 facade_detail: false,
                 shapes: false,
+                fleet: false,
             },
             Realism::Urban => Self {
                 camber: 0.02,
@@ -103,6 +110,7 @@ impl WorldKnobs {
                 parked_cars_per_100m: 15.0,
                 facade_detail: true,
                 shapes: true,
+                fleet: true,
             },
             Realism::Harsh => Self {
                 camber: 0.03,
@@ -116,6 +124,7 @@ impl WorldKnobs {
                 parked_cars_per_100m: 16.0,
                 facade_detail: true,
                 shapes: true,
+                fleet: true,
             },
         }
     }
@@ -146,6 +155,7 @@ impl WorldConfig {
             .get_or_insert(k.parked_cars_per_100m);
         self.facade_detail.get_or_insert(k.facade_detail);
         self.shapes.get_or_insert(k.shapes);
+        self.fleet.get_or_insert(k.fleet);
     }
 
     /// The knobs as plain values (those still missing from the `urban` rung).
@@ -163,6 +173,7 @@ impl WorldConfig {
             parked_cars_per_100m: self.parked_cars_per_100m.unwrap_or(k.parked_cars_per_100m),
             facade_detail: self.facade_detail.unwrap_or(k.facade_detail),
             shapes: self.shapes.unwrap_or(k.shapes),
+            fleet: self.fleet.unwrap_or(k.fleet),
         }
     }
 

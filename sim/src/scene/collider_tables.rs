@@ -114,13 +114,14 @@ impl ColliderTables {
 
     /// Adds a kinematic body for an actor (or the ego car, `index = None`): one cuboid collider,
     /// or with `shapes` one collider per part of its class's shape (the ego car stays a box: its
-    /// own lidar never sees it). Returns the actor. An error names the bad field.
+    /// own lidar never sees it), its side glass from `belt_m` up where the fleet drew it.
+    /// Returns the actor. An error names the bad field.
     pub(super) fn add_actor(
         &mut self,
         config: &ActorConfig,
-        id: u16,
-        index: Option<usize>,
+        (id, index): (u16, Option<usize>),
         shapes: bool,
+        belt_m: Option<f64>,
     ) -> std::result::Result<SceneActor, String> {
         let size = config.size_m.unwrap_or([4.5, 1.8, 1.5]);
         let trajectory = config
@@ -158,7 +159,7 @@ impl ColliderTables {
             return Ok(self.scene_actor(config, id, size, trajectory, body));
         }
         let parts = if shapes && index.is_some() {
-            body_parts(config.class, size, reflectivity)
+            body_parts(config.class, size, belt_m, reflectivity)
         } else {
             vec![Piece::block(
                 [0.0; 2],

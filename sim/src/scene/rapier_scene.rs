@@ -12,7 +12,7 @@ use super::ray_tree::RayTree;
 use super::{SceneActor, Surface};
 use crate::error::{Result, SimError};
 use crate::motion::MotionState;
-use crate::scenario::{ActorConfig, Scenario};
+use crate::scenario::{ActorConfig, Scenario, drawn_bodies};
 use crate::world::StreetWorld;
 
 /// Half size of the square ground slab, metres (scenarios keep the ego on it).
@@ -53,6 +53,8 @@ impl Scene {
     pub fn build_seeded(scenario: &Scenario, actors: &[ActorConfig], seed: u64) -> Result<Self> {
         let knobs = scenario.world.knobs();
         let street_world = knobs != crate::WorldKnobs::of(crate::Realism::Ideal);
+        let (actors, bodies) = drawn_bodies(actors, knobs.fleet, seed, &scenario.name);
+        let actors = actors.as_slice();
         let mut tables = ColliderTables::default();
         let mut street = None;
         if street_world {
@@ -69,14 +71,19 @@ impl Scene {
             add_structure_boxes(&mut tables, scenario);
         }
         let ego = tables
-            .add_actor(&scenario.ego, 0, None, false)
+            .add_actor(&scenario.ego, (0, None), false, None)
             .map_err(|r| invalid(scenario, r))?;
         let mut scene_actors = Vec::with_capacity(actors.len());
         for (i, config) in actors.iter().enumerate() {
             let id = u16::try_from(i + 1)
                 .map_err(|_| invalid(scenario, "more than 65535 actors".to_owned()))?;
             let actor = tables
-                .add_actor(config, id, Some(i), knobs.shapes)
+                .add_actor(
+                    config,
+                    (id, Some(i)),
+                    knobs.shapes,
+                    bodies[i].map(|b| b.belt_m),
+                )
                 .map_err(|r| invalid(scenario, r))?;
             scene_actors.push(actor);
         }

@@ -22,17 +22,18 @@ const VAN_BELT_SHARE: f32 = 0.53;
 /// A truck cab's window sill, share of the truck's height: doors are metal to about 2 m.
 const TRUCK_BELT_SHARE: f32 = 0.6;
 
-/// The parts of a parked car with box `size_m` and paint `reflectivity`, placed in the world: box
-/// centre at `centre_xy_m`, heading `yaw_rad`, box bottom at `ground_z_m`; labelled as a car.
+/// The parts of a parked car with box `size_m`, belt line `belt_m` (see [`body_parts`]) and
+/// paint `reflectivity`, placed in the world: box centre at `centre_xy_m`, heading `yaw_rad`,
+/// box bottom at `ground_z_m`; labelled as a car.
 pub(crate) fn parked_car_parts(
-    size_m: [f64; 3],
+    (size_m, belt_m): ([f64; 3], Option<f64>),
     reflectivity: f32,
     centre_xy_m: [f64; 2],
     yaw_rad: f64,
     ground_z_m: f64,
 ) -> Vec<Piece> {
     let (sin, cos) = yaw_rad.sin_cos();
-    body_parts(ActorClass::Car, size_m, reflectivity)
+    body_parts(ActorClass::Car, size_m, belt_m, reflectivity)
         .into_iter()
         .map(|mut part| {
             let [u, v, z] = part.centre_m;
@@ -50,7 +51,14 @@ pub(crate) fn parked_car_parts(
 }
 
 /// The parts of an actor of `class` with box `size_m` and paint `reflectivity`, in its box frame.
-pub(crate) fn body_parts(class: ActorClass, size_m: [f64; 3], reflectivity: f32) -> Vec<Piece> {
+/// A vehicle's side glass starts `belt_m` above the box bottom (a truck's cab window), or where
+/// its class's share of the height puts it when `None` (a body not drawn from the fleet).
+pub(crate) fn body_parts(
+    class: ActorClass,
+    size_m: [f64; 3],
+    belt_m: Option<f64>,
+    reflectivity: f32,
+) -> Vec<Piece> {
     let s = [size_m[0] as f32, size_m[1] as f32, size_m[2] as f32];
     let semantic = class.semantic(false);
     let part = |shape: PieceShape, centre: [f32; 3], reflectivity: f32, material: Material| Piece {
@@ -121,7 +129,11 @@ pub(crate) fn body_parts(class: ActorClass, size_m: [f64; 3], reflectivity: f32)
                     reflectivity,
                 ));
                 let (z0, z1) = (-h + 0.5, h - 0.25f32.min(0.1 * s[2]));
-                let sill = (-h + TRUCK_BELT_SHARE * s[2]).clamp(z0, z1);
+                let sill = match belt_m {
+                    Some(b) => -h + b as f32,
+                    None => -h + TRUCK_BELT_SHARE * s[2],
+                }
+                .clamp(z0, z1);
                 parts.push(block([cab_start, -w, z0], [l, w, sill], reflectivity));
                 parts.push(part(
                     PieceShape::Hull(hull_box([cab_start, l], [-w, w], [sill, z1], 0.35, 0.1)),
@@ -132,7 +144,10 @@ pub(crate) fn body_parts(class: ActorClass, size_m: [f64; 3], reflectivity: f32)
                 return parts;
             }
             let van = s[2] > 1.7;
-            let belt = -h + if van { VAN_BELT_SHARE } else { CAR_BELT_SHARE } * s[2];
+            let belt = match belt_m {
+                Some(b) => -h + b as f32,
+                None => -h + if van { VAN_BELT_SHARE } else { CAR_BELT_SHARE } * s[2],
+            };
             let clearance = -h + 0.6 * r;
             parts.push(part(
                 PieceShape::Hull(hull_box([-l, l], [-w, w], [clearance, belt], 0.12, 0.04)),
@@ -291,7 +306,7 @@ mod tests {
             (ActorClass::Pedestrian, [0.5, 0.6, 1.75]),
             (ActorClass::Cyclist, [1.8, 0.6, 1.7]),
         ] {
-            let parts = body_parts(class, size, 0.5);
+            let parts = body_parts(class, size, None, 0.5);
             let (lo, hi) = extent(&parts);
             for a in 0..3 {
                 let half = size[a] as f32 / 2.0;
@@ -317,7 +332,7 @@ mod tests {
             (ActorClass::Car, [5.1, 1.95, 1.95]),
             (ActorClass::Truck, [9.0, 2.5, 3.4]),
         ] {
-            let parts = body_parts(class, size, 0.5);
+            let parts = body_parts(class, size, None, 0.5);
             for glass in parts.iter().filter(|p| p.material == Material::CABIN) {
                 let mut one = glass.clone();
                 one.centre_m[2] += size[2] as f32 / 2.0;
@@ -332,8 +347,41 @@ mod tests {
     }
 
     #[test]
+    fn a_drawn_body_fills_its_truth_box_and_its_glass_starts_at_its_belt_line() {
+        // The object files' size is the drawn box: the parts span it on every axis (1 mm).
+        for i in 0..200u64 {
+            let class = if i % 4 == 0 {
+                ActorClass::Truck
+            } else {
+                ActorClass::Car
+            };
+            let body = crate::scenario::VehicleBody::draw(class, None, i).unwrap();
+            let parts = body_parts(class, body.size_m, Some(body.belt_m), 0.5);
+            let (lo, hi) = extent(&parts);
+            for a in 0..3 {
+                let half = body.size_m[a] as f32 / 2.0;
+                assert!(
+                    (lo[a] + half).abs() < 1e-3 && (hi[a] - half).abs() < 1e-3,
+                    "{class:?} {body:?} axis {a}: {lo:?} {hi:?}"
+                );
+            }
+            let glass = parts
+                .iter()
+                .find(|p| p.material == Material::CABIN)
+                .unwrap();
+            let mut one = glass.clone();
+            one.centre_m[2] += body.size_m[2] as f32 / 2.0;
+            let (glass_lo, _) = extent(&[one]);
+            assert!(
+                (f64::from(glass_lo[2]) - body.belt_m).abs() < 1e-3,
+                "{body:?}"
+            );
+        }
+    }
+
+    #[test]
     fn a_car_has_four_wheels_a_body_and_a_glass_cabin() {
-        let parts = body_parts(ActorClass::Car, [4.7, 1.8, 1.45], 0.5);
+        let parts = body_parts(ActorClass::Car, [4.7, 1.8, 1.45], None, 0.5);
         let wheels = parts
             .iter()
             .filter(|p| matches!(p.shape, PieceShape::Cylinder(..)))

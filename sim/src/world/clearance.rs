@@ -49,7 +49,7 @@ impl Clearance {
             }
         }
         for s in structures {
-            let size = s.size_m.unwrap_or([1.0; 3]);
+            let size = s.size_m.unwrap_or(s.kind.default_size());
             let (sin, cos) = s.yaw_deg.to_radians().sin_cos();
             for c in s.centres_m() {
                 out.footprints.push(Footprint {

@@ -39,11 +39,13 @@ pub use surface::{Glass, Material, Surface, SurfaceKind};
 // Ground cells are GROUND_CELL_M a side, at most MAX_GROUND_CELLS of them (about 100 MB of
 // heights and materials); a larger reach gets larger cells.
 use crate::scenario::{
-    ActorConfig, GROUND_CELL_M, MAX_GROUND_CELLS, Scenario, StructureKind, lidar_reach,
+    ActorConfig, GROUND_CELL_M, MAX_GROUND_CELLS, Scenario, StructureKind, VehicleBody, fleet_key,
+    lidar_reach,
 };
 use crate::seed::{hash_name, mix, sub_seed};
 use clearance::Clearance;
 use ground_field::GroundRecipe;
+use patchflow_dataset::ActorClass;
 use street_furniture::SideBuilder;
 use street_map::{Street, StreetMap};
 
@@ -75,7 +77,7 @@ impl StreetWorld {
         let t1 = scenario.sweep_start_secs(scenario.sweeps) + 1.0;
         let movers: Vec<&ActorConfig> = std::iter::once(&scenario.ego).chain(actors).collect();
         let mut clearance = Clearance::new(&movers, &scenario.structures, t0, t1);
-        let mut pieces = structure_pieces(scenario, &field, world_seed);
+        let mut pieces = structure_pieces(scenario, &field, (seed, world_seed));
         let (lo, hi) = field.bounds();
         let off_streets = |p: [f64; 2]| {
             let on_field =
@@ -160,8 +162,13 @@ fn street_ends(street: &Street, sidewalk_width_m: f64) -> [Street; 2] {
 }
 
 /// The scenario's own structures as pieces standing on the ground: buildings with façades
-/// (if asked for), parked cars with car shapes (if asked for), the rest as boxes.
-fn structure_pieces(scenario: &Scenario, field: &GroundField, seed: u64) -> Vec<Piece> {
+/// (if asked for), parked cars with car shapes (if asked for; their bodies drawn from the fleet
+/// under the run seed `run_seed` where it is on), the rest as boxes.
+fn structure_pieces(
+    scenario: &Scenario,
+    field: &GroundField,
+    (run_seed, seed): (u64, u64),
+) -> Vec<Piece> {
     let knobs = scenario.world.knobs();
     let mut out = Vec::new();
     for (i, structure) in scenario.structures.iter().enumerate() {
@@ -183,8 +190,16 @@ fn structure_pieces(scenario: &Scenario, field: &GroundField, seed: u64) -> Vec<
                     ));
                 }
                 StructureKind::ParkedCar if knobs.shapes => {
+                    let drawn = (knobs.fleet && structure.size_m.is_none())
+                        .then(|| {
+                            let place = format!("structures[{i}][{j}]");
+                            let key = fleet_key(run_seed, &scenario.name, &place);
+                            VehicleBody::draw(ActorClass::Car, None, key)
+                        })
+                        .flatten();
+                    let body = drawn.map_or((size, None), |b| (b.size_m, Some(b.belt_m)));
                     out.extend(body_shapes::parked_car_parts(
-                        size,
+                        body,
                         reflectivity as f32,
                         [c[0], c[1]],
                         yaw,

@@ -178,7 +178,7 @@ impl SideBuilder<'_> {
                 }
                 let base = f64::from(self.field.height_at(p[0] as f32, p[1] as f32));
                 let side = (self.street.yaw_rad(), self.side);
-                let pieces = item_pieces(item, p, base, side, &mut rng);
+                let pieces = item_pieces(item, p, base, side, &mut rng, k.fleet);
                 if pieces.is_empty() {
                     continue;
                 }

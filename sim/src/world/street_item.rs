@@ -2,22 +2,25 @@
 //! a porous crown), a bush, a street light, a sign, a bollard, a bin, a bench or planter, a
 //! utility cabinet, a traffic light, or a parked car.
 
-use patchflow_dataset::SemanticClass;
+use patchflow_dataset::{ActorClass, SemanticClass};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
 use super::Material;
 use super::body_shapes::parked_car_parts;
 use super::piece::{Piece, PieceShape};
+use crate::scenario::VehicleBody;
 
 /// The pieces of `item` standing at `p` on ground `base` metres high, beside a street of yaw
-/// `yaw` on its `side` (+1 left, −1 right).
+/// `yaw` on its `side` (+1 left, −1 right); a parked car's body is drawn from the fleet
+/// statistics if `fleet` is on (`VehicleBody`), else it is one of three fixed sizes.
 pub(super) fn item_pieces(
     item: Item,
     p: [f64; 2],
     base: f64,
     (yaw, side): (f64, f64),
     rng: &mut ChaCha8Rng,
+    fleet: bool,
 ) -> Vec<Piece> {
     let (x, y) = (p[0] as f32, p[1] as f32);
     let column = |half: f32, r: f32, z0: f64, semantic, reflectivity: f32| Piece {
@@ -111,18 +114,27 @@ pub(super) fn item_pieces(
             ),
         ],
         Item::ParkedCar => {
-            let size = match rng.random_range(0..3u8) {
-                0 => [3.9, 1.7, 1.45],
-                1 => [4.7, 1.8, 1.45],
-                _ => [5.1, 1.95, 1.95],
+            let body = if fleet {
+                VehicleBody::draw(ActorClass::Car, None, rng.random::<u64>())
+                    .map(|b| (b.size_m, Some(b.belt_m)))
+            } else {
+                None
             };
+            let body = body.unwrap_or_else(|| {
+                let size = match rng.random_range(0..3u8) {
+                    0 => [3.9, 1.7, 1.45],
+                    1 => [4.7, 1.8, 1.45],
+                    _ => [5.1, 1.95, 1.95],
+                };
+                (size, None)
+            });
             let heading = if side > 0.0 {
                 yaw + std::f64::consts::PI
             } else {
                 yaw
             };
             let reflectivity = rng.random_range(0.1f32..0.8);
-            parked_car_parts(size, reflectivity, [p[0], p[1]], heading, base)
+            parked_car_parts(body, reflectivity, [p[0], p[1]], heading, base)
         }
     }
 }
