@@ -73,7 +73,10 @@ mod tests {
         for raw in [-1e6, -40.0, -3.0, 0.0, 1.0, 3.0, 40.0, 1e6] {
             let v = r.log_value(raw).exp();
             // Inside within a relative 1e-12 (exp(ln 30) rounds to 30 + 4e-15).
-            assert!((0.25 * (1.0 - 1e-12)..=30.0 * (1.0 + 1e-12)).contains(&v), "{raw} -> {v}");
+            assert!(
+                (0.25 * (1.0 - 1e-12)..=30.0 * (1.0 + 1e-12)).contains(&v),
+                "{raw} -> {v}"
+            );
         }
         for v in [0.3_f64, 1.0, 5.0, 29.0] {
             let back = r.log_value(r.raw(v.ln())).exp();

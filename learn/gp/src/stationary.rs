@@ -130,7 +130,10 @@ impl Stationary {
 
     /// The range input `column`'s length-scale is held in, if any.
     pub fn range(&self, column: usize) -> Option<LogRange> {
-        self.ranges.iter().find(|(c, _)| *c == column).map(|(_, r)| *r)
+        self.ranges
+            .iter()
+            .find(|(c, _)| *c == column)
+            .map(|(_, r)| *r)
     }
 
     /// The column groups and their profiles.
@@ -215,10 +218,10 @@ impl Kernel for Stationary {
         let d = self.lengthscales.len();
         self.lengthscales = DVector::from_iterator(
             d,
-            theta[..d]
-                .iter()
-                .enumerate()
-                .map(|(c, x)| self.range(c).map_or_else(|| ex(*x), |r| r.log_value(*x).exp())),
+            theta[..d].iter().enumerate().map(|(c, x)| {
+                self.range(c)
+                    .map_or_else(|| ex(*x), |r| r.log_value(*x).exp())
+            }),
         );
         self.signal_variance = ex(theta[d]);
     }

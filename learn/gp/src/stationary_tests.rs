@@ -218,7 +218,11 @@ fn a_held_length_scale_stays_in_its_range_whatever_the_optimiser_asks() {
         );
         // params() gives back the raw value the optimiser set (within 1e-6), inside the range.
         if raw.abs() < 10.0 {
-            assert!((k.params()[2] - raw).abs() < 1e-6, "raw {raw}: {}", k.params()[2]);
+            assert!(
+                (k.params()[2] - raw).abs() < 1e-6,
+                "raw {raw}: {}",
+                k.params()[2]
+            );
         }
     }
     assert!(k.clone().bounded(2, 3.0, 1.0).is_err());

@@ -118,13 +118,15 @@ fn landings(
 ) -> (usize, usize) {
     let new_return = |(c, r): (i64, i64)| {
         other.state((c, r)) == Some(true)
-            && !(-1..=1).any(|dc| (-1..=1).any(|dr| reference.state((c + dc, r + dr)) == Some(true)))
+            && !(-1..=1)
+                .any(|dc| (-1..=1).any(|dr| reference.state((c + dc, r + dr)) == Some(true)))
     };
     let (mut hits, mut seen) = (0, 0);
     for p in cells {
         let (c, r) = cell_of([p[0] + shift_m[0], p[1] + shift_m[1]], other.cell_m);
-        let observed = (-LANDING_CELLS..=LANDING_CELLS)
-            .any(|dc| (-LANDING_CELLS..=LANDING_CELLS).any(|dr| other.state((c + dc, r + dr)).is_some()));
+        let observed = (-LANDING_CELLS..=LANDING_CELLS).any(|dc| {
+            (-LANDING_CELLS..=LANDING_CELLS).any(|dr| other.state((c + dc, r + dr)).is_some())
+        });
         if !observed {
             continue;
         }

@@ -41,6 +41,7 @@
 //! ```
 
 mod auc;
+mod cluster_pairing;
 mod dgpom;
 mod error;
 mod evaluation;
@@ -51,7 +52,6 @@ mod ground_truth;
 mod map_method;
 mod map_method_id;
 mod motion_accuracy;
-mod cluster_pairing;
 mod motion_clusters;
 mod motion_map;
 mod occupancy_grid;

@@ -130,8 +130,14 @@ pub fn cluster_quality(map: &patchflow_occupancy::MotionMap, train: &OccupancySe
         if c.kind == ClusterKind::Stationary {
             continue;
         }
-        let scan = if c.kind == ClusterKind::Arrived { c.scan } else { c.scan.saturating_sub(1) };
-        let Some((_, actors)) = by_scan.get(scan) else { continue };
+        let scan = if c.kind == ClusterKind::Arrived {
+            c.scan
+        } else {
+            c.scan.saturating_sub(1)
+        };
+        let Some((_, actors)) = by_scan.get(scan) else {
+            continue;
+        };
         let best = actors
             .iter()
             .map(|a| {
@@ -149,6 +155,20 @@ pub fn cluster_quality(map: &patchflow_occupancy::MotionMap, train: &OccupancySe
         };
         let none = best.is_none_or(|(n, _)| n == 0);
         let err = (c.velocity_mps[0] - truth[0]).hypot(c.velocity_mps[1] - truth[1]);
+        if err > 3.0 && std::env::var("CLUSTERS").is_ok_and(|v| v == "2") {
+            println!(
+                "  off: scan {} {:?} {} cells at ({:.1}, {:.1}) v ({:+.2}, {:+.2}) truth ({:+.2}, {:+.2})",
+                c.scan,
+                c.kind,
+                c.cells_m.len(),
+                c.centroid_m[0],
+                c.centroid_m[1],
+                c.velocity_mps[0],
+                c.velocity_mps[1],
+                truth[0],
+                truth[1]
+            );
+        }
         let key = format!("{:?}/{:?}", c.association, c.kind);
         let e = stats.entry(key).or_default();
         e.0 += 1;
