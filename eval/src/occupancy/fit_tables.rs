@@ -77,7 +77,7 @@ pub(crate) fn temporal_table(
     }
     let _ = writeln!(
         md,
-        "Learned temporal length-scale, seconds (DGPOM: l_t(ε) = a·ε^(−1/b), eq. 6, over the motion map's error ε; GPOM-RD1: its time length-scale). A window of four scans 1 s apart identifies l_t only between about {} s and {} s (below, the scans decorrelate completely; above, the covariance across the window hardly changes), so DGPOM's l_t(x) is held inside that range (GPOM-RD1's ℓt is shown as fitted):\n\n| | {} |\n|---|{}\n{}\n",
+        "Learned temporal length-scale, seconds (DGPOM: l_t(ε) = a·ε^(−1/b), eq. 6, over the motion map's error ε; GPOM-RD1: its time length-scale). A window of four scans 1 s apart identifies l_t only between about {} s and {} s (below, the scans decorrelate completely; above, the covariance across the window hardly changes), so DGPOM's l_t(x) and GPOM-RD1's ℓt are both held inside that range (a smooth tanh squash of the log, never stuck on a bound):\n\n| | {} |\n|---|{}\n{}\n",
         identifiable_secs[0],
         identifiable_secs[1],
         times.join(" | "),

@@ -12,6 +12,7 @@ use nalgebra::{DMatrix, DVector};
 use super::ard_distance::{sq_distances, sq_distances_then};
 use super::ard_gradient::{group_gradient, line_sums, product_with_sums};
 use super::kernel::{Kernel, Points};
+use super::log_range::LogRange;
 use super::shape::{Factor, Group, Shape};
 use crate::{GpError, Result};
 
@@ -28,6 +29,8 @@ pub struct Stationary {
     signal_variance: f64,
     /// The factors resolved to column ranges for the length-scales' D (empty before sizing).
     groups: Vec<Group>,
+    /// Columns whose length-scale is held inside a range (in the units the kernel sees).
+    ranges: Vec<(usize, LogRange)>,
 }
 
 impl Default for Stationary {
@@ -44,6 +47,7 @@ impl Stationary {
             lengthscales: DVector::zeros(0),
             signal_variance: 1.0,
             groups: Vec::new(),
+            ranges: Vec::new(),
         }
     }
 
@@ -89,6 +93,7 @@ impl Stationary {
             lengthscales,
             signal_variance,
             groups: Vec::new(),
+            ranges: Vec::new(),
         };
         k.groups = k.resolve(k.lengthscales.len())?;
         if !(k.lengthscales.iter().all(|l| l.is_finite() && *l > 0.0)
@@ -110,6 +115,25 @@ impl Stationary {
         k.lengthscales = DVector::from_column_slice(lengthscales);
         k.signal_variance = signal_variance;
         k
+    }
+
+    /// The kernel with the length-scale of input `column` held smoothly inside [lo, hi]
+    /// ([`LogRange`]), in the units the kernel sees: a fit that standardises its inputs (the
+    /// default) sees each column over its standard deviation, so a range in the inputs' own
+    /// units is divided by that first. Errors unless 0 < lo < hi, finite.
+    pub fn bounded(mut self, column: usize, lo: f64, hi: f64) -> Result<Self> {
+        let range = LogRange::new(lo, hi)?;
+        self.ranges.retain(|(c, _)| *c != column);
+        self.ranges.push((column, range));
+        Ok(self)
+    }
+
+    /// The range input `column`'s length-scale is held in, if any.
+    pub fn range(&self, column: usize) -> Option<LogRange> {
+        self.ranges
+            .iter()
+            .find(|(c, _)| *c == column)
+            .map(|(_, r)| *r)
     }
 
     /// The column groups and their profiles.
@@ -180,6 +204,11 @@ impl Kernel for Stationary {
 
     fn params(&self) -> Vec<f64> {
         let mut v: Vec<f64> = self.lengthscales.iter().map(|l| l.ln()).collect();
+        for &(c, r) in &self.ranges {
+            if let Some(x) = v.get_mut(c) {
+                *x = r.raw(*x);
+            }
+        }
         v.push(self.signal_variance.ln());
         v
     }
@@ -187,7 +216,13 @@ impl Kernel for Stationary {
     fn set_params(&mut self, theta: &[f64]) {
         let ex = |x: f64| x.clamp(-LOG_LIMIT, LOG_LIMIT).exp();
         let d = self.lengthscales.len();
-        self.lengthscales = DVector::from_iterator(d, theta[..d].iter().map(|x| ex(*x)));
+        self.lengthscales = DVector::from_iterator(
+            d,
+            theta[..d].iter().enumerate().map(|(c, x)| {
+                self.range(c)
+                    .map_or_else(|| ex(*x), |r| r.log_value(*x).exp())
+            }),
+        );
         self.signal_variance = ex(theta[d]);
     }
 
@@ -211,6 +246,11 @@ impl Kernel for Stationary {
                 }
             }),
         );
+        for &(c, r) in &self.ranges {
+            if let Some(l) = self.lengthscales.get_mut(c) {
+                *l = r.hold(*l);
+            }
+        }
         self.signal_variance = target_variance.max(MIN_SIGNAL_VARIANCE);
         Ok(())
     }
@@ -274,6 +314,12 @@ impl Kernel for Stationary {
             };
             let e = e.as_ref().map_or((&gk, &gk_sums), |(e, s)| (e, s));
             group_gradient(a, b, e, &inv_sq, g, &mut grad, d_a.as_deref_mut());
+        }
+        // A held length-scale moves by its range's slope per raw step.
+        for &(c, r) in &self.ranges {
+            if let (Some(gc), Some(l)) = (grad.get_mut(c), self.lengthscales.get(c)) {
+                *gc *= r.slope_at(l.ln());
+            }
         }
         DVector::from_vec(grad)
     }

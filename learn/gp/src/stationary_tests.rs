@@ -27,6 +27,16 @@ fn kernels() -> Vec<(&'static str, Stationary)> {
                 Shape::SquaredExponential,
             )),
         ),
+        (
+            "space-time, ℓt held in 0.5-4",
+            with(Stationary::space_time(
+                2,
+                Shape::SquaredExponential,
+                Shape::SquaredExponential,
+            ))
+            .bounded(2, 0.5, 4.0)
+            .expect("valid range"),
+        ),
     ]
 }
 
@@ -187,4 +197,33 @@ fn the_copy_by_dimension_changes_no_bit_of_the_covariance_or_its_gradients() {
         assert_eq!(grad_plain, grad_kept);
         assert_eq!(da_plain, da_kept);
     }
+}
+
+#[test]
+fn a_held_length_scale_stays_in_its_range_whatever_the_optimiser_asks() {
+    let mut k = Stationary::space_time(2, Shape::SquaredExponential, Shape::SquaredExponential)
+        .bounded(2, 0.25, 30.0)
+        .expect("valid range");
+    k.initialise(&points(20, 3, 3), 1.0).expect("three columns");
+    for raw in [-1e3, -5.0, 0.0, 2.0, 8.0, 1e3] {
+        let mut theta = k.params();
+        theta[2] = raw;
+        theta[0] = raw; // the free spatial length-scale follows the optimiser (clamped to e^±40)
+        k.set_params(&theta);
+        let l = k.lengthscales()[2];
+        // Inside within a relative 1e-12 (exp(ln 30) rounds to 30 + 4e-15).
+        assert!(
+            (0.25 * (1.0 - 1e-12)..=30.0 * (1.0 + 1e-12)).contains(&l),
+            "raw {raw}: ℓt {l}"
+        );
+        // params() gives back the raw value the optimiser set (within 1e-6), inside the range.
+        if raw.abs() < 10.0 {
+            assert!(
+                (k.params()[2] - raw).abs() < 1e-6,
+                "raw {raw}: {}",
+                k.params()[2]
+            );
+        }
+    }
+    assert!(k.clone().bounded(2, 3.0, 1.0).is_err());
 }

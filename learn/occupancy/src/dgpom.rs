@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::{
     GpSolver, MapMethod, MapMethodId, MapOutput, MotionMap, OccupancyError, Result, SampleParams,
-    ScanWindow, window_samples,
+    ScanWindow, TEMPORAL_RANGE_SECS, window_samples,
 };
 
 /// Settings of DGPOM (the motion map is learned separately and shared).
@@ -47,7 +47,7 @@ impl Default for DgpomParams {
             // both) at half the CPU: the fits wander along a flat direction of a and b.
             max_iters: 25,
             step_secs: 0.1,
-            temporal_range_secs: [0.25, 30.0],
+            temporal_range_secs: TEMPORAL_RANGE_SECS,
         }
     }
 }

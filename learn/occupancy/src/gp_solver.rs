@@ -8,6 +8,13 @@
 use patchflow_gp::{FULL_GP_MAX_SAMPLES, GpKind, GpParams};
 use serde::{Deserialize, Serialize};
 
+/// The range a temporal length-scale is fitted in, seconds: what a window of four scans 1 s apart
+/// can identify. Below about a quarter of the scan interval the scans decorrelate completely;
+/// above ten times the window's 3 s span the kernel across it stays above 0.98 ("no decay"), and
+/// unbounded fits landed anywhere from 30 s to 10^7 s (issue 25). DGPOM's l_t(ε) and
+/// `GPOM-RD1`'s ℓt are both held in it.
+pub const TEMPORAL_RANGE_SECS: [f64; 2] = [0.25, 30.0];
+
 /// The switch between the exact GP and SPGP.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::{
     GpSolver, MapMethod, MapMethodId, MapOutput, OccupancyError, OccupancySample, Result,
-    SampleParams, ScanWindow, window_samples,
+    SampleParams, ScanWindow, TEMPORAL_RANGE_SECS, window_samples,
 };
 
 /// Which inputs a GPOM sees.
@@ -36,6 +36,13 @@ pub struct GpomMethod {
     pub solver: GpSolver,
     /// Iteration limit of the marginal-likelihood maximisation.
     pub max_iters: usize,
+    /// Range ℓt is held in (ℜ^{D+1}), seconds ([`TEMPORAL_RANGE_SECS`]).
+    #[serde(default = "temporal_range_secs")]
+    pub temporal_range_secs: [f64; 2],
+}
+
+fn temporal_range_secs() -> [f64; 2] {
+    TEMPORAL_RANGE_SECS
 }
 
 impl GpomMethod {
@@ -46,6 +53,7 @@ impl GpomMethod {
             samples,
             solver: GpSolver::default(),
             max_iters: 50,
+            temporal_range_secs: TEMPORAL_RANGE_SECS,
         }
     }
 
@@ -112,7 +120,14 @@ impl MapMethod for GpomMethod {
             .kernel(match self.space {
                 GpomSpace::Space => Stationary::se_ard(),
                 GpomSpace::SpaceTime => {
+                    // ℓt held in the range the window can identify; the fit sees t over its
+                    // standard deviation, so the range is in those units.
+                    let spread = model_input_spread(&x).get(2).copied().unwrap_or(1.0);
+                    let spread = if spread > 1e-12 { spread } else { 1.0 };
+                    let [lo, hi] = self.temporal_range_secs;
                     Stationary::space_time(2, Shape::SquaredExponential, Shape::SquaredExponential)
+                        .bounded(2, lo / spread, hi / spread)
+                        .map_err(|e| degenerate(e.to_string()))?
                 }
             });
         let classifier = PlsParams::new(gp)
@@ -222,6 +237,7 @@ mod tests {
                 ..GpSolver::default()
             },
             max_iters: 40,
+            temporal_range_secs: TEMPORAL_RANGE_SECS,
         }
     }
 

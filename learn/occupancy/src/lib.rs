@@ -41,6 +41,7 @@
 //! ```
 
 mod auc;
+mod cluster_pairing;
 mod dgpom;
 mod error;
 mod evaluation;
@@ -68,7 +69,7 @@ pub use dgpom::{DgpomMethod, DgpomParams};
 pub use error::{OccupancyError, Result};
 pub use evaluation::{MapFigure, MethodScores, SequenceScores, evaluate_sequence};
 pub use field_raster::FieldRaster;
-pub use gp_solver::GpSolver;
+pub use gp_solver::{GpSolver, TEMPORAL_RANGE_SECS};
 pub use gpom::{GpomMethod, GpomSpace};
 pub use ground_truth::{GroundTruth, OrientedBox};
 pub use map_method::{MapMethod, MapOutput, ScanWindow};

@@ -12,13 +12,15 @@
 //!
 //! One addition: an object that moves farther than its own visible length between scans leaves no
 //! Same cells, so neither of its Diff clusters has an object next to it. Such vacated and arrived
-//! clusters are paired greedily, nearest first, within the reach of `max_speed_mps`, and get the
-//! displacement of their centroids over the interval (reported as [`Association::Paired`]).
+//! clusters are paired within the reach of `max_speed_mps`, each pair borne out by the scans
+//! before and after it (`cluster_pairing`), and get the displacement of their centroids over the
+//! interval (reported as [`Association::Paired`]).
 
 use std::collections::BTreeSet;
 
 use serde::{Deserialize, Serialize};
 
+use crate::cluster_pairing::{Candidate, PairScans, chosen_pairs};
 use crate::scan_cells::{Cell, ScanCells, cell_clusters};
 
 /// What a motion cluster is.
@@ -145,14 +147,15 @@ impl Group {
     }
 }
 
-/// The motion clusters between the maps `first` and `second` of two consecutive scans;
-/// `scan` is the second scan's index.
+/// The motion clusters between the maps `scans.first` and `scans.second` of two consecutive
+/// scans (the scans around them check the pairing of fast objects); `scan` is the second scan's
+/// index.
 pub(crate) fn motion_clusters(
-    first: &ScanCells,
-    second: &ScanCells,
+    scans: &PairScans<'_>,
     scan: usize,
     params: &MotionClusterParams,
 ) -> Vec<MotionCluster> {
+    let (first, second) = (scans.first, scans.second);
     let dt = second.stamp_secs - first.stamp_secs;
     if dt <= 0.0 {
         return Vec::new();
@@ -229,41 +232,32 @@ pub(crate) fn motion_clusters(
             [0.0, 0.0],
         )
     }));
-    out.extend(paired(unmatched, scan, dt, params));
+    out.extend(paired(unmatched, scans, scan, dt, params).0);
     out
 }
 
 /// The addition for fast objects: vacated and arrived clusters without an adjacent object,
-/// paired nearest first within `max_speed_mps · dt`, each with its centroids' displacement.
+/// paired within `max_speed_mps · dt` as [`chosen_pairs`] chooses, each with its centroids'
+/// displacement; and the clusters left unpaired.
 fn paired(
     unmatched: Vec<(ClusterKind, Group)>,
+    scans: &PairScans<'_>,
     scan: usize,
     dt: f64,
     params: &MotionClusterParams,
-) -> Vec<MotionCluster> {
+) -> (Vec<MotionCluster>, Vec<(ClusterKind, Group)>) {
     let (vacated, arrived): (Vec<_>, Vec<_>) = unmatched
         .into_iter()
         .partition(|(k, _)| *k == ClusterKind::Vacated);
-    let reach = params.max_speed_mps * dt;
-    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
-    for (i, (_, v)) in vacated.iter().enumerate() {
-        for (j, (_, a)) in arrived.iter().enumerate() {
-            let d = (a.centroid[0] - v.centroid[0]).hypot(a.centroid[1] - v.centroid[1]);
-            if d <= reach {
-                pairs.push((d, i, j));
-            }
-        }
-    }
-    pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
-    let (mut used_v, mut used_a) = (vec![false; vacated.len()], vec![false; arrived.len()]);
-    let mut chosen = Vec::new();
-    for (_, i, j) in pairs {
-        if !used_v[i] && !used_a[j] {
-            used_v[i] = true;
-            used_a[j] = true;
-            chosen.push((i, j));
-        }
-    }
+    let v_refs: Vec<Candidate<'_>> = vacated
+        .iter()
+        .map(|(_, g)| (g.centres.as_slice(), g.centroid))
+        .collect();
+    let a_refs: Vec<Candidate<'_>> = arrived
+        .iter()
+        .map(|(_, g)| (g.centres.as_slice(), g.centroid))
+        .collect();
+    let chosen = chosen_pairs(&v_refs, &a_refs, scans, params.max_speed_mps * dt);
     let mut vacated: Vec<Option<Group>> = vacated.into_iter().map(|(_, g)| Some(g)).collect();
     let mut arrived: Vec<Option<Group>> = arrived.into_iter().map(|(_, g)| Some(g)).collect();
     let mut out = Vec::new();
@@ -277,7 +271,11 @@ fn paired(
             out.push(a.into_cluster(scan, ClusterKind::Arrived, Association::Paired, velocity));
         }
     }
-    out
+    let rest = (vacated.into_iter().map(|g| (ClusterKind::Vacated, g)))
+        .chain(arrived.into_iter().map(|g| (ClusterKind::Arrived, g)))
+        .filter_map(|(k, g)| g.map(|g| (k, g)))
+        .collect();
+    (out, rest)
 }
 
 /// The occupied cells of `map` that `other` saw with no return within one cell (changed), and

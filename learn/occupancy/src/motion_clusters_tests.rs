@@ -44,7 +44,13 @@ fn clusters(a: &PlanarScan, b: &PlanarScan) -> Vec<MotionCluster> {
         ScanCells::from_scan(a, p.cell_m),
         ScanCells::from_scan(b, p.cell_m),
     );
-    motion_clusters(&ca, &cb, b.index, &p)
+    let scans = PairScans {
+        first: &ca,
+        second: &cb,
+        before: None,
+        after: None,
+    };
+    motion_clusters(&scans, b.index, &p)
 }
 
 #[test]
@@ -99,5 +105,54 @@ fn an_object_that_jumps_past_its_own_length_is_paired_by_its_centroids() {
     for c in paired {
         let [vx, vy] = c.velocity_mps;
         assert!((vx + 5.0).abs() < 0.3 && vy.abs() < 0.3, "{vx}, {vy}");
+    }
+}
+
+#[test]
+fn crossing_cars_are_paired_with_themselves_when_the_scans_around_bear_it_out() {
+    // Two 1 m faces, 3 m apart across two lanes, pass each other at 6 m/s each way: between
+    // scans 1 and 2 each car's vacated cells are nearer the other car's arrived cells (3.2 m)
+    // than its own (6 m), so nearest first pairs across the lanes.
+    let at = |t: f64| {
+        let a = -9.0 + 6.0 * t; // near lane, +x
+        let b = 8.0 - 6.0 * t; // far lane, −x
+        scan(t, &[WALL, (4.1, a, a + 1.0), (7.1, b, b + 1.0)])
+    };
+    let p = MotionClusterParams::default();
+    let cells: Vec<ScanCells> = (0..4)
+        .map(|t| ScanCells::from_scan(&at(f64::from(t)), p.cell_m))
+        .collect();
+    let paired = |scans: PairScans<'_>| -> Vec<MotionCluster> {
+        motion_clusters(&scans, 2, &p)
+            .into_iter()
+            .filter(|c| c.association == Association::Paired)
+            .collect()
+    };
+    let lone = paired(PairScans {
+        first: &cells[1],
+        second: &cells[2],
+        before: None,
+        after: None,
+    });
+    assert!(
+        lone.iter().any(|c| c.velocity_mps[1].abs() > 2.0),
+        "nearest first pairs across the lanes: {lone:?}"
+    );
+    let borne_out = paired(PairScans {
+        first: &cells[1],
+        second: &cells[2],
+        before: Some(&cells[0]),
+        after: Some(&cells[3]),
+    });
+    assert_eq!(borne_out.len(), 4, "{borne_out:?}");
+    for c in &borne_out {
+        let lane_v = if c.centroid_m[1] < 6.0 { 6.0 } else { -6.0 };
+        let [vx, vy] = c.velocity_mps;
+        assert!(
+            (vx - lane_v).abs() < 0.3 && vy.abs() < 0.3,
+            "{:?} at {:?}: {vx}, {vy}",
+            c.kind,
+            c.centroid_m
+        );
     }
 }

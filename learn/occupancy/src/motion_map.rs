@@ -11,6 +11,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
+use crate::cluster_pairing::PairScans;
 use crate::motion_clusters::motion_clusters;
 use crate::scan_cells::ScanCells;
 use crate::{
@@ -102,11 +103,15 @@ impl MotionMap {
             .iter()
             .map(|s| ScanCells::from_scan(s, params.clusters.cell_m))
             .collect();
-        let clusters: Vec<MotionCluster> = cells
-            .windows(2)
-            .zip(&training.scans[1..])
-            .flat_map(|(pair, scan)| {
-                motion_clusters(&pair[0], &pair[1], scan.index, &params.clusters)
+        let clusters: Vec<MotionCluster> = (1..cells.len())
+            .flat_map(|k| {
+                let scans = PairScans {
+                    first: &cells[k - 1],
+                    second: &cells[k],
+                    before: k.checked_sub(2).map(|i| &cells[i]),
+                    after: cells.get(k + 1),
+                };
+                motion_clusters(&scans, training.scans[k].index, &params.clusters)
             })
             .collect();
         // A portion of the clusters trains Υ, the rest assesses it.

@@ -117,3 +117,69 @@ pub fn diagnose(seq: &OccupancySequence, fig: &MapFigure) {
         );
     }
 }
+
+/// `CLUSTERS=1`: each moving cluster's velocity against the actor it lies on (the actor box,
+/// grown by 0.75 m, holding most of its cells; none: truth 0), summarised by association.
+pub fn cluster_quality(map: &patchflow_occupancy::MotionMap, train: &OccupancySequence) {
+    use patchflow_occupancy::ClusterKind;
+    let by_scan = train.truth.actors_by_scan();
+    let h = train.scan_height_m();
+    let mut stats: std::collections::BTreeMap<String, (usize, f64, usize, usize)> =
+        Default::default();
+    for c in &map.clusters {
+        if c.kind == ClusterKind::Stationary {
+            continue;
+        }
+        let scan = if c.kind == ClusterKind::Arrived {
+            c.scan
+        } else {
+            c.scan.saturating_sub(1)
+        };
+        let Some((_, actors)) = by_scan.get(scan) else {
+            continue;
+        };
+        let best = actors
+            .iter()
+            .map(|a| {
+                let b = OrientedBox::of_object(a);
+                let b = OrientedBox {
+                    half_extents_m: [b.half_extents_m[0] + 0.75, b.half_extents_m[1] + 0.75],
+                    ..b
+                };
+                (c.cells_m.iter().filter(|&&p| b.contains(p, h)).count(), a)
+            })
+            .max_by_key(|(n, _)| *n);
+        let truth = match best {
+            Some((n, a)) if n > 0 => [a.velocity_mps[0], a.velocity_mps[1]],
+            _ => [0.0, 0.0],
+        };
+        let none = best.is_none_or(|(n, _)| n == 0);
+        let err = (c.velocity_mps[0] - truth[0]).hypot(c.velocity_mps[1] - truth[1]);
+        if err > 3.0 && std::env::var("CLUSTERS").is_ok_and(|v| v == "2") {
+            println!(
+                "  off: scan {} {:?} {} cells at ({:.1}, {:.1}) v ({:+.2}, {:+.2}) truth ({:+.2}, {:+.2})",
+                c.scan,
+                c.kind,
+                c.cells_m.len(),
+                c.centroid_m[0],
+                c.centroid_m[1],
+                c.velocity_mps[0],
+                c.velocity_mps[1],
+                truth[0],
+                truth[1]
+            );
+        }
+        let key = format!("{:?}/{:?}", c.association, c.kind);
+        let e = stats.entry(key).or_default();
+        e.0 += 1;
+        e.1 += err * err;
+        e.2 += usize::from(err > 3.0);
+        e.3 += usize::from(none);
+    }
+    for (k, (n, sq, bad, none)) in stats {
+        println!(
+            "{k:>28}: {n:4} clusters, RMSE {:.2} m/s, {bad} off by > 3 m/s, {none} on no actor",
+            (sq / n.max(1) as f64).sqrt()
+        );
+    }
+}

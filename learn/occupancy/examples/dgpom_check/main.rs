@@ -13,7 +13,7 @@ use patchflow_gp::MotionField;
 use patchflow_occupancy::*;
 
 mod diagnose;
-use diagnose::diagnose;
+use diagnose::{cluster_quality, diagnose};
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -58,6 +58,9 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             })
             .collect();
         println!("y {y:5.1}: {}", v.join("  "));
+    }
+    if std::env::var("CLUSTERS").is_ok() {
+        cluster_quality(&map, &train);
     }
     if std::env::var("CROSSING").is_ok() {
         // The busy intersection: each lane's Υ at 20, 10 and 5 m before the centre and beyond.
