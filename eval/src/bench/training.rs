@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::bench::run_files::model_file;
 use crate::error::EvalError;
-use crate::pipeline::plan::{BenchPlan, THESIS_TRACKS};
+use crate::pipeline::plan::{BenchPlan, TRAINING_TRAFFIC};
 use crate::pipeline::progress::spinner;
 
 /// Trains one estimator per GP kind of the plan for each `(samples, seed)` draw, all fits in
@@ -76,10 +76,11 @@ pub(crate) fn train_seeds(
     Ok((runs, thesis_runs))
 }
 
-/// The thesis preset's training data in `train`: its sequences named in [`THESIS_TRACKS`] (the
-/// thesis' data as the nine tracks hold it; the generated training traffic is the default's).
+/// The thesis preset's training data in `train`: every sequence but the training traffic added
+/// for the default ([`TRAINING_TRAFFIC`]), i.e. the nine tracks of the thesis' data on the
+/// default plan; an error naming the folder if nothing is left.
 pub(crate) fn thesis_tracks(train: &Dataset) -> Result<Dataset, EvalError> {
-    Ok(train.restricted_to(&|name| THESIS_TRACKS.contains(&name))?)
+    Ok(train.restricted_to(&|name| !TRAINING_TRAFFIC.contains(&name))?)
 }
 
 /// The target runs of the further seeds with the thesis preset's models: the first seed's

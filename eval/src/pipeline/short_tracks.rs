@@ -147,7 +147,11 @@ mod tests {
             .collect();
         let short = shortened_tracks(&sources, 1.0 / 3.0, dir.path()).unwrap();
         assert_eq!(short.len(), sources.len());
-        assert_eq!(short.len(), 11, "the nine tracks and the two crossing tracks");
+        assert_eq!(
+            short.len(),
+            11,
+            "the nine tracks and the two crossing tracks"
+        );
         for (full, short) in sources.iter().zip(&short) {
             let (ScenarioSource::Embedded(name, text), ScenarioSource::File(path)) = (full, short)
             else {
