@@ -6,7 +6,10 @@
 //! the static points called moving by their SemanticKITTI class.
 //!
 //! `cargo run --release -p patchflow-learn --example moving_check -- BENCH_OUT` (`SEED`,
-//! `MAX_ROWS`, `MAX_SCANS` override the training parameters).
+//! `MAX_ROWS`, `MAX_SCANS` override the training parameters; `BELIEF=γ` smooths the
+//! probabilities along the clusters' tracks, `TARGET=1` prints the target's per scan).
+//! `MEMORIES=γ1,γ2,… SPLIT=train|situations [THRESHOLDS=t1,…]` instead scores every memory (and
+//! threshold) in one pass over the split: how `BELIEF_MEMORY` was chosen on the training tracks.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;

@@ -60,7 +60,8 @@ fn sigmoid(l: f64) -> f64 {
 }
 
 impl MovingBelief {
-    /// A belief with memory γ in [0, 1) (0: every scan decides alone, as without the belief).
+    /// A belief with memory γ in [0, 1) (0: every scan decides alone, as without the belief);
+    /// γ is clamped to [0, 0.99], and a non-finite γ gives [`BELIEF_MEMORY`].
     pub fn new(memory: f64) -> Self {
         Self {
             memory: if memory.is_finite() {
