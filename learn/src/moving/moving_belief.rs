@@ -166,16 +166,11 @@ impl MovingBelief {
         probabilities: &[Option<f64>],
         stamp_secs: f64,
     ) -> Vec<Option<f64>> {
-        let points = features.points();
-        let centroids: Vec<[f64; 2]> = features
-            .clusters()
-            .iter()
-            .map(|members| {
-                let n = members.len().max(1) as f64;
-                let (x, y) = members.iter().fold((0.0, 0.0), |(x, y), &i| {
-                    (x + points[i].x_m, y + points[i].y_m)
-                });
-                [x / n, y / n]
+        // Only the decided clusters carry a belief, so only they need a centroid.
+        let centroids: Vec<[f64; 2]> = (0..features.clusters().len())
+            .map(|c| match probabilities.get(c) {
+                Some(Some(_)) => features.cluster_shape(c).centroid_xy,
+                _ => [0.0, 0.0],
             })
             .collect();
         self.update(&centroids, probabilities, stamp_secs)

@@ -244,11 +244,7 @@ impl MovingClassifier {
         features: &SweepFeatures,
         change: &ChangeEvidence,
     ) -> Result<Vec<Option<bool>>> {
-        Ok(self
-            .cluster_probabilities(features, change)?
-            .into_iter()
-            .map(|p| p.map(|p| p > self.threshold))
-            .collect())
+        Ok(self.decided(self.cluster_probabilities(features, change)?))
     }
 
     /// [`Self::cluster_decisions`] on the probabilities smoothed along the clusters' own tracks
@@ -262,11 +258,15 @@ impl MovingClassifier {
         stamp_secs: f64,
     ) -> Result<Vec<Option<bool>>> {
         let probabilities = self.cluster_probabilities(features, change)?;
-        Ok(belief
-            .update_features(features, &probabilities, stamp_secs)
+        Ok(self.decided(belief.update_features(features, &probabilities, stamp_secs)))
+    }
+
+    /// Moving where a probability is above [`Self::threshold`].
+    fn decided(&self, probabilities: Vec<Option<f64>>) -> Vec<Option<bool>> {
+        probabilities
             .into_iter()
             .map(|p| p.map(|p| p > self.threshold))
-            .collect())
+            .collect()
     }
 
     /// The probability above which a cluster is called moving: the one that maximised the moving
