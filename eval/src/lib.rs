@@ -72,7 +72,7 @@ pub mod stages {
         collect_draws_with_bar, collect_samples_with_bar, cross_validate_with_bar,
         evaluate_with_bar, generate_with_progress, occupancy_with_bar,
     };
-    pub use crate::pipeline::target_runs::evaluate_targets;
+    pub use crate::pipeline::target_runs::{evaluate_targets, evaluate_targets_with_baselines};
 }
 
 // ── Methods, their estimates and scores (thesis 4.1, 4.4) ──────────────────────────────────

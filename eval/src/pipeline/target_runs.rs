@@ -3,8 +3,9 @@
 //! the GP methods depend on training, so a seed needs neither the baselines nor the whole scene.
 //! With the baselines, the same serves the realism study, which scores the target only: no GP
 //! runs on the rest of the scene and ICP-AUTO aligns the target's cluster alone. GP-KF and
-//! GP-ICP then run too, with the GP's estimate (and the moving decision) of the target's cluster
-//! alone: the other clusters' tracks get centroids only, as KF-AUTO's.
+//! GP-ICP then run too, with the GP's estimate of the target's cluster and no moving decision on
+//! it (`LearnedTargetTrackers`, as in the whole evaluation's per-target tables); the moving
+//! decision gives the `+MOS` read-outs.
 
 use std::collections::BTreeMap;
 
@@ -18,10 +19,9 @@ use rayon::prelude::*;
 use crate::error::EvalError;
 use crate::methods::baselines::baseline_method::run_all_baselines;
 use crate::methods::baselines::baseline_params::BaselineParams;
-use crate::methods::baselines::velocity_measurement::VelocityFloors;
 use crate::methods::estimate::MotionEstimate;
 use crate::methods::estimate::to_estimate;
-use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
+use crate::methods::learned::learned_target::LearnedTargetTrackers;
 use crate::methods::method::Method;
 use crate::methods::observation::ScanObservation;
 use crate::pipeline::dataset_evaluation::sequences_to_evaluate;
@@ -44,7 +44,7 @@ pub fn evaluate_targets(
 /// read-outs of `estimators` and the four baselines with `baselines`), the situations in
 /// parallel: the per-target tables of [`crate::evaluate_dataset`], equal to its, without the
 /// whole scene (whose scores and timings are not wanted here).
-pub(crate) fn evaluate_targets_with_baselines(
+pub fn evaluate_targets_with_baselines(
     dataset: &Dataset,
     estimators: &[MotionEstimator],
     baselines: &BaselineParams,
@@ -194,12 +194,7 @@ fn evaluate_target(
         let estimates = run_all_baselines(&name, &observations, params)?;
         for (columns, first_all) in methods.iter_mut().zip(&target_all) {
             columns.extend(estimates.clone());
-            columns.extend(learned_targets(
-                &observations,
-                first_all,
-                &target_moving,
-                params,
-            )?);
+            columns.extend(learned_targets(&observations, first_all, params)?);
         }
     }
     let results = methods
@@ -217,31 +212,19 @@ fn evaluate_target(
     Ok(Some(results))
 }
 
-/// GP-KF's and GP-ICP's estimates of the target at every scan, given the GP's estimate of the
-/// target's cluster and its moving decision (`None` without a classifier) at every scan.
+/// GP-KF's and GP-ICP's estimates of the target at every scan under the per-target protocol
+/// (no moving decision on the target, as the baselines have none), given the GP's estimate of
+/// the target's cluster at every scan.
 fn learned_targets(
     observations: &[ScanObservation],
     target_all: &[Option<MotionEstimate>],
-    target_moving: &[Option<bool>],
     params: &BaselineParams,
 ) -> Result<BTreeMap<Method, Vec<Option<MotionEstimate>>>, EvalError> {
-    let mut trackers = LearnedTrackers::new(params, VelocityFloors::default())?;
+    let mut trackers = LearnedTargetTrackers::new(params)?;
     let mut out: BTreeMap<Method, Vec<Option<MotionEstimate>>> = BTreeMap::new();
     for (k, observation) in observations.iter().enumerate() {
-        let n = observation.clusters.len();
-        let target = observation.target_cluster().filter(|&c| c < n);
-        let mut learned = vec![LearnedCluster::default(); n];
-        let mut wanted = vec![false; n];
-        if let Some(c) = target {
-            learned[c] = LearnedCluster {
-                gp: target_all.get(k).copied().flatten(),
-                moving: target_moving.get(k).copied().flatten(),
-            };
-            wanted[c] = true;
-        }
-        let flows = trackers.step(observation, &learned, &wanted)?;
-        for (method, clusters) in flows {
-            let estimate = target.and_then(|c| clusters[c]).map(|f| f.estimate());
+        let target_gp = target_all.get(k).copied().flatten();
+        for (method, estimate) in trackers.step(observation, target_gp)? {
             out.entry(method).or_default().push(estimate);
         }
     }
@@ -301,7 +284,7 @@ mod tests {
         }
         assert!(alone.methods[&Method::SpgpAll].iter().any(Option::is_some));
         // With the baselines: every method of the whole evaluation's per-target table, equal,
-        // but GP-KF and GP-ICP, which see the GP on the target's cluster alone here.
+        // GP-KF and GP-ICP included (both run the per-target protocol's trackers).
         let with = evaluate_targets_with_baselines(
             &dataset,
             &estimators,
@@ -309,18 +292,7 @@ mod tests {
             None,
         )
         .unwrap();
-        let without_learned_tracking = |situations: &[SituationResult]| {
-            let mut out = situations.to_vec();
-            for s in &mut out {
-                s.methods.remove(&Method::GpKf);
-                s.methods.remove(&Method::GpIcp);
-            }
-            out
-        };
-        assert_eq!(
-            without_learned_tracking(&with.situations),
-            without_learned_tracking(&whole.situations)
-        );
+        assert_eq!(with.situations, whole.situations);
         assert!(
             with.situations[0].methods[&Method::GpKf]
                 .iter()

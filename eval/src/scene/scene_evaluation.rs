@@ -18,6 +18,7 @@ use crate::methods::baselines::baseline_step::{BaselineScan, BaselineTrackers, C
 use crate::methods::baselines::velocity_measurement::VelocityFloors;
 use crate::methods::estimate::{MotionEstimate, to_estimate};
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
+use crate::methods::learned::learned_target::LearnedTargetTrackers;
 use crate::methods::learned::plausible_motion::{implausible_estimate, implausible_motion};
 use crate::methods::method::{GpReadout, Method};
 use crate::scene::cpu_time::process_cpu_secs;
@@ -52,6 +53,8 @@ struct Scores {
 struct Trackers {
     baselines: BaselineTrackers,
     learned: LearnedTrackers,
+    /// GP-KF and GP-ICP on the target under the per-target protocol (no moving decision).
+    target: LearnedTargetTrackers,
     /// The moving classifier's probabilities smoothed along the clusters' own tracks.
     belief: MovingBelief,
 }
@@ -95,6 +98,7 @@ pub fn evaluate_sequence(
     let mut trackers = Trackers {
         baselines: BaselineTrackers::new(&name, baselines)?,
         learned: LearnedTrackers::new(baselines, VelocityFloors::default())?,
+        target: LearnedTargetTrackers::new(baselines)?,
         belief: MovingBelief::default(),
     };
     let mut scores = Scores {
@@ -296,6 +300,7 @@ fn evaluate_scan(
         let target_moving = observation
             .target_cluster()
             .and_then(|c| decisions.get(c).copied().flatten());
+        let target_gp_all = target_gp.first().and_then(|(_, e)| e.all);
         for (kind, estimate) in target_gp {
             for (rule, motion) in [
                 (patchflow_learn::MergeRule::All, estimate.all),
@@ -320,11 +325,9 @@ fn evaluate_scan(
                 column.push(decided);
             }
         }
-        for (&method, clusters) in &learned_flows {
-            let estimate = observation
-                .target_cluster()
-                .and_then(|c| clusters.get(c).copied().flatten())
-                .map(|f| f.estimate());
+        // GP-KF and GP-ICP on the target with no moving decision, as the baselines' rows.
+        let gp = target_gp_all.map(to_estimate);
+        for (method, estimate) in trackers.target.step(&observation, gp)? {
             let column = scores.target_estimates.entry(method).or_default();
             column.push(estimate);
         }

@@ -180,6 +180,25 @@ impl ConstantVelocityKalman {
         Ok(innovation)
     }
 
+    /// Squared Mahalanobis distance of a velocity measurement from the (predicted) velocity,
+    /// `rᵀ (P_v + Σ)⁻¹ r`: how well a cluster's measured velocity fits this track.
+    pub fn velocity_mahalanobis_sq(
+        &self,
+        measurement: &VelocityMeasurement,
+    ) -> Result<f64, EvalError> {
+        let v = self.velocity();
+        let residual = Vector2::new(
+            measurement.velocity_xy_mps[0] - v[0],
+            measurement.velocity_xy_mps[1] - v[1],
+        );
+        let s = self.velocity_covariance() + measurement.covariance;
+        let s_inv = s.try_inverse().ok_or_else(|| EvalError::BadParameter {
+            name: "VelocityMeasurement.covariance",
+            reason: "innovation covariance is singular".into(),
+        })?;
+        Ok(residual.dot(&(s_inv * residual)))
+    }
+
     /// Corrects the state with a direct velocity measurement (`GP-KF`: the GP's merged heading
     /// and speed, thesis 3.1.4), `z = [0 I] x + v`, `v ~ N(0, Σ)`; Joseph-form covariance update.
     pub fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {

@@ -7,6 +7,8 @@
 //!    centroid innovation `yᵀS⁻¹y` is at most `gate_chi2` (9.21 = χ²₂ at 99 %);
 //! 3. associate greedily, one-to-one: confirmed tracks before tentative ones, then the smallest
 //!    distance first (ties broken by track id, then cluster index, so the result is deterministic);
+//!    a cluster that comes with a measured velocity (`GP-KF`) adds that velocity's squared
+//!    Mahalanobis distance from the track's, so a track keeps the object moving its way;
 //! 4. update the associated tracks; a tentative track becomes confirmed after `confirm_hits`
 //!    consecutive hits;
 //! 5. track end: a tentative track is deleted at its first miss, a confirmed one after more than
@@ -147,7 +149,14 @@ impl MultiTargetTracker {
                 let d2 = track.filter.innovation(*c)?.mahalanobis_sq;
                 if d2 <= self.params.gate_chi2 {
                     let rank = usize::from(track.status == TrackStatus::Tentative);
-                    candidates.push((rank, d2, track.id, ti, ci));
+                    // A cluster with a measured velocity (GP-KF) is a 4-D measurement: its
+                    // velocity's misfit joins the cost, so a track keeps the object moving its
+                    // way rather than a neighbour's cluster that happens to lie nearer.
+                    let cost = match velocity_of(ci) {
+                        Some(v) => d2 + track.filter.velocity_mahalanobis_sq(&v)?,
+                        None => d2,
+                    };
+                    candidates.push((rank, cost, track.id, ti, ci));
                 }
             }
         }
@@ -298,6 +307,38 @@ mod tests {
         }
         t.step(7, 0.7, &[]).unwrap();
         assert!(t.tracks().is_empty());
+    }
+
+    #[test]
+    fn a_measured_velocity_keeps_a_cluster_with_the_track_moving_its_way() {
+        use crate::methods::baselines::velocity_measurement::{
+            VelocityFloors, VelocityMeasurement,
+        };
+        let floors = VelocityFloors::default();
+        let moving = VelocityMeasurement::from_heading_speed(0.0, 0.0, 8.0, 0.0, &floors);
+        let at_rest = VelocityMeasurement::at_rest(&floors);
+        // A drives +x at 8 m/s; B stands 0.5 m beyond where A will be at scan 10. At scan 10, B
+        // is hidden and A's cluster lies 0.3 m ahead of A's prediction, 0.2 m short of B's.
+        let run = |velocity_at_10: Option<VelocityMeasurement>| {
+            let mut t = tracker();
+            let (mut a, mut b) = (None, None);
+            for k in 0..10 {
+                let time = k as f64 * DT;
+                let centroids = [[8.0 * time, 0.0], [8.5, 0.0]];
+                let assigned = t
+                    .step_measured(k, time, &centroids, &[Some(moving), Some(at_rest)])
+                    .unwrap();
+                (a, b) = (assigned[0], assigned[1]);
+            }
+            let taken = t
+                .step_measured(10, 1.0, &[[8.3, 0.0]], &[velocity_at_10])
+                .unwrap();
+            (taken[0], a, b)
+        };
+        let (taken, a, b) = run(None);
+        assert_eq!(taken, b, "by position alone the nearer track takes it");
+        let (taken, a_again, _) = run(Some(moving));
+        assert_eq!((taken, a_again), (a, a), "its velocity gives it back to A");
     }
 
     #[test]

@@ -3,4 +3,5 @@
 
 pub(crate) mod learned_perception;
 pub(crate) mod learned_step;
+pub(crate) mod learned_target;
 pub(crate) mod plausible_motion;
