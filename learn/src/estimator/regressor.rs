@@ -135,7 +135,7 @@ impl Regressor {
         };
         let mut prediction = self.gp.predict_row_groups(rows, group_rows)?;
         if let Some(noise) = &self.noise {
-            let z = noise.gp.predict_row_groups(rows, group_rows)?.mean;
+            let z = noise.gp.predict_mean_rows(rows)?;
             let sigma2 = self.gp.noise_variance();
             prediction.var_y = DVector::from_fn(z.len(), |i, _| {
                 prediction.var_latent[i] + sigma2 * (z[i] - noise.offset).clamp(-20.0, 20.0).exp()
