@@ -26,14 +26,14 @@ use crate::{GpError, Result};
 
 /// Most test points per block: K_MB (M×B) and the block's inputs (D×B) stay in the
 /// second-level cache, and a scan's few thousand points make dozens of blocks for the cores.
-const BLOCK_POINTS: usize = 128;
+pub(crate) const BLOCK_POINTS: usize = 128;
 
 /// One block of rows: where it starts, how many, and which of them take nalgebra's
 /// small-product loop for W K_MB.
-struct Block {
-    start: usize,
-    len: usize,
-    small: Vec<bool>,
+pub(crate) struct Block {
+    pub start: usize,
+    pub len: usize,
+    pub small: Vec<bool>,
 }
 
 impl<K: Kernel> GpModel<K> {
@@ -83,8 +83,10 @@ impl<K: Kernel> GpModel<K> {
                     .into_par_iter()
                     .map(|b| {
                         let rows = &rows[b.start * d..(b.start + b.len) * d];
-                        self.sparse_block(p, z.points(), rows, Some(&b.small), d)
-                            .map_err(|bad| bad.offset(b.start * d))
+                        let coords = self
+                            .standardised_columns(rows, d)
+                            .map_err(|bad| bad.offset(b.start * d))?;
+                        Ok(self.sparse_block(p, z.points(), &coords, Some(&b.small)))
                     })
                     .collect::<Vec<_>>();
                 let blocks = self.without_bad_inputs(rows, blocks)?;
@@ -142,13 +144,21 @@ impl<K: Kernel> GpModel<K> {
             .map(|start| {
                 let end = (start + BLOCK_POINTS).min(t);
                 let rows = &rows[start * d..end * d];
-                self.sparse_block(p, z.points(), rows, None, d)
-                    .map_err(|bad| bad.offset(start * d))
+                let coords = self
+                    .standardised_columns(rows, d)
+                    .map_err(|bad| bad.offset(start * d))?;
+                Ok(self.sparse_block(p, z.points(), &coords, None))
             })
             .collect::<Vec<_>>();
         let blocks = self.without_bad_inputs(rows, blocks)?;
         let mean = DVector::from_iterator(t, blocks.iter().flat_map(|(mu, _)| mu.iter().copied()));
-        let mean = self.target.invert_vector(&mean);
+        self.mean_in_target_units(&mean)
+    }
+
+    /// A standardised predictive mean in the target's units; a value that is not finite there
+    /// is an error (as [`GpModel::prediction`] says).
+    pub(crate) fn mean_in_target_units(&self, mean: &DVector<f64>) -> Result<DVector<f64>> {
+        let mean = self.target.invert_vector(mean);
         if let Some(row) = mean.iter().position(|v| !v.is_finite()) {
             return Err(GpError::DegenerateData(format!(
                 "the prediction at test input row {row} is not finite (mean {:e}): the model's \
@@ -160,7 +170,7 @@ impl<K: Kernel> GpModel<K> {
     }
 
     /// The number of rows in `rows`; errors if it is not whole rows of `d` values.
-    fn whole_rows(&self, rows: &[f64], d: usize) -> Result<usize> {
+    pub(crate) fn whole_rows(&self, rows: &[f64], d: usize) -> Result<usize> {
         if d == 0 || !rows.len().is_multiple_of(d) {
             return Err(GpError::InvalidParams(format!(
                 "{} test values are not whole rows of the model's {d} input columns",
@@ -183,7 +193,7 @@ impl<K: Kernel> GpModel<K> {
     /// The blocks' results, or the error for the first bad value over all blocks: the first
     /// value that is not finite if there is one, else the first out of range (what one pass over
     /// all rows in order finds).
-    fn without_bad_inputs<T>(
+    pub(crate) fn without_bad_inputs<T>(
         &self,
         rows: &[f64],
         blocks: Vec<std::result::Result<T, BadInputs>>,
@@ -218,26 +228,24 @@ impl<K: Kernel> GpModel<K> {
         }
     }
 
-    /// Standardised mean and latent variance at the rows of one block (as `SparsePosterior::
-    /// predict` computes them), `small` saying which rows take nalgebra's small-product loop;
-    /// without `small`, the mean alone (the variance comes back empty). The rows are checked
-    /// while they are standardised: a bad value comes back as its position in the block.
-    fn sparse_block(
+    /// Standardised mean and latent variance at the standardised points `coords` of one block
+    /// (D×B, as `SparsePosterior::predict` computes them), `small` saying which rows take
+    /// nalgebra's small-product loop; without `small`, the mean alone (the variance comes back
+    /// empty).
+    pub(crate) fn sparse_block(
         &self,
         posterior: &SparsePosterior,
         z: Points<'_>,
-        rows: &[f64],
+        coords: &DMatrix<f64>,
         small: Option<&[bool]>,
-        d: usize,
-    ) -> std::result::Result<(DVector<f64>, DVector<f64>), BadInputs> {
+    ) -> (DVector<f64>, DVector<f64>) {
         let h = &self.hyper;
-        let coords = self.standardised_columns(rows, d)?;
-        let extra = h.kernel.point_data(&coords);
-        let test = Points::new(&coords, extra.as_ref());
+        let extra = h.kernel.point_data(coords);
+        let test = Points::new(coords, extra.as_ref());
         let k_star = h.kernel.cross(z, test); // M×B
         let mean = k_star.tr_mul(&posterior.weights);
         let Some(small) = small else {
-            return Ok((mean, DVector::zeros(0)));
+            return (mean, DVector::zeros(0));
         };
         let wk = variance_product(&posterior.var_matrix, &k_star, small);
         let quad = colsum_product(&k_star, &wk);
@@ -246,13 +254,13 @@ impl<K: Kernel> GpModel<K> {
             prior.len(),
             quad.iter().zip(prior.iter()).map(|(q, k)| (k - q).max(0.0)),
         );
-        Ok((mean, var))
+        (mean, var)
     }
 
     /// The rows of `block` (row-major, D values each) standardised as the fit's inputs, one
     /// point per column (D×B); the first bad value (not finite, or standardised beyond
     /// [`MAX_STANDARDISED_INPUT`], as [`GpModel::check_input_range`] tests it) is an error.
-    fn standardised_columns(
+    pub(crate) fn standardised_columns(
         &self,
         block: &[f64],
         d: usize,
@@ -283,7 +291,7 @@ impl<K: Kernel> GpModel<K> {
 /// Where a run of test rows first holds a value that is not finite, and where one first lies
 /// too far from the training data (positions in the row-major values).
 #[derive(Debug, Clone, Copy, Default)]
-struct BadInputs {
+pub(crate) struct BadInputs {
     non_finite: Option<usize>,
     out_of_range: Option<usize>,
 }
@@ -304,7 +312,7 @@ impl BadInputs {
     }
 
     /// The same positions counted from `start` values earlier.
-    fn offset(self, start: usize) -> Self {
+    pub(crate) fn offset(self, start: usize) -> Self {
         Self {
             non_finite: self.non_finite.map(|p| p + start),
             out_of_range: self.out_of_range.map(|p| p + start),
@@ -313,7 +321,7 @@ impl BadInputs {
 }
 
 /// Blocks of at most [`BLOCK_POINTS`] rows; every row in one.
-fn blocks(small: &[bool]) -> Vec<Block> {
+pub(crate) fn blocks(small: &[bool]) -> Vec<Block> {
     (0..small.len())
         .step_by(BLOCK_POINTS)
         .map(|start| {
