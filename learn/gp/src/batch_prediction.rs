@@ -198,7 +198,11 @@ impl<K: Kernel> GpModel<K> {
         rows: &[f64],
         blocks: Vec<std::result::Result<T, BadInputs>>,
     ) -> Result<Vec<T>> {
-        let bad: Vec<BadInputs> = blocks.iter().filter_map(|b| b.as_ref().err()).copied().collect();
+        let bad: Vec<BadInputs> = blocks
+            .iter()
+            .filter_map(|b| b.as_ref().err())
+            .copied()
+            .collect();
         if bad.is_empty() {
             return Ok(blocks.into_iter().filter_map(|b| b.ok()).collect());
         }
@@ -276,10 +280,9 @@ impl<K: Kernel> GpModel<K> {
                     .map(|((x, mu), s)| (x - mu) / s),
             );
             let standardised = &out[out.len() - row.len()..];
-            bad |= row
-                .iter()
-                .zip(standardised)
-                .fold(false, |b, (x, z)| b | !x.is_finite() | !(z.abs() <= MAX_STANDARDISED_INPUT));
+            bad |= row.iter().zip(standardised).fold(false, |b, (x, z)| {
+                b | !x.is_finite() | z.is_nan() | (z.abs() > MAX_STANDARDISED_INPUT)
+            });
         }
         if bad && let Some(found) = BadInputs::find(block, mean.as_slice(), scale.as_slice(), d) {
             return Err(found);

@@ -157,7 +157,9 @@ fn a_value_that_is_not_finite_is_named_before_an_earlier_value_out_of_range() {
     ] {
         match result {
             Err(GpError::DegenerateData(msg)) => assert!(
-                msg.contains("row 3") && msg.contains("'x5'") && msg.contains("standard deviations"),
+                msg.contains("row 3")
+                    && msg.contains("'x5'")
+                    && msg.contains("standard deviations"),
                 "{msg}"
             ),
             other => panic!("expected an error, got {other:?}"),

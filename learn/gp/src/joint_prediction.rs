@@ -64,7 +64,10 @@ impl<K: Kernel> GpModel<K> {
             })
             .collect();
         let Some(posteriors) = posteriors else {
-            return jobs.iter().map(|&(m, r)| m.predict_alone(r, rows, group_rows)).collect();
+            return jobs
+                .iter()
+                .map(|&(m, r)| m.predict_alone(r, rows, group_rows))
+                .collect();
         };
         let d = first.input_names.len();
         let t = first.whole_rows(rows, d)?;

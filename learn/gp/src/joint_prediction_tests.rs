@@ -80,7 +80,10 @@ fn models_on_other_inputs_or_full_gps_fall_back_to_their_own_calls() {
 #[test]
 fn a_bad_row_or_group_is_the_error_each_model_gives() {
     let (x, [y0, y1], mut rows) = toy(80, 200, 23);
-    let models = [fitted(GpKind::Spgp, 9, &x, &y0), fitted(GpKind::Spgp, 9, &x, &y1)];
+    let models = [
+        fitted(GpKind::Spgp, 9, &x, &y0),
+        fitted(GpKind::Spgp, 9, &x, &y1),
+    ];
     let jobs: Vec<(&GpModel, Readout)> = models.iter().map(|m| (m, Readout::Mean)).collect();
     assert!(matches!(
         GpModel::predict_jointly(&jobs, &rows, &[199]),
@@ -94,5 +97,9 @@ fn a_bad_row_or_group_is_the_error_each_model_gives() {
         other => panic!("expected an error, got {other:?}"),
     }
     let none: &[(&GpModel, Readout)] = &[];
-    assert!(GpModel::predict_jointly(none, &rows, &[200]).unwrap().is_empty());
+    assert!(
+        GpModel::predict_jointly(none, &rows, &[200])
+            .unwrap()
+            .is_empty()
+    );
 }

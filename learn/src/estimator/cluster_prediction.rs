@@ -10,8 +10,8 @@
 use rayon::prelude::*;
 
 use super::cluster_estimate::{ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming};
-use super::regressor::Regressor;
 use super::merge::{Gaussian, HeadingVote, MergeRule, MergedHeading, merge_heading, merge_scalar};
+use super::regressor::Regressor;
 use crate::timing::timed;
 use crate::{
     FeatureKind, GpPrediction, LearnError, MotionEstimator, PATCH_LEN, Result, SweepFeatures,
