@@ -64,6 +64,8 @@ pub struct PerceptionSummary {
     /// The whole learned perception with one estimator: features, its GP step, the classifier,
     /// GP-KF and GP-ICP (`ScanTiming::learned_scan_secs`).
     pub learned_scan: Spread,
+    /// CPU time of the whole learned scan, all threads (`ScanTiming::learned_scan_cpu_secs`).
+    pub learned_scan_cpu: Option<Spread>,
 }
 
 impl PerceptionSummary {
@@ -106,6 +108,12 @@ impl PerceptionSummary {
             gp_kf: spread(&|t| t.gp_kf_secs),
             gp_icp: spread(&|t| t.gp_icp_secs),
             learned_scan: spread(&ScanTiming::learned_scan_secs),
+            learned_scan_cpu: scans
+                .iter()
+                .map(|t| t.learned_scan_cpu_secs)
+                .collect::<Option<Vec<f64>>>()
+                .filter(|v| !v.is_empty())
+                .map(|v| Spread::of(v.into_iter())),
         }
     }
 
@@ -183,5 +191,23 @@ mod tests {
         assert_eq!(all[0].median_samples, 300.0);
         assert!(all[0].line().contains("41.0 ms median"));
         assert!(all[0].mean_target_points.is_none());
+        assert!(all[0].learned_scan_cpu.is_none(), "no scan has a CPU time");
+    }
+
+    #[test]
+    fn the_learned_scans_cpu_time_is_summarised_only_when_every_scan_has_one() {
+        let scan = |cpu: Option<f64>| ScanTiming {
+            learned_scan_cpu_secs: cpu,
+            ..ScanTiming::default()
+        };
+        let timed = [scan(Some(0.09)), scan(Some(0.15)), scan(Some(0.12))];
+        let spread = PerceptionSummary::of("s", &timed.iter().collect::<Vec<_>>())
+            .learned_scan_cpu
+            .expect("every scan has a CPU time");
+        assert!((spread.median_secs - 0.12).abs() < 1e-12);
+        assert!((spread.worst_secs - 0.15).abs() < 1e-12);
+        let partly = [scan(Some(0.09)), scan(None)];
+        let summary = PerceptionSummary::of("s", &partly.iter().collect::<Vec<_>>());
+        assert!(summary.learned_scan_cpu.is_none());
     }
 }

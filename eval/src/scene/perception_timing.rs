@@ -30,7 +30,8 @@ pub struct ScanTiming {
     pub target_secs: f64,
     /// Sliced points of the target's cluster.
     pub target_points: usize,
-    /// The moving classifier on every object hypothesis (0 without a classifier).
+    /// The moving classifier on every object hypothesis, with the change evidence it reads (0
+    /// without a classifier).
     #[serde(default)]
     pub segmentation_secs: f64,
     /// GP-KF over every cluster.
@@ -39,6 +40,11 @@ pub struct ScanTiming {
     /// GP-ICP on the hypotheses.
     #[serde(default)]
     pub gp_icp_secs: f64,
+    /// CPU time of the whole learned scan with the first estimator (features, its step, the
+    /// moving classifier with the change evidence it reads, GP-KF, GP-ICP), all threads, where
+    /// the system reports it.
+    #[serde(default)]
+    pub learned_scan_cpu_secs: Option<f64>,
 }
 
 /// One estimator's whole-scan step, seconds (see [`PredictionTiming`]).

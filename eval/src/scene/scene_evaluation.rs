@@ -118,15 +118,15 @@ pub fn evaluate_sequence(
             features,
         };
         let dt = scan.sweep.stamp_secs - sequence.stamps_secs()[scan.index - 1];
-        // The moving classifier reads the change observed over the last half second as well.
-        let change = match moving {
-            Some(_) => ChangeEvidence::of_stream(&stream),
-            None => None,
-        };
+        // The moving classifier reads the change observed over the last half second as well
+        // (timed as part of the segmentation).
+        let change_start = Instant::now();
+        let change = moving.and_then(|_| ChangeEvidence::of_stream(&stream));
+        let change_secs = change_start.elapsed().as_secs_f64();
         let moving_now = moving.zip(change.as_ref());
         evaluate_scan(
             &scan,
-            cpu_start,
+            (cpu_start, change_secs),
             dt,
             (estimators, &group_of, moving_now),
             has_target.then_some(&name),
@@ -173,7 +173,7 @@ pub fn evaluate_sequence(
 /// One scan: the estimators' whole-scan step, the target's estimate, the baselines, the scores.
 fn evaluate_scan(
     scan: &FeaturedSweep,
-    cpu_start: Option<f64>,
+    (cpu_start, change_secs): (Option<f64>, f64),
     dt_secs: f64,
     (estimators, group_of, moving): (
         &[MotionEstimator],
@@ -188,8 +188,10 @@ fn evaluate_scan(
     let mut timing = ScanTiming::with_features(features.timing());
     // Thesis Algorithm 3.1, steps 3 and 4, on the whole scan, per estimator sharing these maps.
     let mut motions = Vec::new();
+    let mut learned_cpu = None; // features and the first estimator's step, then issue 27's stages
     for (estimator, _) in estimators.iter().zip(group_of).filter(|(_, g)| **g == 0) {
         let motion = estimator.estimate_features(features)?;
+        learned_cpu = learned_cpu.or(cpu_start.zip(process_cpu_secs()).map(|(a, b)| b - a));
         if let Some(reason) = implausible_motion(&motion) {
             return Err(EvalError::BadObservation {
                 situation: situation.map_or_else(|| "-".to_owned(), String::clone),
@@ -204,7 +206,7 @@ fn evaluate_scan(
         .zip(process_cpu_secs())
         .map(|(start, end)| end - start);
     // Moving or static, per object hypothesis (issue 27).
-    let start = Instant::now();
+    let (start, cpu) = (Instant::now(), process_cpu_secs());
     let decisions: Vec<Option<bool>> = match moving {
         Some((classifier, change)) => classifier.tracked_decisions(
             &mut trackers.belief,
@@ -214,7 +216,10 @@ fn evaluate_scan(
         )?,
         None => vec![None; features.clusters().len()],
     };
-    timing.segmentation_secs = start.elapsed().as_secs_f64();
+    timing.segmentation_secs = start.elapsed().as_secs_f64() + change_secs;
+    let mut learned_cpu = learned_cpu
+        .zip(cpu.zip(process_cpu_secs()))
+        .map(|(l, (a, b))| l + b - a);
     // The oracle association (thesis 4.4): every actor's cluster.
     let observation = observe(scan, features);
     let hypotheses = hypothesis_flags(features);
@@ -263,12 +268,16 @@ fn evaluate_scan(
             moving: decisions[c],
         })
         .collect();
-    let start = Instant::now();
+    let (start, cpu) = (Instant::now(), process_cpu_secs());
     let gp_kf = trackers.learned.step_kf(&observation, &learned)?;
     timing.gp_kf_secs = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let gp_icp = trackers.learned.step_icp(&observation, &learned, &wanted)?;
     timing.gp_icp_secs = start.elapsed().as_secs_f64();
+    learned_cpu = learned_cpu
+        .zip(cpu.zip(process_cpu_secs()))
+        .map(|(l, (a, b))| l + b - a);
+    timing.learned_scan_cpu_secs = learned_cpu;
     let learned_flows = BTreeMap::from([(Method::GpKf, gp_kf), (Method::GpIcp, gp_icp)]);
     // Scene flow of every method on every scored point, and every actor.
     let flows = method_flows(

@@ -108,3 +108,61 @@ fn values_that_are_not_whole_rows_are_an_error() {
     let empty = model.predict_rows(&[]).expect("no rows is no predictions");
     assert!(empty.mean.is_empty());
 }
+
+#[test]
+fn the_mean_alone_has_the_bits_of_the_full_prediction_on_any_number_of_threads() {
+    let (x, y, rows) = toy(150, 300, 7);
+    for kind in [GpKind::Spgp, GpKind::SpgpHet, GpKind::Full] {
+        let model = fitted(kind, &x, &y);
+        for t in [0, 1, 5, 6, 129, 300] {
+            let rows = &rows[..t * D];
+            let in_pool = |threads: usize| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("pool")
+                    .install(|| model.predict_mean_rows(rows).expect("predicts"))
+            };
+            let full = model.predict_rows(rows).expect("predicts rows").mean;
+            assert_eq!(in_pool(1), full, "{kind:?}, {t} rows, one thread");
+            assert_eq!(in_pool(2), full, "{kind:?}, {t} rows, two threads");
+        }
+    }
+}
+
+#[test]
+fn a_value_that_is_not_finite_is_named_before_an_earlier_value_out_of_range() {
+    // One pass over all rows reports the first non-finite value even when a value out of range
+    // comes earlier, in another block of the parallel path; the mean-only path says the same.
+    let (x, y, mut rows) = toy(60, 300, 8);
+    let model = fitted(GpKind::Spgp, &x, &y);
+    rows[3 * D + 5] = 1e300;
+    rows[250 * D + 7] = f64::INFINITY;
+    for result in [
+        model.predict_rows(&rows).map(|p| p.mean),
+        model.predict_mean_rows(&rows),
+    ] {
+        match result {
+            Err(GpError::DegenerateData(msg)) => assert!(
+                msg.contains("row 250") && msg.contains("'x7'") && msg.contains("not finite"),
+                "{msg}"
+            ),
+            other => panic!("expected an error, got {other:?}"),
+        }
+    }
+    rows[250 * D + 7] = 0.0;
+    for result in [
+        model.predict_rows(&rows).map(|p| p.mean),
+        model.predict_mean_rows(&rows),
+    ] {
+        match result {
+            Err(GpError::DegenerateData(msg)) => assert!(
+                msg.contains("row 3")
+                    && msg.contains("'x5'")
+                    && msg.contains("standard deviations"),
+                "{msg}"
+            ),
+            other => panic!("expected an error, got {other:?}"),
+        }
+    }
+}

@@ -34,6 +34,7 @@ mod gemm_operands;
 mod heap_warmup;
 mod hyper;
 mod init;
+mod joint_prediction;
 mod kernel;
 mod lbfgs;
 mod linalg;
@@ -60,6 +61,7 @@ mod transform;
 
 pub use error::{GpError, Result};
 pub use full::FULL_GP_MAX_SAMPLES;
+pub use joint_prediction::{Predicted, Readout};
 pub use kernel::{Kernel, Points};
 pub use log_range::LogRange;
 pub use loo::LooMoments;

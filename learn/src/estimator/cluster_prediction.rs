@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use super::cluster_estimate::{ClusterEstimate, ClusterMotion, PointMotion, PredictionTiming};
 use super::merge::{Gaussian, HeadingVote, MergeRule, MergedHeading, merge_heading, merge_scalar};
+use super::regressor::Regressor;
 use crate::timing::timed;
 use crate::{
     FeatureKind, GpPrediction, LearnError, MotionEstimator, PATCH_LEN, Result, SweepFeatures,
@@ -68,10 +69,14 @@ impl MotionEstimator {
         })?;
         // 3b: per-point sin and cos of the heading relative to the bearing (thesis 3.1.1).
         let (sin, cos) = timed(&mut timing.gp_secs, || {
-            Ok::<_, LearnError>((
-                self.heading_sin.predict_row_groups(&x, &sizes)?,
-                self.heading_cos.predict_row_groups(&x, &sizes)?,
-            ))
+            let pair = [&self.heading_sin, &self.heading_cos];
+            let mut both = Regressor::predict_together(&pair, &x, &sizes)?.into_iter();
+            match (both.next(), both.next()) {
+                (Some(sin), Some(cos)) => Ok((sin, cos)),
+                _ => Err(LearnError::invalid_params(
+                    "the heading GPs did not predict both".into(),
+                )),
+            }
         })?;
         drop(x);
         // 3c: the votes turned into the world frame, one heading per cluster and merge rule.

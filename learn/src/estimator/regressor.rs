@@ -4,12 +4,12 @@
 //! heteroscedastic noise (a noise GP on held-out log residuals; gp.md §7).
 
 use nalgebra::{DMatrix, DVector};
-use patchflow_gp::{GpKind, GpModel, GpParams, GpPrediction};
+use patchflow_gp::{GpKind, GpModel, GpParams, GpPrediction, Predicted, Readout};
 
 use super::kmeans::kmeans;
 use super::params::EstimatorValidParams;
 use super::projection::Projection;
-use crate::Result;
+use crate::{LearnError, Result};
 
 /// Optimiser iterations of the noise GP (a smooth function of few inputs; its fit is cheap).
 const NOISE_GP_ITERS: usize = 100;
@@ -125,23 +125,76 @@ impl Regressor {
     /// Predicts at consecutive groups of patch rows (as [`GpModel::predict_row_groups`]);
     /// with a noise GP, `var_y` is the latent variance plus σ²·exp(z(x) − offset).
     pub fn predict_row_groups(&self, rows: &[f64], group_rows: &[usize]) -> Result<GpPrediction> {
-        let projected;
-        let rows = match &self.projection {
-            None => rows,
-            Some(p) => {
-                projected = p.apply_rows(rows)?;
-                &projected
+        let mut out = Self::predict_together(&[self], rows, group_rows)?;
+        out.pop()
+            .ok_or_else(|| LearnError::invalid_params("a regression predicted nothing".into()))
+    }
+
+    /// [`Self::predict_row_groups`] of every regression in `regressions` at the same rows, in
+    /// their order. Regressions on the raw patch values share one pass over the rows (their GPs
+    /// and noise GPs through [`GpModel::predict_jointly`]; each gets the bits of its own call).
+    pub fn predict_together(
+        regressions: &[&Self],
+        rows: &[f64],
+        group_rows: &[usize],
+    ) -> Result<Vec<GpPrediction>> {
+        if regressions.iter().any(|r| r.projection.is_some()) {
+            return regressions
+                .iter()
+                .map(|r| {
+                    let projected = match &r.projection {
+                        Some(p) => p.apply_rows(rows)?,
+                        None => rows.to_vec(),
+                    };
+                    r.predict_inputs(&projected, group_rows)
+                })
+                .collect();
+        }
+        let mut jobs = Vec::new();
+        for r in regressions {
+            jobs.push((&r.gp, Readout::Full));
+            if let Some(noise) = &r.noise {
+                jobs.push((&noise.gp, Readout::Mean));
             }
+        }
+        let mut predicted = GpModel::predict_jointly(&jobs, rows, group_rows)?.into_iter();
+        regressions
+            .iter()
+            .map(|r| {
+                let Some(Predicted::Full(prediction)) = predicted.next() else {
+                    return Err(LearnError::invalid_params(
+                        "a joint prediction lost its order".into(),
+                    ));
+                };
+                let z = match &r.noise {
+                    Some(_) => predicted.next().map(|p| p.mean().clone()),
+                    None => None,
+                };
+                Ok(r.with_noise(prediction, z.as_ref()))
+            })
+            .collect()
+    }
+
+    /// The prediction at rows already in the GP's inputs (projected where there is a projection).
+    fn predict_inputs(&self, rows: &[f64], group_rows: &[usize]) -> Result<GpPrediction> {
+        let prediction = self.gp.predict_row_groups(rows, group_rows)?;
+        let z = match &self.noise {
+            Some(noise) => Some(noise.gp.predict_mean_rows(rows)?),
+            None => None,
         };
-        let mut prediction = self.gp.predict_row_groups(rows, group_rows)?;
-        if let Some(noise) = &self.noise {
-            let z = noise.gp.predict_row_groups(rows, group_rows)?.mean;
+        Ok(self.with_noise(prediction, z.as_ref()))
+    }
+
+    /// `prediction` with the noise GP's log noise `z` (when there is a noise GP) in `var_y`:
+    /// the latent variance plus σ²·exp(z(x) − offset).
+    fn with_noise(&self, mut prediction: GpPrediction, z: Option<&DVector<f64>>) -> GpPrediction {
+        if let (Some(noise), Some(z)) = (&self.noise, z) {
             let sigma2 = self.gp.noise_variance();
             prediction.var_y = DVector::from_fn(z.len(), |i, _| {
                 prediction.var_latent[i] + sigma2 * (z[i] - noise.offset).clamp(-20.0, 20.0).exp()
             });
         }
-        Ok(prediction)
+        prediction
     }
 
     /// The names of the patch columns the regression reads (the GP's own when unprojected).

@@ -3,10 +3,15 @@
 //! thesis assumes (world z = 0) or the local ground estimated from the sweep itself.
 
 use patchflow_dataset::Sweep;
+use rayon::prelude::*;
 
 use crate::features::ground_grid::{GroundGrid, points_in_world};
 use crate::features::ground_slab::{SlabAboveGround, clip_to_slab};
 use crate::{FeatureParams, GroundMode, Result};
+
+/// Points per parallel task of the slice above an estimated ground (a sweep's ~120,000 make
+/// about fifteen tasks; each clips its beams against the ground on its own).
+const TASK_POINTS: usize = 8192;
 
 /// The part of one beam inside the height slice, projected to the ground plane (world x, y).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,12 +102,32 @@ impl HeightSlice {
         params: &FeatureParams,
     ) -> Self {
         let slab = SlabAboveGround::new(ground, origin, params.slice_min_m, params.slice_max_m);
+        // Runs of points in parallel tasks, joined in point order: the beams and points of a
+        // one-task loop.
+        let parts: Vec<Self> = points
+            .par_chunks(TASK_POINTS)
+            .enumerate()
+            .map(|(task, run)| {
+                let mut part = Self::empty(origin);
+                let mut intervals = Vec::new();
+                for (k, &end) in run.iter().enumerate() {
+                    intervals.clear();
+                    let hit = slab.clip(end, &mut intervals);
+                    part.push(origin, end, task * TASK_POINTS + k, &intervals, hit);
+                }
+                part
+            })
+            .collect();
         let mut slice = Self::empty(origin);
-        let mut intervals = Vec::new();
-        for (index, &end) in points.iter().enumerate() {
-            intervals.clear();
-            let hit = slab.clip(end, &mut intervals);
-            slice.push(origin, end, index, &intervals, hit);
+        slice
+            .beams
+            .reserve(parts.iter().map(|p| p.beams.len()).sum());
+        slice
+            .points
+            .reserve(parts.iter().map(|p| p.points.len()).sum());
+        for part in parts {
+            slice.beams.extend(part.beams);
+            slice.points.extend(part.points);
         }
         slice
     }

@@ -252,3 +252,51 @@ fn the_slice_places_points_with_the_estimated_pose_not_the_truth() {
         );
     }
 }
+
+#[test]
+fn the_slice_above_the_estimated_ground_is_the_same_on_one_thread_and_on_two() {
+    // More points than one parallel task takes, so the slice is joined from several runs.
+    let world = SyntheticWorld {
+        scene: SyntheticScene {
+            boxes: vec![
+                SceneBox::car(1, [9.0, -3.0], 0.3, 5.0),
+                SceneBox::wall([-6.0, 8.0], 0.2, [12.0, 0.4, 3.0]),
+            ],
+        },
+        ..SyntheticWorld::default()
+    };
+    let sweep = world.scan(
+        &SyntheticLidar::with_resolution(64, 900),
+        [0.0, 0.0],
+        0.0,
+        0,
+    );
+    assert!(sweep.points_in_sensor.len() > 3 * TASK_POINTS);
+    let cut = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| HeightSlice::cut(&sweep, &FeatureParams::default()).unwrap())
+    };
+    let (one, two) = (cut(1), cut(2));
+    assert_eq!(one, two);
+    // The serial loop the runs replace, point by point.
+    let params = FeatureParams::default();
+    let points = points_in_world(&sweep).unwrap();
+    let o = sweep.estimated_pose().translation.vector;
+    let ground = GroundGrid::from_points_in_world(&points, [o.x, o.y], params.half_extent_m);
+    let origin = [o.x, o.y, o.z];
+    let slab = SlabAboveGround::new(&ground, origin, params.slice_min_m, params.slice_max_m);
+    let mut serial = HeightSlice::empty(origin);
+    let mut intervals = Vec::new();
+    for (index, &end) in points.iter().enumerate() {
+        intervals.clear();
+        let hit = slab.clip(end, &mut intervals);
+        serial.push(origin, end, index, &intervals, hit);
+    }
+    assert_eq!(one, serial);
+    assert!(!one.points.is_empty());
+    // Every point keeps its own index, in order.
+    assert!(one.points.windows(2).all(|w| w[0].index < w[1].index));
+}
