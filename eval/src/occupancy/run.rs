@@ -98,8 +98,10 @@ pub fn occupancy_notes(params: &OccupancyParams) -> Vec<String> {
             params.scans_per_map.saturating_sub(1)
         ),
         format!(
-            "GPOM: GP classification by probabilistic least squares (patchflow-gp; GPML §6.5): SE-ARD regression on ±1 labels, then Φ((αμ + β)/√(1 + α²σ²)) with α, β maximising the leave-one-out probability. Hyperparameters are learned for every map (at most {} L-BFGS iterations of the marginal likelihood). GP solver: {} (the path each map took is `solver_by_query_time` in `occupancy.json`); the paper does not say how it solved its GPs. GPOM-RD1 adds the time as a third input with its own (ARD) length-scale. The variance drawn is the latent predictive variance σ².",
-            gpom.max_iters, gpom.solver.describe()
+            "GPOM: GP classification by probabilistic least squares (patchflow-gp; GPML §6.5): SE-ARD regression on ±1 labels, then Φ((αμ + β)/√(1 + α²σ²)) with α, β maximising the leave-one-out probability. Hyperparameters are learned for every map (at most {} L-BFGS iterations of the marginal likelihood on the exact GP's path, as DGPOM's, {} on SPGP's). GP solver: {} (the path each map took is `solver_by_query_time` in `occupancy.json`); the paper does not say how it solved its GPs. GPOM-RD1 adds the time as a third input with its own (ARD) length-scale. The variance drawn is the latent predictive variance σ².",
+            gpom.exact_max_iters.min(gpom.max_iters),
+            gpom.max_iters,
+            gpom.solver.describe()
         ),
         format!(
             "Truth and scoring: exact occupancy at the scanner's height from the dataset's static obstacles (`static.json`) and actor boxes, at each query point of a {} m lattice over the area the scanner observes: within range, inside its field of view, and in front of static structure (a building's interior, which no scan can reach, is left out; what cars hide is kept). The grid baseline (`GRID`) uses 0.5 m cells, hits / (hits + misses), 0.5 where no beam passed.",
