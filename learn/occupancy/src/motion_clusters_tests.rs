@@ -156,3 +156,46 @@ fn crossing_cars_are_paired_with_themselves_when_the_scans_around_bear_it_out() 
         );
     }
 }
+
+/// A cluster of cells at x = `xs` on the line y = 4.25.
+fn group(xs: &[f64]) -> Group {
+    let centres: Vec<[f64; 2]> = xs.iter().map(|&x| [x, 4.25]).collect();
+    let n = centres.len() as f64;
+    let centroid = [centres.iter().map(|p| p[0]).sum::<f64>() / n, 4.25];
+    Group { centres, centroid }
+}
+
+#[test]
+fn a_vacated_cluster_between_two_queued_cars_belongs_to_the_car_ahead_whose_front_arrived() {
+    // A queue moving +x: the car behind (x ≤ −0.25) is 0.5 m from the vacated cell at 0.25,
+    // the car ahead (x ≥ 1.25) 1 m; the car ahead's front arrived at 3.75. Nearest first would
+    // give the vacated cell the car behind and a velocity backwards (−x).
+    let objects = vec![
+        group(&[-2.25, -1.75, -1.25, -0.75, -0.25]),
+        group(&[1.25, 1.75, 2.25, 2.75, 3.25]),
+    ];
+    let diffs = vec![
+        (ClusterKind::Vacated, group(&[0.25])),
+        (ClusterKind::Arrived, group(&[3.75])),
+    ];
+    let gaps: Vec<Vec<f64>> = diffs
+        .iter()
+        .map(|(_, g)| objects.iter().map(|o| g.gap_m(o)).collect())
+        .collect();
+    assert!(gaps[0][0] < gaps[0][1], "the car behind is the nearer");
+    assert_eq!(owner(0, &diffs, &objects, &gaps, 1.0 + 1e-9), Some(1));
+    let u = motion_direction(ClusterKind::Vacated, &diffs[0].1, &objects[1]).expect("apart");
+    assert!((u[0] - 1.0).abs() < 1e-12 && u[1].abs() < 1e-12, "{u:?}");
+    // The arrived front has only the car ahead within reach.
+    assert_eq!(owner(1, &diffs, &objects, &gaps, 1.0 + 1e-9), Some(1));
+}
+
+#[test]
+fn with_no_other_side_to_bear_it_out_a_diff_cluster_takes_the_nearest_object_and_none_out_of_reach()
+{
+    let objects = vec![group(&[-1.25, -0.75, -0.25]), group(&[1.25, 1.75])];
+    let diffs = vec![(ClusterKind::Vacated, group(&[0.25]))];
+    let gaps: Vec<Vec<f64>> = vec![objects.iter().map(|o| diffs[0].1.gap_m(o)).collect()];
+    assert_eq!(owner(0, &diffs, &objects, &gaps, 1.0 + 1e-9), Some(0));
+    assert_eq!(owner(0, &diffs, &objects, &gaps, 0.4), None);
+}
