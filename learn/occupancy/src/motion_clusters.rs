@@ -9,8 +9,7 @@
 //! arrived cluster, from a vacated cluster to the object), its magnitude the cluster's width
 //! along that line over the scan interval. Where several objects are next to it, the nearest
 //! whose other side bears the motion out (a Diff cluster of the other kind next to that object
-//! moving the same way) is taken, else the nearest whose other side shows no motion; an object
-//! whose other side moves against it is never taken (`owner`: in a queue the car behind is often
+//! moving the same way) is taken, else the nearest (`owner`: in a queue the car behind is often
 //! the nearer). Same clusters with no Diff cluster next to them are
 //! stationary (velocity 0).
 //!
@@ -249,13 +248,12 @@ fn motion_direction(kind: ClusterKind, group: &Group, object: &Group) -> Option<
 }
 
 /// The object the Diff cluster `d` belongs to, of those within `reach` of it (`gaps[d][o]`): the
-/// nearest whose other side bears the motion out (a Diff cluster of the other kind within reach
-/// of it moving the same way: a positive dot product of the two directions); else the nearest
-/// whose other side shows nothing; none if every such object's other side moves against it. In
-/// a queue a car's vacated cells lie between it and the car behind, which may be nearer (or the
-/// only object within reach): taking that one made the cluster point backwards (about 1 in 7 of
-/// the T-junction's near-lane vacated clusters); the car behind has its arrived cells in front
-/// of it, which contradict a motion backwards.
+/// nearest whose other side bears the motion out, i.e. that has a Diff cluster of the other kind
+/// within reach moving the same way (a positive dot product of the two directions); with none
+/// such, the nearest. In a queue a car's vacated cells lie between it and the car behind, which
+/// may be nearer: taking that one made the cluster point backwards (about 1 in 7 of the
+/// T-junction's near-lane vacated clusters); the car behind has its arrived cells in front of it,
+/// which do not bear out a motion backwards, so the car ahead is taken.
 fn owner(
     d: usize,
     diffs: &[(ClusterKind, Group)],
@@ -268,29 +266,22 @@ fn owner(
         .filter(|&o| gaps[d][o] <= reach)
         .collect();
     candidates.sort_by(|&a, &b| gaps[d][a].total_cmp(&gaps[d][b]).then(a.cmp(&b)));
-    // Whether the other side of object `o` agrees with the motion `d` implies (None: it shows
-    // no motion to compare with).
-    let agrees = |o: usize| -> Option<bool> {
-        let u = motion_direction(*kind, group, &objects[o])?;
-        let mut seen = None;
-        for (e, (other, g)) in diffs.iter().enumerate() {
-            if *other == *kind || gaps[e][o] > reach {
-                continue;
-            }
-            if let Some(w) = motion_direction(*other, g, &objects[o]) {
-                let same_way = u[0] * w[0] + u[1] * w[1] > 0.0;
-                seen = Some(seen.unwrap_or(false) || same_way);
-            }
-        }
-        seen
+    let borne_out = |o: usize| {
+        let Some(u) = motion_direction(*kind, group, &objects[o]) else {
+            return false;
+        };
+        diffs.iter().enumerate().any(|(e, (other, g))| {
+            *other != *kind
+                && gaps[e][o] <= reach
+                && motion_direction(*other, g, &objects[o])
+                    .is_some_and(|w| u[0] * w[0] + u[1] * w[1] > 0.0)
+        })
     };
-    let verdicts: Vec<(usize, Option<bool>)> =
-        candidates.iter().map(|&o| (o, agrees(o))).collect();
-    verdicts
+    candidates
         .iter()
-        .find(|(_, v)| *v == Some(true))
-        .or_else(|| verdicts.iter().find(|(_, v)| v.is_none()))
-        .map(|(o, _)| *o)
+        .copied()
+        .find(|&o| borne_out(o))
+        .or_else(|| candidates.first().copied())
 }
 
 /// The addition for fast objects: vacated and arrived clusters without an adjacent object,

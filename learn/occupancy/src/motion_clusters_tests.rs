@@ -191,25 +191,6 @@ fn a_vacated_cluster_between_two_queued_cars_belongs_to_the_car_ahead_whose_fron
 }
 
 #[test]
-fn a_vacated_cluster_whose_only_neighbour_is_a_car_driving_the_other_way_belongs_to_none() {
-    // The car behind (x ≤ −0.25), its front arrived at 0.25 … moving +x; a vacated cell at 0.75
-    // would make it move −x. The car ahead is out of reach, so no object is taken.
-    let objects = vec![group(&[-2.25, -1.75, -1.25, -0.75, -0.25])];
-    let diffs = vec![
-        (ClusterKind::Vacated, group(&[0.75])),
-        (ClusterKind::Arrived, group(&[0.25])),
-    ];
-    let gaps: Vec<Vec<f64>> = diffs
-        .iter()
-        .map(|(_, g)| objects.iter().map(|o| g.gap_m(o)).collect())
-        .collect();
-    assert_eq!(owner(0, &diffs, &objects, &gaps, 1.0 + 1e-9), None);
-    // The same rule leaves the arrived front without its object too: the stray vacated cell
-    // contradicts it (a car needs its own vacated rear in view to be borne out).
-    assert_eq!(owner(1, &diffs, &objects, &gaps, 1.0 + 1e-9), None);
-}
-
-#[test]
 fn with_no_other_side_to_bear_it_out_a_diff_cluster_takes_the_nearest_object_and_none_out_of_reach()
 {
     let objects = vec![group(&[-1.25, -0.75, -0.25]), group(&[1.25, 1.75])];
