@@ -7,10 +7,7 @@
 //! cell short of the displacement, gets that cell back). Clusters of Same cells are objects. A Diff cluster next to an object gets
 //! a velocity: its direction along the line between the two centroids (from the object into an
 //! arrived cluster, from a vacated cluster to the object), its magnitude the cluster's width
-//! along that line over the scan interval. Where several objects are next to it, the nearest
-//! whose other side bears the motion out (a Diff cluster of the other kind next to that object
-//! moving the same way) is taken, else the nearest (`owner`: in a queue the car behind is often
-//! the nearer). Same clusters with no Diff cluster next to them are
+//! along that line over the scan interval. Same clusters with no Diff cluster next to them are
 //! stationary (velocity 0).
 //!
 //! One addition: an object that moves farther than its own visible length between scans leaves no
@@ -190,20 +187,21 @@ pub(crate) fn motion_clusters(
         )
         .collect();
     let mut out = Vec::new();
-    // The paper's rule: a Diff cluster next to an object moved out of or into it; the object is
-    // the nearest one the other side of its motion bears out (`owner`).
-    let gaps: Vec<Vec<f64>> = diffs
-        .iter()
-        .map(|(_, g)| objects.iter().map(|o| g.gap_m(o)).collect())
-        .collect();
-    let owners: Vec<Option<usize>> = (0..diffs.len())
-        .map(|d| owner(d, &diffs, &objects, &gaps, params.adjacency_m + 1e-9))
-        .collect();
+    // The paper's rule: a Diff cluster next to an object moved out of or into it.
     let mut unmatched = Vec::new();
-    for ((kind, group), owner) in diffs.into_iter().zip(owners) {
-        match owner.map(|o| &objects[o]) {
-            Some(object) => {
-                let v = match motion_direction(kind, &group, object) {
+    for (kind, group) in diffs {
+        let nearest = objects
+            .iter()
+            .map(|o| (group.gap_m(o), o))
+            .filter(|(gap, _)| *gap <= params.adjacency_m + 1e-9)
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        match nearest {
+            Some((_, object)) => {
+                let (from, to) = match kind {
+                    ClusterKind::Arrived => (object.centroid, group.centroid),
+                    _ => (group.centroid, object.centroid),
+                };
+                let v = match unit(from, to) {
                     Some(u) => {
                         // One cell of the displacement is lost to the tolerance; count it back.
                         let speed = (group.width_m(u, params.cell_m) + params.cell_m) / dt;
@@ -236,52 +234,6 @@ pub(crate) fn motion_clusters(
     }));
     out.extend(paired(unmatched, scans, scan, dt, params).0);
     out
-}
-
-/// The direction a Diff cluster moved in if `object` is the object it belongs to: from the
-/// object into an arrived cluster, from a vacated cluster to the object.
-fn motion_direction(kind: ClusterKind, group: &Group, object: &Group) -> Option<[f64; 2]> {
-    match kind {
-        ClusterKind::Arrived => unit(object.centroid, group.centroid),
-        _ => unit(group.centroid, object.centroid),
-    }
-}
-
-/// The object the Diff cluster `d` belongs to, of those within `reach` of it (`gaps[d][o]`): the
-/// nearest whose other side bears the motion out, i.e. that has a Diff cluster of the other kind
-/// within reach moving the same way (a positive dot product of the two directions); with none
-/// such, the nearest. In a queue a car's vacated cells lie between it and the car behind, which
-/// may be nearer: taking that one made the cluster point backwards (about 1 in 7 of the
-/// T-junction's near-lane vacated clusters); the car behind has its arrived cells in front of it,
-/// which do not bear out a motion backwards, so the car ahead is taken.
-fn owner(
-    d: usize,
-    diffs: &[(ClusterKind, Group)],
-    objects: &[Group],
-    gaps: &[Vec<f64>],
-    reach: f64,
-) -> Option<usize> {
-    let (kind, group) = &diffs[d];
-    let mut candidates: Vec<usize> = (0..objects.len())
-        .filter(|&o| gaps[d][o] <= reach)
-        .collect();
-    candidates.sort_by(|&a, &b| gaps[d][a].total_cmp(&gaps[d][b]).then(a.cmp(&b)));
-    let borne_out = |o: usize| {
-        let Some(u) = motion_direction(*kind, group, &objects[o]) else {
-            return false;
-        };
-        diffs.iter().enumerate().any(|(e, (other, g))| {
-            *other != *kind
-                && gaps[e][o] <= reach
-                && motion_direction(*other, g, &objects[o])
-                    .is_some_and(|w| u[0] * w[0] + u[1] * w[1] > 0.0)
-        })
-    };
-    candidates
-        .iter()
-        .copied()
-        .find(|&o| borne_out(o))
-        .or_else(|| candidates.first().copied())
 }
 
 /// The addition for fast objects: vacated and arrived clusters without an adjacent object,
