@@ -296,7 +296,10 @@ mod tests {
                 .expect("evaluations in the summary")
         };
         let (short, long) = (evals(2), evals(50));
-        assert!(short < long, "{short} evaluations at 2 iterations, {long} at 50");
+        assert!(
+            short < long,
+            "{short} evaluations at 2 iterations, {long} at 50"
+        );
     }
 
     #[test]

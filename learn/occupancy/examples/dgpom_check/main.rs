@@ -130,7 +130,10 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     };
     // GPOM_ITERS: the GPOMs' iteration limit on both paths (default theirs: 25 exact, 50 SPGP).
     let gpom_default = GpomMethod::space(samples.clone());
-    let gpom_iters: Option<usize> = std::env::var("GPOM_ITERS").ok().map(|v| v.parse()).transpose()?;
+    let gpom_iters: Option<usize> = std::env::var("GPOM_ITERS")
+        .ok()
+        .map(|v| v.parse())
+        .transpose()?;
     let (gpom_iters, gpom_exact_iters) = gpom_iters.map_or(
         (gpom_default.max_iters, gpom_default.exact_max_iters),
         |n| (n, n),
