@@ -108,7 +108,7 @@ pub fn occupancy_notes(params: &OccupancyParams) -> Vec<String> {
             params.query_spacing_m
         ),
         "Reading the maps: pooling the scans of moving cars, GPOM-RD finds its best marginal likelihood with a long length-scale along the lanes and a very short one across them (see the fit column above; the exact GP chooses the same on the T-junction), so the cars become stripes along their lanes while the building's face stays sharp: the paper's 'inability to reconstruct the vehicles' of GPOM ℜ^D. GPOM-RD1 weighs the older scans by its learned temporal length-scale and keeps the cars as blobs where they were last seen; both see only the faces the scanner hit, not the cars' whole boxes, and fall back towards their prior where cars are hidden.".to_owned(),
-        "Timing: one map is fit and prediction over the query points, in wall-clock and CPU seconds; the maps run side by side, one per core, each alone on its thread (so a map's wall seconds are one core's, and the stage's wall time is about the sum over the cores); a Criterion bench (`cargo bench -p patchflow-eval --bench occupancy`) times one map of each method at t = 5.".to_owned(),
+        "Timing: one map is fit and prediction over the query points, in wall-clock and CPU seconds; the maps run side by side, one per core, each alone on its thread (so the maps' wall seconds add up to about the stage's wall time times the cores, and on a loaded machine a map's wall seconds grow with the load while its CPU seconds hardly do); a Criterion bench (`cargo bench -p patchflow-eval --bench occupancy`) times one map of each method at t = 5.".to_owned(),
     ]
 }
 
