@@ -120,7 +120,8 @@ mod tests {
         // than 0.75 of the reference; about half if a half ran elsewhere) and never more than
         // its wall seconds (5 ms for the clocks' granularity).
         let half = || busy(2_000_000);
-        (half(), half());
+        half();
+        half();
         let reference = thread_cpu_secs().expect("thread CPU time") - before;
         for t in run_jobs(4, 2, &|_| rayon::join(half, half)) {
             let cpu = t.cpu_secs.expect("thread CPU time");
