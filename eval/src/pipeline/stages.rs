@@ -254,13 +254,6 @@ pub fn occupancy_with_bar(
     let motion_maps = RefCell::new(BTreeMap::new());
     // The DGPOM method of each scenario, kept so predicting ahead reuses its fits.
     let dgpom_methods = RefCell::new(BTreeMap::new());
-    // CPU seconds of each map: the process's CPU time between one map's end and the next's (the
-    // maps run one after the other; the clock restarts once a scenario's sequences are read and
-    // its motion map is learned).
-    let cpu = Mutex::new((
-        crate::scene::cpu_time::process_total_cpu_secs(),
-        BTreeMap::new(),
-    ));
     let methods_for =
         |sequence: &OccupancySequence, kind: SequenceKind, training: Option<&OccupancySequence>| {
             let map = match training {
@@ -275,9 +268,6 @@ pub fn occupancy_with_bar(
                 }
                 None => None,
             };
-            if let Ok(mut guard) = cpu.lock() {
-                guard.0 = crate::scene::cpu_time::process_total_cpu_secs();
-            }
             let samples = kind.sample_params(seed);
             let dgpom = map.map(|map| dgpom_method(&samples, map));
             if let Some(method) = &dgpom {
@@ -287,27 +277,9 @@ pub fn occupancy_with_bar(
             }
             Ok(occupancy_methods_with(&samples, dgpom))
         };
-    let on_map = |scenario: &str, method: &str, _t: usize| {
-        bar.inc(1);
-        let now = crate::scene::cpu_time::process_total_cpu_secs();
-        if let Ok(mut guard) = cpu.lock() {
-            let (last, by) = &mut *guard;
-            if let (Some(now), Some(before)) = (now, *last) {
-                let per_method: &mut BTreeMap<String, Vec<f64>> =
-                    by.entry(scenario.to_owned()).or_default();
-                per_method
-                    .entry(method.to_owned())
-                    .or_default()
-                    .push(now - before);
-            }
-            *last = now;
-        }
-    };
+    let on_map = |_: &str, _: &str, _: usize| bar.inc(1);
     let report = evaluate_occupancy(dataset, &methods_for, params, seed, &on_map);
     let mut report = report?;
-    if let Ok((_, by)) = cpu.into_inner() {
-        report.cpu_seconds = by;
-    }
     report.motion_maps = motion_maps.into_inner();
     bar.set_message("DGPOM predicting ahead");
     // A start time that is also a query time reuses that map's fit.

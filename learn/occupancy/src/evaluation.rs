@@ -1,16 +1,17 @@
 //! Scoring map methods on a sequence (DGPOM paper, Section 3.1, Table 1): at every query scan,
 //! each method builds one map from the scan at the query time and the ones before it, predicts
 //! over the lattice of query points the sensor observes, and is scored by ROC AUC against the
-//! exact occupancy at the query time. One map (fit and prediction) is timed as a unit, alone on
-//! the machine (maps run one after the other).
+//! exact occupancy at the query time. One map (fit and prediction) is timed as a unit, in wall
+//! and CPU seconds, alone on its thread (the maps run side by side, one per core).
 
 use std::collections::BTreeMap;
-use std::time::Instant;
 
 use crate::{
     MapMethod, MapMethodId, MapOutput, OccupancyError, OccupancyParams, OccupancySequence,
     PlanarScan, QueryGrid, Result, ScanWindow, roc_auc,
 };
+
+use crate::map_jobs::run_jobs;
 
 /// One method's scores over the query scans.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -19,6 +20,8 @@ pub struct MethodScores {
     pub auc_by_query_scan: BTreeMap<usize, Option<f64>>,
     /// Wall-clock seconds of each map (fit and prediction over the query points).
     pub seconds_per_map: Vec<f64>,
+    /// CPU seconds of each map (its thread's; `None` where the system does not report it).
+    pub cpu_seconds_per_map: Vec<Option<f64>>,
     /// Training points of each map.
     pub training_points_per_map: Vec<usize>,
     /// Training points of each map drawn before thinning (the same as above where none is).
@@ -82,6 +85,10 @@ pub struct SequenceScores {
 }
 
 /// Scores `methods` on `sequence`; `on_map(method, query_scan)` is called after every map.
+/// The maps (query scan × method) are independent and run side by side on
+/// [`OccupancyParams::worker_count`] threads, each alone on its thread (see `map_jobs.rs`), the
+/// methods' maps in the order given (put the costliest first); the scores are the same for any
+/// number of workers.
 pub fn evaluate_sequence(
     sequence: &OccupancySequence,
     methods: &[&dyn MapMethod],
@@ -93,113 +100,113 @@ pub fn evaluate_sequence(
         name: sequence.name.clone(),
         ..SequenceScores::default()
     };
-    // One query scan after the other, so a map's seconds are its own (the GP parallelises inside).
-    let per_scan = params
+    let scans = params
         .query_scans
         .iter()
-        .map(|&t| score_query_scan(sequence, methods, params, t, on_map))
+        .map(|&t| QueryScan::new(sequence, params, t))
         .collect::<Result<Vec<_>>>()?;
-    for scan in per_scan {
-        let t = scan.query_scan;
-        scores.query_secs.insert(t, scan.query_secs);
-        scores.query_points.insert(t, scan.figure.grid.len());
+    let jobs: Vec<(usize, usize)> = (0..methods.len())
+        .flat_map(|m| (0..scans.len()).map(move |s| (m, s)))
+        .collect();
+    // One map: fit and prediction over the query points, timed together on its own thread.
+    let maps = run_jobs(jobs.len(), params.worker_count(), &|j| {
+        let (m, s) = jobs[j];
+        let output = methods[m].map(&scans[s].window(sequence), &scans[s].grid.points_m);
+        if output.is_ok() {
+            on_map(methods[m].id().name(), scans[s].t);
+        }
+        output
+    });
+    let mut by_scan: Vec<BTreeMap<MapMethodId, MapOutput>> = vec![BTreeMap::new(); scans.len()];
+    for (&(m, s), map) in jobs.iter().zip(maps) {
+        let output = map.value?;
+        let scan = &scans[s];
+        // Score: ROC AUC of the probability of occupancy against the truth (Table 1).
+        let auc = roc_auc(&output.probability, &scan.truth);
+        let entry = scores.methods.entry(methods[m].id()).or_default();
+        entry.auc_by_query_scan.insert(scan.t, auc);
+        entry.seconds_per_map.push(map.wall_secs);
+        entry.cpu_seconds_per_map.push(map.cpu_secs);
+        entry.training_points_per_map.push(output.training_points);
+        entry.drawn_points_per_map.push(output.drawn_points);
+        entry.summaries.push(output.summary.clone());
+        entry.solver_per_map.push(output.solver.clone());
+        entry
+            .temporal_lengthscales_per_map
+            .push(output.temporal_lengthscales.clone());
+        by_scan[s].insert(methods[m].id(), output);
+    }
+    for (scan, maps) in scans.into_iter().zip(by_scan) {
+        let t = scan.t;
+        scores.query_secs.insert(t, sequence.scans[t].stamp_secs);
+        scores.query_points.insert(t, scan.grid.len());
         scores
             .occupied_points
-            .insert(t, scan.figure.truth.iter().filter(|&&o| o).count());
-        for (name, (auc, seconds, output)) in &scan.maps {
-            let entry = scores.methods.entry(*name).or_default();
-            entry.auc_by_query_scan.insert(t, *auc);
-            entry.seconds_per_map.push(*seconds);
-            entry.training_points_per_map.push(output.training_points);
-            entry.drawn_points_per_map.push(output.drawn_points);
-            entry.summaries.push(output.summary.clone());
-            entry.solver_per_map.push(output.solver.clone());
-            entry
-                .temporal_lengthscales_per_map
-                .push(output.temporal_lengthscales.clone());
-        }
+            .insert(t, scan.truth.iter().filter(|&&o| o).count());
         if params.figure_scans.contains(&t) {
-            let mut figure = scan.figure;
-            figure.maps = scan
-                .maps
-                .into_iter()
-                .map(|(name, (_, _, output))| (name, output))
-                .collect();
-            scores.figures.push(figure);
+            scores.figures.push(MapFigure {
+                query_scan: t,
+                grid: scan.grid,
+                truth: scan.truth,
+                scan: sequence.scans[t].clone(),
+                maps,
+            });
         }
     }
     Ok(scores)
 }
 
-/// Every method's map at one query scan: AUC, seconds and output by method, and the lattice,
-/// truth and scan (the figure without its maps).
-struct QueryScanScores {
-    query_scan: usize,
-    query_secs: f64,
-    maps: BTreeMap<MapMethodId, (Option<f64>, f64, MapOutput)>,
-    figure: MapFigure,
+/// One query scan: its window's first scan, the lattice the sensor observes and the exact
+/// occupancy there at the query time.
+struct QueryScan {
+    t: usize,
+    first: usize,
+    grid: QueryGrid,
+    truth: Vec<bool>,
 }
 
-fn score_query_scan(
-    sequence: &OccupancySequence,
-    methods: &[&dyn MapMethod],
-    params: &OccupancyParams,
-    t: usize,
-    on_map: &(dyn Fn(&str, usize) + Sync),
-) -> Result<QueryScanScores> {
-    let first = (t + 1)
-        .checked_sub(params.scans_per_map)
-        .filter(|_| t < sequence.scans.len());
-    let Some(first) = first else {
-        return Err(OccupancyError::Unsupported {
-            path: sequence.dir.clone(),
-            reason: format!(
-                "query scan {t} needs scans {} to {t}, the sequence has {}",
-                t as i64 + 1 - params.scans_per_map as i64,
-                sequence.scans.len()
-            ),
-        });
-    };
-    let query = &sequence.scans[t];
-    let window = ScanWindow {
-        scans: &sequence.scans[first..=t],
-        query_secs: query.stamp_secs,
-    };
-    // The lattice the sensor observes and the exact occupancy there at the query time.
-    let grid = QueryGrid::observed_by(
-        query,
-        &sequence.sensor,
-        params.query_spacing_m,
-        &sequence.truth,
-        sequence.scan_height_m(),
-    );
-    let truth =
-        sequence
-            .truth
-            .occupancy(&grid.points_m, sequence.scan_height_m(), query.stamp_secs);
-    let mut maps = BTreeMap::new();
-    for method in methods {
-        // One map: fit and prediction over the query points, timed together.
-        let start = Instant::now();
-        let output = method.map(&window, &grid.points_m)?;
-        let seconds = start.elapsed().as_secs_f64();
-        // Score: ROC AUC of the probability of occupancy against the truth (Table 1).
-        let auc = roc_auc(&output.probability, &truth);
-        on_map(method.id().name(), t);
-        maps.insert(method.id(), (auc, seconds, output));
-    }
-    Ok(QueryScanScores {
-        query_scan: t,
-        query_secs: query.stamp_secs,
-        maps,
-        figure: MapFigure {
-            query_scan: t,
+impl QueryScan {
+    fn new(sequence: &OccupancySequence, params: &OccupancyParams, t: usize) -> Result<Self> {
+        let first = (t + 1)
+            .checked_sub(params.scans_per_map)
+            .filter(|_| t < sequence.scans.len());
+        let Some(first) = first else {
+            return Err(OccupancyError::Unsupported {
+                path: sequence.dir.clone(),
+                reason: format!(
+                    "query scan {t} needs scans {} to {t}, the sequence has {}",
+                    t as i64 + 1 - params.scans_per_map as i64,
+                    sequence.scans.len()
+                ),
+            });
+        };
+        let query = &sequence.scans[t];
+        let grid = QueryGrid::observed_by(
+            query,
+            &sequence.sensor,
+            params.query_spacing_m,
+            &sequence.truth,
+            sequence.scan_height_m(),
+        );
+        let truth =
+            sequence
+                .truth
+                .occupancy(&grid.points_m, sequence.scan_height_m(), query.stamp_secs);
+        Ok(Self {
+            t,
+            first,
             grid,
             truth,
-            scan: query.clone(),
-            maps: BTreeMap::new(),
-        },
-    })
+        })
+    }
+
+    /// The scans the map is built from: the query scan and the ones before it.
+    fn window<'a>(&self, sequence: &'a OccupancySequence) -> ScanWindow<'a> {
+        ScanWindow {
+            scans: &sequence.scans[self.first..=self.t],
+            query_secs: sequence.scans[self.t].stamp_secs,
+        }
+    }
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> f64 {

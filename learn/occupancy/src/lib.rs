@@ -49,6 +49,7 @@ mod field_raster;
 mod gp_solver;
 mod gpom;
 mod ground_truth;
+mod map_jobs;
 mod map_method;
 mod map_method_id;
 mod motion_accuracy;

@@ -18,6 +18,9 @@ pub struct OccupancyParams {
     pub query_spacing_m: f64,
     /// Query scans whose maps are kept for figures (Figure 6: t = 3 and t = 5).
     pub figure_scans: Vec<usize>,
+    /// Maps built side by side, each alone on its thread; 0 is one per thread of rayon's pool
+    /// (one per core unless `RAYON_NUM_THREADS` says otherwise). The scores do not depend on it.
+    pub workers: usize,
 }
 
 impl Default for OccupancyParams {
@@ -27,6 +30,7 @@ impl Default for OccupancyParams {
             scans_per_map: 4,
             query_spacing_m: 0.5,
             figure_scans: vec![3, 5],
+            workers: 0,
         }
     }
 }
@@ -59,5 +63,13 @@ impl OccupancyParams {
             );
         }
         Ok(())
+    }
+
+    /// The number of maps built side by side: `workers`, or one per thread of rayon's pool.
+    pub fn worker_count(&self) -> usize {
+        match self.workers {
+            0 => rayon::current_num_threads(),
+            n => n,
+        }
     }
 }

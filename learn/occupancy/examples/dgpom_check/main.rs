@@ -128,6 +128,16 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             .map_or(Ok(GpSolver::default().noise_floor), |v| v.parse())?,
         ..GpSolver::default()
     };
+    // GPOM_ITERS: the GPOMs' iteration limit on both paths (default theirs: 25 exact, 50 SPGP).
+    let gpom_default = GpomMethod::space(samples.clone());
+    let gpom_iters: Option<usize> = std::env::var("GPOM_ITERS")
+        .ok()
+        .map(|v| v.parse())
+        .transpose()?;
+    let (gpom_iters, gpom_exact_iters) = gpom_iters.map_or(
+        (gpom_default.max_iters, gpom_default.exact_max_iters),
+        |n| (n, n),
+    );
     let methods: Vec<Box<dyn MapMethod>> = vec![
         Box::new(DgpomMethod::new(
             DgpomParams {
@@ -140,10 +150,14 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         )),
         Box::new(GpomMethod {
             solver,
+            max_iters: gpom_iters,
+            exact_max_iters: gpom_exact_iters,
             ..GpomMethod::space(samples.clone())
         }),
         Box::new(GpomMethod {
             solver,
+            max_iters: gpom_iters,
+            exact_max_iters: gpom_exact_iters,
             ..GpomMethod::space_time(samples)
         }),
     ];
@@ -195,10 +209,14 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             m.summaries.last().cloned().unwrap_or_default()
         );
         println!(
-            "           s/map {:?}",
+            "           s/map {:?}  CPU s/map {:?}",
             m.seconds_per_map
                 .iter()
                 .map(|s| format!("{s:.2}"))
+                .collect::<Vec<_>>(),
+            m.cpu_seconds_per_map
+                .iter()
+                .map(|s| format!("{:.2}", s.unwrap_or(f64::NAN)))
                 .collect::<Vec<_>>()
         );
     }
