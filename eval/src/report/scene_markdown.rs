@@ -165,10 +165,11 @@ fn flow_section(md: &mut String, scores: &ReportScores) {
          merged heading and speed as a velocity, thesis 3.1.4), `GP-ICP` (ICP-AUTO started from \
          the GP's motion), and the `+MOS` read-outs (the GP's ALL estimate where the learned \
          moving classifier says the cluster moves, zero flow where it says static; GP-KF and \
-         GP-ICP take the same decision). In the per-target tables a static decision is speed 0 \
-         facing the method's own heading (the GP's, or GP-KF's track's): a zero velocity has \
-         no direction, and scoring it as the world's +x axis would make the heading error \
-         depend on how the world is turned.\n"
+         GP-ICP take the same decision here). In the per-target tables GP-KF and GP-ICP run \
+         without it, as KF-AUTO and ICP-AUTO do (thesis 4.4: the target is the moving car the \
+         situation names); there a `+MOS` row's static decision is speed 0 facing the GP's \
+         heading: a zero velocity has no direction, and scoring it as the world's +x axis would \
+         make the heading error depend on how the world is turned.\n"
     );
     if scores.scenes.len() > 1 {
         flow_table(md, "All sequences", &scores.pooled_flow);
