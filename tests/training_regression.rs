@@ -141,26 +141,27 @@ fn check_held_out(scene: &str, params: &EstimatorParams, bounds: (f64, f64)) {
 }
 
 /// Bounds of the default estimator's held-out errors (heading °, speed m/s) on `ideal` and
-/// `urban` (seed 5, 400 training and 200 test samples, 20 pseudo-inputs, 60 iterations). Measured
-/// 2026-12-03 with the most-likely noise GP on: 48.61°/1.209 m/s and 55.59°/1.136 m/s; without it
-/// (the previous default) 26.49°/1.231 and 50.91°/1.049 — on this small one-sided scene the noise
-/// GP's refit costs per-sample heading accuracy, while on the urban situations' targets it gains
-/// (docs/estimator.md). Held-out samples are drawn ones only, no mirror images.
-const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (53.0, 1.35);
-const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (61.0, 1.27);
-/// The thesis preset's: measured 16.24°/1.008 m/s on `ideal`, 21.11°/0.418 m/s on `urban`.
+/// `urban` with its per-vehicle fleet (seed 5, 400 training and 200 test samples, 20
+/// pseudo-inputs, 60 iterations). Measured 2026-12-03 with the height slice under the belt line
+/// (0.5-0.85 m, `BELOW_BELT_SLICE_M`): 74.64°/1.774 m/s on `ideal`, 67.72°/1.738 m/s on
+/// `urban`; with the previous 0.5-1.0 m slice 48.61°/1.209 and 78.75°/1.624 (55.59°/1.136
+/// without the fleet); with a 0.35-0.85 m slice 29.56°/1.150 and 79.07°/1.733. This small
+/// one-sided scene's per-sample heading swings by tens of degrees with the slice while the
+/// thesis preset's stays at 16-25°, so these bounds catch a broken model, not a worse one; on
+/// the situations' targets the lower top gains on every seed (docs/estimator.md). Which part of
+/// the default makes it so fragile here is not measured (the most-likely noise GP's refit on
+/// 400 samples is one suspect). Held-out samples are drawn ones only, no mirror images.
+const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (80.0, 1.92);
+const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (73.0, 1.88);
+/// The thesis preset's (its 0.5-1.0 m slice): measured 16.24°/1.008 m/s on `ideal`,
+/// 25.07°/1.231 m/s on `urban` (21.11°/0.418 m/s without the fleet).
 const THESIS_HELD_OUT_IDEAL: (f64, f64) = (18.5, 1.15);
-const THESIS_HELD_OUT_URBAN: (f64, f64) = (24.0, 0.50);
+const THESIS_HELD_OUT_URBAN: (f64, f64) = (29.0, 1.38);
 
-/// The `urban` scene the held-out bounds were recorded on: the fleet's drawn bodies (issue 24
-/// item 4, docs/realism.md) are off, so these bounds keep measuring the training, not the world.
-/// With the fleet on (2026-12-03) the same check measured 78.75°/1.624 m/s (default) and
-/// 25.07°/1.231 m/s (thesis preset): to be re-recorded with the issue's new default.
-fn urban_recorded_scene() -> String {
-    format!(
-        "{}\n[world]\nfleet = false\n",
-        patchflow_tests::TRAFFIC_SCENE
-    )
+/// The `urban` scene of the held-out bounds: the traffic scene on the default rung, the fleet's
+/// drawn bodies on (issue 24 item 4, docs/realism.md).
+fn urban_scene() -> String {
+    patchflow_tests::TRAFFIC_SCENE.to_owned()
 }
 
 #[test]
@@ -168,7 +169,7 @@ fn the_default_estimator_stays_within_its_held_out_bounds_on_both_rungs() {
     let ideal = format!("realism = \"ideal\"\n{}", patchflow_tests::TRAFFIC_SCENE);
     let params = small(EstimatorParams::default());
     check_held_out(&ideal, &params, DEFAULT_HELD_OUT_IDEAL);
-    check_held_out(&urban_recorded_scene(), &params, DEFAULT_HELD_OUT_URBAN);
+    check_held_out(&urban_scene(), &params, DEFAULT_HELD_OUT_URBAN);
 }
 
 #[test]
@@ -176,5 +177,5 @@ fn the_thesis_preset_stays_within_its_held_out_bounds_on_both_rungs() {
     let ideal = format!("realism = \"ideal\"\n{}", patchflow_tests::TRAFFIC_SCENE);
     let params = small(EstimatorParams::thesis());
     check_held_out(&ideal, &params, THESIS_HELD_OUT_IDEAL);
-    check_held_out(&urban_recorded_scene(), &params, THESIS_HELD_OUT_URBAN);
+    check_held_out(&urban_scene(), &params, THESIS_HELD_OUT_URBAN);
 }

@@ -4,7 +4,7 @@
 //! and speed RMSE (m/s) per situation, mean ± std over the seeds, as a Markdown table; every
 //! figure also as JSON with `json=PATH`.
 //!
-//! `cargo run --release -p patchflow-eval --example ablation -- situations=DIR train=DIR
+//! `cargo run --release -p patchflow-eval --example ablation -- situations=DIR[,DIR...] train=DIR
 //! [seeds=7,8,9] [samples=1200] [pseudo=60] [iters=150] [variants=default,thesis,...]
 //! [json=PATH]`
 //!
@@ -13,14 +13,15 @@
 //! `pls<K>` (e.g. `pls20`), `mlhgp`, joined with `+` (`pls20+mlhgp`), and `x<F>` to train on F
 //! times the samples (`pls20+x3`; each sample count is its own importance draw, as `bench`
 //! draws it: a set's samples are in dataset order, so the first N of a larger draw would hold
-//! only the first tracks' samples).
+//! only the first tracks' samples); `top<CM>` and `bot<CM>` move the height slice's top and
+//! bottom edge to CM centimetres above the ground (`top85`), each its own draw.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use patchflow_dataset::Dataset;
 use patchflow_eval::{Method, score_method, stages::evaluate_targets};
-use patchflow_learn::{EstimatorParams, FeatureKind, MotionEstimator, SampleSet};
+use patchflow_learn::{EstimatorParams, FeatureKind, FeatureParams, MotionEstimator, SampleSet};
 use rayon::prelude::*;
 
 type Failure = Box<dyn std::error::Error>;
@@ -46,6 +47,12 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
             "mlhgp" => p.most_likely_noise = true,
             "no-mlhgp" => p.most_likely_noise = false,
             "no-mirror" => p.mirror_images = false,
+            other if other.starts_with("top") => {
+                p.features.slice_max_m = other[3..].parse::<f64>()? / 100.0;
+            }
+            other if other.starts_with("bot") => {
+                p.features.slice_min_m = other[3..].parse::<f64>()? / 100.0;
+            }
             other if other.starts_with("pls") => p.projection_dims = other[3..].parse()?,
             other if other.starts_with('x') => factor = other[1..].parse()?,
             other if other.starts_with('m') => p.pseudo_inputs = other[1..].parse()?,
@@ -62,7 +69,10 @@ fn main() -> Result<(), Failure> {
         .filter_map(|a| a.split_once('=').map(|(k, v)| (k.to_owned(), v.to_owned())))
         .collect();
     let get = |k: &str| args.get(k).map(String::as_str);
-    let situations = Dataset::open(Path::new(get("situations").ok_or("situations=DIR")?))?;
+    let situation_dirs: Vec<&str> = get("situations")
+        .ok_or("situations=DIR[,DIR...]")?
+        .split(',')
+        .collect();
     let train = Dataset::open(Path::new(get("train").ok_or("train=DIR")?))?;
     let seeds: Vec<u64> = get("seeds")
         .unwrap_or("7,8,9")
@@ -87,33 +97,24 @@ fn main() -> Result<(), Failure> {
     // One pass over the training maps per sample count and feature setting, every seed at once.
     let draws: Vec<(f64, u64)> = seeds.iter().map(|&s| (0.5, s)).collect();
     let clock = std::time::Instant::now();
-    let mut factors: Vec<usize> = variants.iter().filter(|v| !v.2).map(|v| v.1).collect();
-    factors.sort_unstable();
-    factors.dedup();
-    let mut default_sets: BTreeMap<usize, Vec<SampleSet>> = BTreeMap::new();
-    for &factor in &factors {
-        let sets = SampleSet::collect_draws(
-            &train,
-            &base.features,
-            &draws,
-            FeatureKind::Patch,
-            base.samples * factor,
-            &|_, _| {},
-        )?;
-        default_sets.insert(factor, sets);
+    let mut keys: Vec<(FeatureParams, usize)> = Vec::new();
+    for (p, _, _) in &variants {
+        let key = (p.features.clone(), p.samples);
+        if !keys.contains(&key) {
+            keys.push(key);
+        }
     }
-    let thesis_sets = if variants.iter().any(|v| v.2) {
-        SampleSet::collect_draws(
+    let mut drawn: Vec<Vec<SampleSet>> = Vec::with_capacity(keys.len());
+    for (features, samples) in &keys {
+        drawn.push(SampleSet::collect_draws(
             &train,
-            &EstimatorParams::thesis().features,
+            features,
             &draws,
             FeatureKind::Patch,
-            base.samples,
+            *samples,
             &|_, _| {},
-        )?
-    } else {
-        Vec::new()
-    };
+        )?);
+    }
     eprintln!("samples drawn in {:.1} s", clock.elapsed().as_secs_f64());
     let jobs: Vec<(usize, usize)> = (0..variants.len())
         .flat_map(|v| (0..seeds.len()).map(move |s| (v, s)))
@@ -122,13 +123,13 @@ fn main() -> Result<(), Failure> {
     let models = jobs
         .par_iter()
         .map(|&(v, s)| {
-            let (params, factor, thesis) = &variants[v];
-            let set = if *thesis {
-                thesis_sets.get(s)
-            } else {
-                default_sets.get(factor).and_then(|sets| sets.get(s))
-            }
-            .ok_or_else(|| "no sample set drawn for a variant".to_owned())?;
+            let (params, _, _) = &variants[v];
+            let key = (params.features.clone(), params.samples);
+            let set = keys
+                .iter()
+                .position(|k| *k == key)
+                .and_then(|k| drawn[k].get(s))
+                .ok_or_else(|| "no sample set drawn for a variant".to_owned())?;
             let params = EstimatorParams {
                 seed: seeds[s],
                 ..params.clone()
@@ -141,54 +142,60 @@ fn main() -> Result<(), Failure> {
         models.len(),
         clock.elapsed().as_secs_f64()
     );
-    let clock = std::time::Instant::now();
     let runs: Vec<Vec<MotionEstimator>> = models.into_iter().map(|m| vec![m]).collect();
-    let results = evaluate_targets(&situations, &runs)?;
-    eprintln!("scored in {:.1} s", clock.elapsed().as_secs_f64());
-    // figures[variant][situation] = per-seed (heading, speed)
-    let mut figures: Vec<BTreeMap<String, Vec<(f64, f64)>>> = vec![BTreeMap::new(); variants.len()];
-    for (&(v, _), run) in jobs.iter().zip(&results) {
-        for situation in run {
-            let estimates = [Method::SpgpHetAll, Method::SpgpHetAllThesis]
-                .iter()
-                .find_map(|m| situation.methods.get(m))
-                .ok_or("no SPGP-HET-ALL estimates")?;
-            let m = score_method(&situation.truth, estimates)?;
-            figures[v].entry(situation.name.clone()).or_default().push((
-                m.heading_rmse_deg.unwrap_or(f64::NAN),
-                m.speed_rmse_mps.unwrap_or(f64::NAN),
-            ));
-        }
-    }
-    let stats = |xs: &[f64]| {
-        let mean = xs.iter().sum::<f64>() / xs.len() as f64;
-        let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (xs.len().max(2) - 1) as f64;
-        (mean, var.sqrt())
-    };
-    let situation_names: Vec<String> = figures
-        .first()
-        .map_or(Vec::new(), |f| f.keys().cloned().collect());
-    println!("| variant | {} | within bar |", situation_names.join(" | "));
-    println!("|---|{}---|", "---|".repeat(situation_names.len()));
     let mut json = Vec::new();
-    for (name, per) in names.iter().zip(&figures) {
-        let mut cells = Vec::new();
-        let mut met = 0;
-        for s in &situation_names {
-            let values = &per[s];
-            let (h, hs) = stats(&values.iter().map(|v| v.0).collect::<Vec<_>>());
-            let (v, vs) = stats(&values.iter().map(|v| v.1).collect::<Vec<_>>());
-            if h <= 25.0 && v <= 1.5 {
-                met += 1;
+    for dir in &situation_dirs {
+        let situations = Dataset::open(Path::new(dir))?;
+        println!("\nsituations: {dir}\n");
+        let clock = std::time::Instant::now();
+        let results = evaluate_targets(&situations, &runs)?;
+        eprintln!("scored in {:.1} s", clock.elapsed().as_secs_f64());
+        // figures[variant][situation] = per-seed (heading, speed)
+        let mut figures: Vec<BTreeMap<String, Vec<(f64, f64)>>> =
+            vec![BTreeMap::new(); variants.len()];
+        for (&(v, _), run) in jobs.iter().zip(&results) {
+            for situation in run {
+                let estimates = [Method::SpgpHetAll, Method::SpgpHetAllThesis]
+                    .iter()
+                    .find_map(|m| situation.methods.get(m))
+                    .ok_or("no SPGP-HET-ALL estimates")?;
+                let m = score_method(&situation.truth, estimates)?;
+                figures[v].entry(situation.name.clone()).or_default().push((
+                    m.heading_rmse_deg.unwrap_or(f64::NAN),
+                    m.speed_rmse_mps.unwrap_or(f64::NAN),
+                ));
             }
-            cells.push(format!("{h:.1} ± {hs:.1} / {v:.2} ± {vs:.2}"));
-            json.push(
-                serde_json::json!({"variant": name, "situation": s, "seeds": seeds,
-                "heading_rmse_deg": values.iter().map(|v| v.0).collect::<Vec<_>>(),
-                "speed_rmse_mps": values.iter().map(|v| v.1).collect::<Vec<_>>()}),
-            );
         }
-        println!("| {name} | {} | {met} |", cells.join(" | "));
+        let stats = |xs: &[f64]| {
+            let mean = xs.iter().sum::<f64>() / xs.len() as f64;
+            let var =
+                xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (xs.len().max(2) - 1) as f64;
+            (mean, var.sqrt())
+        };
+        let situation_names: Vec<String> = figures
+            .first()
+            .map_or(Vec::new(), |f| f.keys().cloned().collect());
+        println!("| variant | {} | within bar |", situation_names.join(" | "));
+        println!("|---|{}---|", "---|".repeat(situation_names.len()));
+        for (name, per) in names.iter().zip(&figures) {
+            let mut cells = Vec::new();
+            let mut met = 0;
+            for s in &situation_names {
+                let values = &per[s];
+                let (h, hs) = stats(&values.iter().map(|v| v.0).collect::<Vec<_>>());
+                let (v, vs) = stats(&values.iter().map(|v| v.1).collect::<Vec<_>>());
+                if h <= 25.0 && v <= 1.5 {
+                    met += 1;
+                }
+                cells.push(format!("{h:.1} ± {hs:.1} / {v:.2} ± {vs:.2}"));
+                json.push(
+                    serde_json::json!({"variant": name, "situations": dir, "situation": s, "seeds": seeds,
+                    "heading_rmse_deg": values.iter().map(|v| v.0).collect::<Vec<_>>(),
+                    "speed_rmse_mps": values.iter().map(|v| v.1).collect::<Vec<_>>()}),
+                );
+            }
+            println!("| {name} | {} | {met} |", cells.join(" | "));
+        }
     }
     if let Some(path) = get("json") {
         std::fs::write(path, serde_json::to_string_pretty(&json)?)?;

@@ -23,8 +23,8 @@ use crate::pipeline::plan::BenchPlan;
 use crate::pipeline::progress::{StageTimer, progress_line, spinner};
 use crate::pipeline::short_tracks::shortened_tracks;
 use crate::pipeline::stages::{
-    collect_draws_with_bar, collect_feature_draws_with_bar, cross_validate_with_bar,
-    evaluate_with_bar, generate_with_progress, occupancy_with_bar,
+    collect_feature_draws_with_bar, cross_validate_with_bar, evaluate_with_bar,
+    generate_with_progress, occupancy_with_bar,
 };
 use crate::pipeline::target_runs::evaluate_targets;
 use crate::report::benchmark_report::BenchmarkReport;
@@ -112,7 +112,9 @@ pub fn run_bench(
     stage("sample patches", &mut || {
         let mut draws: Vec<(f64, u64)> = plan.cv.priors.iter().map(|&p| (p, plan.seed)).collect();
         draws.extend(further_seeds.iter().map(|&seed| (0.5, seed)));
-        sets = collect_draws_with_bar(&train, &draws, plan.samples)?;
+        // The default's own map and slice settings (its height slice is not the thesis').
+        sets =
+            collect_feature_draws_with_bar(&train, &plan.estimator.features, &draws, plan.samples)?;
         further_sets = sets.split_off(plan.cv.priors.len());
         // The thesis preset's own draws: its speed patches carry no heading jitter.
         // They come from the thesis' data alone: the nine tracks, not the generated traffic.

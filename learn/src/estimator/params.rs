@@ -17,6 +17,7 @@ use crate::{FeatureKind, FeatureParams, FeatureValidParams, GpKind, LearnError, 
 /// | [`Self::zero_mean`] | yes | no (prior mean = training targets' mean) |
 /// | [`Self::projection_dims`] | 0 (raw 242 values) | 0 |
 /// | [`Self::most_likely_noise`] | no | yes |
+/// | `features.slice_min_m` … `slice_max_m` | 0.5 … 1.0 m | [`BELOW_BELT_SLICE_M`]: 0.5 … 0.85 m |
 #[derive(Debug, Clone, PartialEq)]
 pub struct EstimatorParams {
     /// GP used for all three regressions (sin, cos of the relative heading; speed).
@@ -53,12 +54,26 @@ pub struct EstimatorParams {
     pub seed: u64,
 }
 
+/// The default's height slice above the ground (metres, lower and upper edge): the thesis'
+/// 0.5-1.0 m (2.1.1) with its top moved down so that it stays under the side glass of every
+/// car. Real belt lines (where the side glass starts) run from about 0.88 m on small hatchbacks
+/// to 1.25 m on large SUVs (docs/realism.md, "A fleet that varies as real fleets do"); a slice
+/// that reaches 1.0 m crosses the glass of a third of the cars, whose beams there are lost or
+/// return from behind the pane, so the same car leaves a different outline on the maps from
+/// one body to the next. Below 0.85 m every car shows its solid body (doors, bumpers, wheel
+/// arches) to the slice. Measured in docs/estimator.md, "The height slice under the belt line".
+pub const BELOW_BELT_SLICE_M: (f64, f64) = (0.5, 0.85);
+
 impl Default for EstimatorParams {
     fn default() -> Self {
         Self {
             gp: GpKind::SpgpHet,
             feature: FeatureKind::Patch,
-            features: FeatureParams::default(),
+            features: FeatureParams {
+                slice_min_m: BELOW_BELT_SLICE_M.0,
+                slice_max_m: BELOW_BELT_SLICE_M.1,
+                ..FeatureParams::default()
+            },
             samples: 1600,
             mirror_images: true,
             pseudo_inputs: 100,
@@ -74,11 +89,13 @@ impl Default for EstimatorParams {
 impl EstimatorParams {
     /// The thesis' protocol exactly (`train --preset thesis`): no mirror images, training speed
     /// patches aligned to the exact true heading (`FeatureParams::speed_jitter_deg = 0`), GPs
-    /// with a zero mean function on the raw patch values. See the table above for the default.
+    /// with a zero mean function on the raw patch values, the 0.5-1.0 m height slice (2.1.1).
+    /// See the table above for the default.
     ///
     /// ```
     /// let p = patchflow_learn::EstimatorParams::thesis();
     /// assert!(!p.mirror_images && p.features.speed_jitter_deg == 0.0 && p.zero_mean);
+    /// assert_eq!((p.features.slice_min_m, p.features.slice_max_m), (0.5, 1.0));
     /// ```
     pub fn thesis() -> Self {
         let defaults = Self::default();
@@ -89,7 +106,7 @@ impl EstimatorParams {
             most_likely_noise: false,
             features: FeatureParams {
                 speed_jitter_deg: 0.0,
-                ..defaults.features.clone()
+                ..FeatureParams::default()
             },
             ..defaults
         }
@@ -151,5 +168,41 @@ impl std::ops::Deref for EstimatorValidParams {
 
     fn deref(&self) -> &EstimatorParams {
         &self.params
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lowest belt line the fleet draws (docs/realism.md: compact cars, 0.88 m).
+    const LOWEST_BELT_M: f64 = 0.88;
+
+    #[test]
+    fn the_default_slice_stays_under_every_belt_line_and_keeps_the_thesis_lower_edge() {
+        let p = EstimatorParams::default().features;
+        assert!(
+            p.slice_max_m <= LOWEST_BELT_M - 0.02,
+            "top {} m",
+            p.slice_max_m
+        );
+        assert_eq!(p.slice_min_m, 0.5, "the thesis' lower edge");
+        assert!(EstimatorParams::default().check().is_ok());
+    }
+
+    #[test]
+    fn the_thesis_preset_keeps_the_thesis_slice_and_every_other_feature_setting() {
+        let thesis = EstimatorParams::thesis().features;
+        let default = EstimatorParams::default().features;
+        assert_eq!((thesis.slice_min_m, thesis.slice_max_m), (0.5, 1.0));
+        assert_eq!(
+            thesis,
+            FeatureParams {
+                slice_min_m: 0.5,
+                slice_max_m: 1.0,
+                speed_jitter_deg: 0.0,
+                ..default
+            }
+        );
     }
 }
