@@ -72,6 +72,15 @@ impl PerceptionSummary {
     /// The summary of some scans under a name.
     pub fn of(name: &str, scans: &[&ScanTiming]) -> Self {
         let spread = |f: &dyn Fn(&ScanTiming) -> f64| Spread::of(scans.iter().map(|t| f(t)));
+        // A timing only some runs take (CPU time): its spread when every scan has it.
+        let every_scan = |f: &dyn Fn(&ScanTiming) -> Option<f64>| {
+            scans
+                .iter()
+                .map(|t| f(t))
+                .collect::<Option<Vec<f64>>>()
+                .filter(|v| !v.is_empty())
+                .map(|v| Spread::of(v.into_iter()))
+        };
         let first_step = |f: fn(&StepTiming) -> usize| {
             let values = scans
                 .iter()
@@ -92,12 +101,7 @@ impl PerceptionSummary {
                 .map(|(label, f)| ((*label).to_owned(), spread(f)))
                 .collect(),
             one_estimator: spread(&ScanTiming::one_estimator_secs),
-            whole_scan_cpu: scans
-                .iter()
-                .map(|t| t.whole_scan_cpu_secs)
-                .collect::<Option<Vec<f64>>>()
-                .filter(|v| !v.is_empty())
-                .map(|v| Spread::of(v.into_iter())),
+            whole_scan_cpu: every_scan(&|t| t.whole_scan_cpu_secs),
             baselines: spread(&|t| t.baselines_secs),
             median_samples: first_step(|s| s.samples),
             median_points: first_step(|s| s.points),
@@ -108,12 +112,7 @@ impl PerceptionSummary {
             gp_kf: spread(&|t| t.gp_kf_secs),
             gp_icp: spread(&|t| t.gp_icp_secs),
             learned_scan: spread(&ScanTiming::learned_scan_secs),
-            learned_scan_cpu: scans
-                .iter()
-                .map(|t| t.learned_scan_cpu_secs)
-                .collect::<Option<Vec<f64>>>()
-                .filter(|v| !v.is_empty())
-                .map(|v| Spread::of(v.into_iter())),
+            learned_scan_cpu: every_scan(&|t| t.learned_scan_cpu_secs),
         }
     }
 
