@@ -108,7 +108,7 @@ pub use methods::baselines::rigid_motion::{
     RigidMotion, icp_motion_estimate, icp_rigid_motion, icp_rigid_motion_from,
 };
 pub use methods::baselines::tracker::{MultiTargetTracker, TrackerParams};
-pub use methods::baselines::velocity_measurement::{VelocityFloors, VelocityMeasurement};
+pub use methods::baselines::velocity_measurement::{GpVelocityNoise, VelocityMeasurement};
 
 // ── Cross-validation (thesis 4.3) ───────────────────────────────────────────────────────────
 pub use cv::cross_validation::{cross_validate, cross_validate_samples};

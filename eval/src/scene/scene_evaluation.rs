@@ -15,7 +15,7 @@ use crate::error::EvalError;
 use crate::methods::baselines::baseline_method::BaselineMethod;
 use crate::methods::baselines::baseline_params::BaselineParams;
 use crate::methods::baselines::baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
-use crate::methods::baselines::velocity_measurement::VelocityFloors;
+use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
 use crate::methods::estimate::{MotionEstimate, to_estimate};
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
 use crate::methods::learned::learned_target::LearnedTargetTrackers;
@@ -97,7 +97,7 @@ pub fn evaluate_sequence(
     let has_target = sequence.len() >= 2 && sequence.read_sweep(0)?.target().is_some();
     let mut trackers = Trackers {
         baselines: BaselineTrackers::new(&name, baselines)?,
-        learned: LearnedTrackers::new(baselines, VelocityFloors::default())?,
+        learned: LearnedTrackers::new(baselines, GpVelocityNoise::default())?,
         target: LearnedTargetTrackers::new(baselines)?,
         belief: MovingBelief::default(),
     };

@@ -12,8 +12,15 @@
 //! velocity and a large velocity standard deviation (10 m/s), so the second measurement acts as a
 //! two-point initiation; an estimate is reported from the second update on.
 //! The covariance update uses the Joseph form, which keeps P symmetric positive definite.
+//!
+//! `GP-KF` also measures the velocity directly ([`VelocityMeasurement`]), and that sensor's error
+//! persists from scan to scan, so the state carries it: `(x, y, vx, vy, bx, by)`, the measured
+//! velocity is `v + b + w`, and `b` is first-order Gauss-Markov with the measurement's persistent
+//! covariance and correlation time (Gelb 1974, §4.5). Until a velocity is measured `b` is zero
+//! with zero covariance, so a filter fed centroids only (`KF`, `KF-AUTO`) is the four-state
+//! filter above, value for value.
 
-use nalgebra::{Matrix2, Matrix2x4, Matrix4, Matrix4x2, Vector2, Vector4};
+use nalgebra::{Matrix2, Matrix2x6, Matrix6, Matrix6x2, Vector2, Vector6};
 
 use crate::error::EvalError;
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
@@ -85,14 +92,21 @@ pub struct Innovation {
 /// A constant-velocity Kalman filter tracking one centroid.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConstantVelocityKalman {
-    state: Vector4<f64>,
-    covariance: Matrix4<f64>,
+    state: Vector6<f64>,
+    covariance: Matrix6<f64>,
+    /// The persistent error of the velocity measurements taken so far (their latest covariance
+    /// and correlation time), once there was one.
+    persistent: Option<(Matrix2<f64>, f64)>,
     params: KalmanParams,
     updates: usize,
     velocity_updates: usize,
 }
 
-const H: Matrix2x4<f64> = Matrix2x4::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0);
+const H: Matrix2x6<f64> =
+    Matrix2x6::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0);
+/// A velocity measurement sees the velocity plus the measuring GP's persistent error.
+const H_VELOCITY: Matrix2x6<f64> =
+    Matrix2x6::new(0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0);
 
 impl ConstantVelocityKalman {
     /// A filter started at the first centroid measurement, at rest, with a wide velocity prior.
@@ -111,8 +125,18 @@ impl ConstantVelocityKalman {
         let pos_var = params.centroid_noise_std_m.powi(2);
         let vel_var = params.initial_velocity_std_mps.powi(2);
         Ok(Self {
-            state: Vector4::new(first_centroid_xy[0], first_centroid_xy[1], 0.0, 0.0),
-            covariance: Matrix4::from_diagonal(&Vector4::new(pos_var, pos_var, vel_var, vel_var)),
+            state: Vector6::new(
+                first_centroid_xy[0],
+                first_centroid_xy[1],
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ),
+            covariance: Matrix6::from_diagonal(&Vector6::new(
+                pos_var, pos_var, vel_var, vel_var, 0.0, 0.0,
+            )),
+            persistent: None,
             params,
             updates: 1,
             velocity_updates: 0,
@@ -122,16 +146,26 @@ impl ConstantVelocityKalman {
     /// Motion model (eq. 3.44): propagate state and covariance by `dt_secs`.
     pub fn predict(&mut self, dt_secs: f64) {
         let dt = dt_secs;
-        let mut f = Matrix4::identity();
+        let mut f = Matrix6::identity();
         f[(0, 2)] = dt;
         f[(1, 3)] = dt;
+        // The velocity sensor's persistent error: first-order Gauss-Markov.
+        let decay = self
+            .persistent
+            .map_or(1.0, |(_, persistence_secs)| (-dt / persistence_secs).exp());
+        f[(4, 4)] = decay;
+        f[(5, 5)] = decay;
         let q_var = self.params.accel_noise_std_mps2.powi(2);
         let (q_pp, q_pv, q_vv) = (
             dt.powi(4) / 4.0 * q_var,
             dt.powi(3) / 2.0 * q_var,
             dt * dt * q_var,
         );
-        let mut q = Matrix4::zeros();
+        let mut q = Matrix6::zeros();
+        if let Some((stationary, _)) = self.persistent {
+            q.fixed_view_mut::<2, 2>(4, 4)
+                .copy_from(&(stationary * (1.0 - decay * decay)));
+        }
         for axis in 0..2 {
             q[(axis, axis)] = q_pp;
             q[(axis, axis + 2)] = q_pv;
@@ -171,27 +205,30 @@ impl ConstantVelocityKalman {
                 name: "KalmanParams.centroid_noise_std_m",
                 reason: "innovation covariance is singular".into(),
             })?;
-        let gain: Matrix4x2<f64> = self.covariance * H.transpose() * s_inv;
+        let gain: Matrix6x2<f64> = self.covariance * H.transpose() * s_inv;
         self.state += gain * innovation.residual_m;
-        let i_kh = Matrix4::identity() - gain * H;
+        let i_kh = Matrix6::identity() - gain * H;
         self.covariance = i_kh * self.covariance * i_kh.transpose()
             + gain * self.measurement_covariance() * gain.transpose();
         self.updates += 1;
         Ok(innovation)
     }
 
-    /// Squared Mahalanobis distance of a velocity measurement from the (predicted) velocity,
-    /// `rᵀ (P_v + Σ)⁻¹ r`: how well a cluster's measured velocity fits this track.
+    /// Squared Mahalanobis distance of a velocity measurement from the velocity this track
+    /// predicts the sensor to read (its velocity plus the sensor's persistent error),
+    /// `rᵀ (H_v P H_vᵀ + Σ)⁻¹ r`: how well a cluster's measured velocity fits this track.
     pub fn velocity_mahalanobis_sq(
         &self,
         measurement: &VelocityMeasurement,
     ) -> Result<f64, EvalError> {
-        let v = self.velocity();
+        check_persistence(measurement)?;
+        let prior = self.with_persistent_error_prior(measurement);
+        let predicted = H_VELOCITY * prior.state;
         let residual = Vector2::new(
-            measurement.velocity_xy_mps[0] - v[0],
-            measurement.velocity_xy_mps[1] - v[1],
+            measurement.velocity_xy_mps[0] - predicted[0],
+            measurement.velocity_xy_mps[1] - predicted[1],
         );
-        let s = self.velocity_covariance() + measurement.covariance;
+        let s = H_VELOCITY * prior.covariance * H_VELOCITY.transpose() + measurement.covariance;
         let s_inv = s.try_inverse().ok_or_else(|| EvalError::BadParameter {
             name: "VelocityMeasurement.covariance",
             reason: "innovation covariance is singular".into(),
@@ -200,9 +237,12 @@ impl ConstantVelocityKalman {
     }
 
     /// Corrects the state with a direct velocity measurement (`GP-KF`: the GP's merged heading
-    /// and speed, thesis 3.1.4), `z = [0 I] x + v`, `v ~ N(0, Σ)`; Joseph-form covariance update.
+    /// and speed, thesis 3.1.4), `z = [0 I I] x + w`, `w ~ N(0, Σ)` (the last block is the
+    /// sensor's persistent error, see the module's doc); Joseph-form covariance update.
     pub fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {
-        let h = Matrix2x4::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+        check_persistence(measurement)?;
+        *self = self.with_persistent_error_prior(measurement);
+        let h = H_VELOCITY;
         let z = Vector2::new(
             measurement.velocity_xy_mps[0],
             measurement.velocity_xy_mps[1],
@@ -213,13 +253,31 @@ impl ConstantVelocityKalman {
             name: "VelocityMeasurement.covariance",
             reason: "innovation covariance is singular".into(),
         })?;
-        let gain: Matrix4x2<f64> = self.covariance * h.transpose() * s_inv;
+        let gain: Matrix6x2<f64> = self.covariance * h.transpose() * s_inv;
         self.state += gain * residual;
-        let i_kh = Matrix4::identity() - gain * h;
+        let i_kh = Matrix6::identity() - gain * h;
         self.covariance = i_kh * self.covariance * i_kh.transpose()
             + gain * measurement.covariance * gain.transpose();
         self.velocity_updates += 1;
         Ok(())
+    }
+
+    /// The filter as a velocity measurement finds it: at the first one, the measuring GP's
+    /// persistent error enters the state at zero with that measurement's covariance; each one
+    /// sets the covariance and correlation time the error drifts with.
+    fn with_persistent_error_prior(&self, measurement: &VelocityMeasurement) -> Self {
+        let mut prior = self.clone();
+        if prior.persistent.is_none() {
+            prior
+                .covariance
+                .fixed_view_mut::<2, 2>(4, 4)
+                .copy_from(&measurement.persistent_covariance);
+        }
+        prior.persistent = Some((
+            measurement.persistent_covariance,
+            measurement.persistence_secs,
+        ));
+        prior
     }
 
     /// Filtered position, metres.
@@ -264,9 +322,24 @@ impl ConstantVelocityKalman {
     }
 }
 
+/// A measurement's correlation time must be positive (zero would be white noise, which the
+/// white covariance already is) and finite.
+fn check_persistence(measurement: &VelocityMeasurement) -> Result<(), EvalError> {
+    let secs = measurement.persistence_secs;
+    if secs > 0.0 && secs.is_finite() {
+        Ok(())
+    } else {
+        Err(EvalError::BadParameter {
+            name: "VelocityMeasurement.persistence_secs",
+            reason: format!("must be positive and finite, got {secs}"),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
     use rand::{RngExt, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -347,12 +420,76 @@ mod tests {
         let measured = VelocityMeasurement {
             velocity_xy_mps: [6.0, 2.0],
             covariance: Matrix2::identity() * 0.01,
+            persistent_covariance: Matrix2::identity() * 0.01,
+            persistence_secs: 3.0,
         };
         kf.update_velocity(&measured).unwrap();
         let e = kf.estimate().unwrap();
         assert!(
             (e.velocity_xy_mps[0] - 6.0).abs() < 0.01 && (e.velocity_xy_mps[1] - 2.0).abs() < 0.01
         );
+    }
+
+    /// Final heading error (degrees) of a filter fed a car's noisy centroids at 8 m/s along x and,
+    /// every scan, a GP reading it 25° off with `noise`.
+    fn heading_error_with_a_persistently_wrong_gp(noise: &GpVelocityNoise) -> f64 {
+        let v = [8.0, 0.0];
+        let centroids = noisy_track(v, 0.1, 60, 0.3, 3);
+        let mut kf = ConstantVelocityKalman::new(centroids[0], KalmanParams::default()).unwrap();
+        let wrong = 25f64.to_radians();
+        for (k, z) in centroids.iter().enumerate() {
+            if k > 0 {
+                kf.predict(0.1);
+                kf.update(*z).unwrap();
+            }
+            let gp = VelocityMeasurement::from_heading_speed(wrong, 0.0, 8.0, 0.0, noise);
+            kf.update_velocity(&gp).unwrap();
+        }
+        let e = kf.velocity();
+        e[1].atan2(e[0]).to_degrees().abs()
+    }
+
+    #[test]
+    fn the_centroids_learn_away_a_persistent_gp_error() {
+        let modelled = heading_error_with_a_persistently_wrong_gp(&GpVelocityNoise::default());
+        let white_only = heading_error_with_a_persistently_wrong_gp(&GpVelocityNoise {
+            persistent_heading_std_rad: 0.0,
+            persistent_speed_std_mps: 0.0,
+            ..GpVelocityNoise::default()
+        });
+        assert!(
+            modelled < 3.0,
+            "with the persistent error modelled: {modelled}°"
+        );
+        assert!(white_only > 6.0, "fused as white noise: {white_only}°");
+    }
+
+    #[test]
+    fn without_velocity_measurements_the_persistent_error_stays_out_of_the_state() {
+        let centroids = noisy_track([5.0, 1.0], 0.1, 30, 0.3, 5);
+        let mut kf = ConstantVelocityKalman::new(centroids[0], KalmanParams::default()).unwrap();
+        for z in &centroids[1..] {
+            kf.predict(0.1);
+            kf.update(*z).unwrap();
+        }
+        let block = kf.covariance.fixed_view::<2, 6>(4, 0).into_owned();
+        assert_eq!(block, nalgebra::Matrix2x6::zeros());
+        assert_eq!((kf.state[4], kf.state[5]), (0.0, 0.0));
+    }
+
+    #[test]
+    fn a_measurement_with_no_correlation_time_is_refused() {
+        let mut kf = ConstantVelocityKalman::new([0.0, 0.0], KalmanParams::default()).unwrap();
+        let mut measured = VelocityMeasurement::from_heading_speed(
+            0.0,
+            0.0,
+            5.0,
+            0.0,
+            &GpVelocityNoise::default(),
+        );
+        measured.persistence_secs = 0.0;
+        let error = kf.update_velocity(&measured).unwrap_err().to_string();
+        assert!(error.contains("persistence_secs"), "{error}");
     }
 
     #[test]

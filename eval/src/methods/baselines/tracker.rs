@@ -312,11 +312,11 @@ mod tests {
     #[test]
     fn a_measured_velocity_keeps_a_cluster_with_the_track_moving_its_way() {
         use crate::methods::baselines::velocity_measurement::{
-            VelocityFloors, VelocityMeasurement,
+            GpVelocityNoise, VelocityMeasurement,
         };
-        let floors = VelocityFloors::default();
-        let moving = VelocityMeasurement::from_heading_speed(0.0, 0.0, 8.0, 0.0, &floors);
-        let at_rest = VelocityMeasurement::at_rest(&floors);
+        let noise = GpVelocityNoise::default();
+        let moving = VelocityMeasurement::from_heading_speed(0.0, 0.0, 8.0, 0.0, &noise);
+        let at_rest = VelocityMeasurement::at_rest(&noise);
         // A drives +x at 8 m/s; B stands 0.5 m beyond where A will be at scan 10. At scan 10, B
         // is hidden and A's cluster lies 0.3 m ahead of A's prediction, 0.2 m short of B's.
         let run = |velocity_at_10: Option<VelocityMeasurement>| {

@@ -10,7 +10,7 @@ use patchflow_learn::{
 
 use crate::error::EvalError;
 use crate::methods::baselines::baseline_params::BaselineParams;
-use crate::methods::baselines::velocity_measurement::VelocityFloors;
+use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
 use crate::methods::estimate::{MotionEstimate, to_estimate};
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
 use crate::methods::learned::plausible_motion::implausible_motion;
@@ -51,7 +51,7 @@ impl<'a> LearnedPerception<'a> {
             estimator,
             moving,
             belief: MovingBelief::default(),
-            trackers: LearnedTrackers::new(params, VelocityFloors::default())?,
+            trackers: LearnedTrackers::new(params, GpVelocityNoise::default())?,
             scans: 0,
         })
     }

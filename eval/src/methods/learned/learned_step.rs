@@ -26,7 +26,7 @@ use crate::methods::baselines::rigid_motion::{
     RigidMotion, icp_rigid_motion, icp_rigid_motion_from,
 };
 use crate::methods::baselines::tracker::{MultiTargetTracker, TrackStatus};
-use crate::methods::baselines::velocity_measurement::{VelocityFloors, VelocityMeasurement};
+use crate::methods::baselines::velocity_measurement::{GpVelocityNoise, VelocityMeasurement};
 use crate::methods::estimate::MotionEstimate;
 use crate::methods::method::Method;
 use crate::methods::observation::ScanObservation;
@@ -53,7 +53,7 @@ fn at_rest(estimate: Option<MotionEstimate>) -> ClusterFlow {
 #[derive(Debug)]
 pub struct LearnedTrackers {
     params: BaselineParams,
-    floors: VelocityFloors,
+    noise: GpVelocityNoise,
     tracker: MultiTargetTracker,
     associator: CentroidAssociator,
     previous: Option<ScanObservation>,
@@ -61,11 +61,11 @@ pub struct LearnedTrackers {
 
 impl LearnedTrackers {
     /// Fresh trackers with the baselines' parameters (the same filter, gate and ICP).
-    pub fn new(params: &BaselineParams, floors: VelocityFloors) -> Result<Self, EvalError> {
-        floors.validate()?;
+    pub fn new(params: &BaselineParams, noise: GpVelocityNoise) -> Result<Self, EvalError> {
+        noise.validate()?;
         Ok(Self {
             params: *params,
-            floors,
+            noise,
             tracker: MultiTargetTracker::new(params.tracker)?,
             associator: CentroidAssociator::new(params.association),
             previous: None,
@@ -102,7 +102,7 @@ impl LearnedTrackers {
             .map(|c| {
                 let cluster = of(c);
                 if cluster.moving == Some(false) {
-                    return Some(VelocityMeasurement::at_rest(&self.floors));
+                    return Some(VelocityMeasurement::at_rest(&self.noise));
                 }
                 let gp = cluster.gp?;
                 Some(VelocityMeasurement::from_heading_speed(
@@ -110,7 +110,7 @@ impl LearnedTrackers {
                     gp.heading_var?,
                     gp.speed_mps,
                     gp.speed_var?,
-                    &self.floors,
+                    &self.noise,
                 ))
             })
             .collect();

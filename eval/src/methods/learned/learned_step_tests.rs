@@ -59,7 +59,7 @@ fn velocity_error(flow: &Option<ClusterFlow>) -> f64 {
 
 fn run(scans: usize, classifier: bool) -> Vec<BTreeMap<Method, Vec<Option<ClusterFlow>>>> {
     let mut trackers =
-        LearnedTrackers::new(&BaselineParams::default(), VelocityFloors::default()).unwrap();
+        LearnedTrackers::new(&BaselineParams::default(), GpVelocityNoise::default()).unwrap();
     (0..scans)
         .map(|k| {
             trackers

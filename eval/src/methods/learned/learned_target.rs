@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 
 use crate::error::EvalError;
 use crate::methods::baselines::baseline_params::BaselineParams;
-use crate::methods::baselines::velocity_measurement::VelocityFloors;
+use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
 use crate::methods::estimate::MotionEstimate;
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
 use crate::methods::method::Method;
@@ -28,7 +28,7 @@ impl LearnedTargetTrackers {
     /// Fresh trackers with the baselines' parameters.
     pub fn new(params: &BaselineParams) -> Result<Self, EvalError> {
         Ok(Self {
-            trackers: LearnedTrackers::new(params, VelocityFloors::default())?,
+            trackers: LearnedTrackers::new(params, GpVelocityNoise::default())?,
         })
     }
 
