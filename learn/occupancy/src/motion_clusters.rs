@@ -74,8 +74,7 @@ pub struct MotionClusterParams {
     /// A Diff cluster whose nearest cell is at most this far from an object's is next to it, metres.
     pub adjacency_m: f64,
     /// Diff clusters with no object next to them and fewer cells are not paired (a cell
-    /// flickering at an edge is not motion); next to an object every Diff cluster counts. Same
-    /// clusters with fewer cells are not stationary either (one return shows no stillness).
+    /// flickering at an edge is not motion); next to an object every Diff cluster counts.
     pub min_cells: usize,
     /// Fastest motion a vacated and an arrived cluster are paired across, m/s.
     pub max_speed_mps: f64,
@@ -216,11 +215,7 @@ pub(crate) fn motion_clusters(
             None => {}
         }
     }
-    // Stationary objects: Same clusters of at least `min_cells` cells without a Diff cluster
-    // next to them. One cell shows no stillness: a car's face sliding along itself is hit by the
-    // same beam in the same cell in both scans, and far out, at grazing incidence, a passing
-    // car's face holds one return every 2-3 m, each a one-cell Same cluster with no Diff next to
-    // it (issue 25: the T-junction's lane ends learned 0 m/s from such cells).
+    // Stationary objects: Same clusters without a Diff cluster next to them.
     let near = |object: &Group| {
         out.iter()
             .any(|c| min_gap(&object.centres, &c.cells_m) <= params.adjacency_m + 1e-9)
@@ -228,10 +223,7 @@ pub(crate) fn motion_clusters(
                 .iter()
                 .any(|(_, g)| object.gap_m(g) <= params.adjacency_m + 1e-9)
     };
-    let stationary: Vec<Group> = objects
-        .into_iter()
-        .filter(|o| o.centres.len() >= params.min_cells && !near(o))
-        .collect();
+    let stationary: Vec<Group> = objects.into_iter().filter(|o| !near(o)).collect();
     out.extend(stationary.into_iter().map(|o| {
         o.into_cluster(
             scan,

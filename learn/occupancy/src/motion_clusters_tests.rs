@@ -156,19 +156,3 @@ fn crossing_cars_are_paired_with_themselves_when_the_scans_around_bear_it_out() 
         );
     }
 }
-
-#[test]
-fn a_single_return_seen_twice_is_no_stationary_object_but_a_two_cell_post_is() {
-    // A 0.2 m post at y = 4.1 falls in one 0.5 m cell in both scans: one cell shows no stillness
-    // (a passing car's face hit by the same beam gives the same cell). A 0.8 m post spans two.
-    let post = (4.1, 0.05, 0.25);
-    let found = clusters(&scan(0.0, &[WALL, post]), &scan(1.0, &[WALL, post]));
-    let near_post = |c: &&MotionCluster| c.centroid_m[1] < 6.0;
-    assert_eq!(found.iter().filter(near_post).count(), 0, "{found:?}");
-    let wide = (4.1, 0.05, 0.85);
-    let found = clusters(&scan(0.0, &[WALL, wide]), &scan(1.0, &[WALL, wide]));
-    let posts: Vec<&MotionCluster> = found.iter().filter(near_post).collect();
-    assert_eq!(posts.len(), 1, "{found:?}");
-    assert_eq!(posts[0].kind, ClusterKind::Stationary);
-    assert_eq!(posts[0].cells_m.len(), 2);
-}
