@@ -3,7 +3,10 @@
 //! dgpom_check -- DATASET [NAME]`. Environment: `ITERS` (DGPOM's L-BFGS iterations, 50),
 //! `NOISE_FLOOR` (all GPs), `FREE` (free-sample spacing, m), `PAST_FREE=0`, `SCANS`, `METHODS`,
 //! `QUERY`, `FITS` (print every fit), `DIAG` (1 − AUC by class of query point), `ORACLE=ε` (the
-//! exact T-junction lane velocities with error ε), `MIN_CELLS`, `CROSSING`, `DUMP`.
+//! exact T-junction lane velocities with error ε), `MIN_CELLS`, `CROSSING`, `DUMP`; for the motion
+//! map alone `MM_SEED` (its held-out split and subsets), `VEL_POINTS` (cells of Υ and of ε),
+//! `CLUSTERS=1|2` (each moving cluster against its actor), `CLDUMP` and `ACTORS` (every cluster,
+//! every actor near the T-junction's lanes, to stderr).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -26,6 +29,13 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let train = OccupancySequence::load(&dataset.sequence(&format!("{name}_train"))?)?;
     let start = Instant::now();
     let mut mm = MotionMapParams::default();
+    if let Ok(v) = std::env::var("VEL_POINTS") {
+        mm.velocity_points = v.parse()?;
+        mm.error_points = mm.velocity_points;
+    }
+    if let Ok(v) = std::env::var("MM_SEED") {
+        mm.seed = v.parse()?;
+    }
     if let Ok(v) = std::env::var("MIN_CELLS") {
         mm.clusters.min_cells = v.parse()?;
     }
@@ -61,6 +71,38 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     }
     if std::env::var("CLUSTERS").is_ok() {
         cluster_quality(&map, &train);
+    }
+    if std::env::var("CLDUMP").is_ok() {
+        for c in &map.clusters {
+            eprintln!(
+                "CL {} {:?} {:.2} {:.2} {:.2} {:.2} {}",
+                c.scan,
+                c.kind,
+                c.centroid_m[0],
+                c.centroid_m[1],
+                c.velocity_mps[0],
+                c.velocity_mps[1],
+                c.cells_m.len()
+            );
+        }
+    }
+    if std::env::var("ACTORS").is_ok() {
+        for (k, (t, actors)) in train.truth.actors_by_scan().iter().enumerate() {
+            for a in actors {
+                let b = OrientedBox::of_object(a);
+                if b.centre_m[0] < -5.0 || b.centre_m[0] > 35.0 {
+                    continue;
+                }
+                eprintln!(
+                    "ACT scan {k} t {t:.1} x {:.2}..{:.2} y {:.2}..{:.2} v {:+.1}",
+                    b.centre_m[0] - b.half_extents_m[0],
+                    b.centre_m[0] + b.half_extents_m[0],
+                    b.centre_m[1] - b.half_extents_m[1],
+                    b.centre_m[1] + b.half_extents_m[1],
+                    a.velocity_mps[0]
+                );
+            }
+        }
     }
     if std::env::var("CROSSING").is_ok() {
         // The busy intersection: each lane's Υ at 20, 10 and 5 m before the centre and beyond.
