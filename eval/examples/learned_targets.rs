@@ -48,7 +48,9 @@ fn main() -> Result<(), Failure> {
     let trace = std::env::var("TRACE").ok();
     for situation in &report.situations {
         if trace.as_deref() == Some(situation.name.as_str()) {
-            println!("scan | true h,s | SPGP h,s | KF-AUTO h,s | GP-KF h,s");
+            println!(
+                "scan | true h,s | SPGP h,s | KF-AUTO h,s | GP-KF h,s | ICP-AUTO h,s | GP-ICP h,s"
+            );
             let show =
                 |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
                     Some(e) => format!("{:7.1} {:5.2}", e.heading_rad.to_degrees(), e.speed_mps),
@@ -57,12 +59,14 @@ fn main() -> Result<(), Failure> {
             for (k, t) in situation.truth.iter().enumerate() {
                 let col = |m: Method| show(situation.methods.get(&m).and_then(|v| v.get(k)));
                 println!(
-                    "{k:3} | {:7.1} {:5.2} | {} | {} | {}",
+                    "{k:3} | {:7.1} {:5.2} | {} | {} | {} | {} | {}",
                     t.heading_rad.to_degrees(),
                     t.speed_mps,
                     col(Method::SpgpHetAll),
                     col(Method::KfAuto),
-                    col(Method::GpKf)
+                    col(Method::GpKf),
+                    col(Method::IcpAuto),
+                    col(Method::GpIcp)
                 );
             }
         }

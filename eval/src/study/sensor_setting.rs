@@ -1,8 +1,8 @@
 //! How a study point's world, sensor and features differ from the scenario files and the
-//! feature defaults (the realism rung, the lidar's rate and channels, the map cell size), and
-//! the names its datasets and models are kept under.
+//! default estimator's features (the realism rung, the lidar's rate and channels, the map cell
+//! size), and the names its datasets and models are kept under.
 
-use patchflow_learn::FeatureParams;
+use patchflow_learn::{EstimatorParams, FeatureParams};
 use patchflow_sim::Realism;
 
 /// How the world and the sensor of a dataset differ from the scenario files; `None` keeps theirs.
@@ -34,9 +34,11 @@ impl SensorSetting {
         join_parts(self.data_parts())
     }
 
-    /// The feature parameters of this setting: the defaults with its cell size.
+    /// The feature parameters of this setting: the default estimator's (its slice under the belt
+    /// line, not the thesis preset's) with this setting's cell size, so a study's default point
+    /// is the model `bench` trains.
     pub fn features(&self) -> FeatureParams {
-        let defaults = FeatureParams::default();
+        let defaults = EstimatorParams::default().features;
         FeatureParams {
             cell_m: self.cell_m.unwrap_or(defaults.cell_m),
             ..defaults
@@ -63,5 +65,27 @@ fn join_parts(parts: Vec<String>) -> String {
         "default".to_owned()
     } else {
         parts.join("-")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_study_point_cuts_the_default_estimators_slice_not_the_thesis_ones() {
+        let default = EstimatorParams::default().features;
+        let features = SensorSetting::default().features();
+        assert_eq!(features, default);
+        let cell = SensorSetting {
+            cell_m: Some(0.2),
+            ..SensorSetting::default()
+        }
+        .features();
+        assert_eq!(
+            (cell.slice_min_m, cell.slice_max_m, cell.cell_m),
+            (default.slice_min_m, default.slice_max_m, 0.2)
+        );
+        assert_ne!(cell.slice_max_m, FeatureParams::default().slice_max_m);
     }
 }
