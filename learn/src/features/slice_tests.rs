@@ -139,8 +139,8 @@ fn a_car_on_a_raised_sloped_road_slices_like_the_same_car_on_flat_ground() {
     assert!(in_window(&road_as_obstacle) > 10 * a.len());
 }
 
-#[test]
-fn on_flat_ground_the_estimated_slice_differs_from_the_flat_one_only_at_its_edges() {
+/// A car and a wall on flat ground, scanned once from the origin at 64 × 900 beams.
+fn parked_car_and_wall_on_flat_ground() -> Sweep {
     let world = SyntheticWorld {
         scene: SyntheticScene {
             boxes: vec![
@@ -150,12 +150,17 @@ fn on_flat_ground_the_estimated_slice_differs_from_the_flat_one_only_at_its_edge
         },
         ..SyntheticWorld::default()
     };
-    let sweep = world.scan(
+    world.scan(
         &SyntheticLidar::with_resolution(64, 900),
         [0.0, 0.0],
         0.0,
         0,
-    );
+    )
+}
+
+#[test]
+fn on_flat_ground_the_estimated_slice_differs_from_the_flat_one_only_at_its_edges() {
+    let sweep = parked_car_and_wall_on_flat_ground();
     let level = HeightSlice::cut(&sweep, &flat()).unwrap();
     let estimated = HeightSlice::cut(&sweep, &FeatureParams::default()).unwrap();
     let indices = |s: &HeightSlice| -> std::collections::BTreeSet<usize> {
@@ -256,21 +261,7 @@ fn the_slice_places_points_with_the_estimated_pose_not_the_truth() {
 #[test]
 fn the_slice_above_the_estimated_ground_is_the_same_on_one_thread_and_on_two() {
     // More points than one parallel task takes, so the slice is joined from several runs.
-    let world = SyntheticWorld {
-        scene: SyntheticScene {
-            boxes: vec![
-                SceneBox::car(1, [9.0, -3.0], 0.3, 5.0),
-                SceneBox::wall([-6.0, 8.0], 0.2, [12.0, 0.4, 3.0]),
-            ],
-        },
-        ..SyntheticWorld::default()
-    };
-    let sweep = world.scan(
-        &SyntheticLidar::with_resolution(64, 900),
-        [0.0, 0.0],
-        0.0,
-        0,
-    );
+    let sweep = parked_car_and_wall_on_flat_ground();
     assert!(sweep.points_in_sensor.len() > 3 * TASK_POINTS);
     let cut = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
