@@ -64,21 +64,12 @@ impl<K: Kernel> GpModel<K> {
     /// prediction a call on the cluster would give.
     pub fn predict_row_groups(&self, rows: &[f64], group_rows: &[usize]) -> Result<GpPrediction> {
         let d = self.input_names.len();
-        let t = self.whole_rows(rows, d)?;
-        if group_rows.iter().sum::<usize>() != t {
-            return Err(GpError::InvalidParams(format!(
-                "groups of {} rows in all, but {t} rows were given",
-                group_rows.iter().sum::<usize>()
-            )));
-        }
+        let t = self.grouped_rows(rows, d, group_rows)?;
         let (mean, var) = match &self.posterior {
             Posterior::Sparse(p) => {
                 let z = OwnedPoints::of_rows(&self.hyper.pseudo_inputs, &self.hyper.kernel);
                 let m = p.weights.len();
-                let small: Vec<bool> = group_rows
-                    .iter()
-                    .flat_map(|&n| std::iter::repeat_n(m.min(n) <= SMALL_DIM, n))
-                    .collect();
+                let small = small_product_rows(m, group_rows);
                 let blocks = blocks(&small)
                     .into_par_iter()
                     .map(|b| {
@@ -178,6 +169,24 @@ impl<K: Kernel> GpModel<K> {
             )));
         }
         Ok(rows.len() / d)
+    }
+
+    /// The number of rows in `rows`, checked to be whole rows of `d` columns that `group_rows`
+    /// splits exactly.
+    pub(crate) fn grouped_rows(
+        &self,
+        rows: &[f64],
+        d: usize,
+        group_rows: &[usize],
+    ) -> Result<usize> {
+        let t = self.whole_rows(rows, d)?;
+        let grouped = group_rows.iter().sum::<usize>();
+        if grouped != t {
+            return Err(GpError::InvalidParams(format!(
+                "groups of {grouped} rows in all, but {t} rows were given"
+            )));
+        }
+        Ok(t)
     }
 
     /// Errors if a value of `rows` is not finite or lies too far from the training data (one
@@ -321,6 +330,16 @@ impl BadInputs {
             out_of_range: self.out_of_range.map(|p| p + start),
         }
     }
+}
+
+/// Per row of groups of `group_rows` rows: whether W K_MB takes nalgebra's small-product loop
+/// for it (its group or the `m` pseudo-inputs at most SMALL_DIM), as a call on the group alone
+/// would.
+pub(crate) fn small_product_rows(m: usize, group_rows: &[usize]) -> Vec<bool> {
+    group_rows
+        .iter()
+        .flat_map(|&n| std::iter::repeat_n(m.min(n) <= SMALL_DIM, n))
+        .collect()
 }
 
 /// Blocks of at most [`BLOCK_POINTS`] rows; every row in one.

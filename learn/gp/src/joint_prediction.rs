@@ -7,12 +7,11 @@
 use nalgebra::DVector;
 use rayon::prelude::*;
 
-use super::batch_prediction::blocks;
-use super::gemm::SMALL_DIM;
+use super::batch_prediction::{blocks, small_product_rows};
 use super::kernel::{Kernel, OwnedPoints};
 use super::model::{GpModel, GpPrediction, Posterior};
 use super::sparse_posterior::SparsePosterior;
-use crate::{GpError, Result};
+use crate::Result;
 
 /// What a joint prediction reads out of one model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -70,13 +69,7 @@ impl<K: Kernel> GpModel<K> {
                 .collect();
         };
         let d = first.input_names.len();
-        let t = first.whole_rows(rows, d)?;
-        if group_rows.iter().sum::<usize>() != t {
-            return Err(GpError::InvalidParams(format!(
-                "groups of {} rows in all, but {t} rows were given",
-                group_rows.iter().sum::<usize>()
-            )));
-        }
+        let t = first.grouped_rows(rows, d, group_rows)?;
         let pseudo: Vec<OwnedPoints> = jobs
             .iter()
             .map(|(m, _)| OwnedPoints::of_rows(&m.hyper.pseudo_inputs, &m.hyper.kernel))
@@ -84,13 +77,7 @@ impl<K: Kernel> GpModel<K> {
         // Which rows take nalgebra's small-product loop for W K_MB, per model (as its own call).
         let small: Vec<Vec<bool>> = posteriors
             .iter()
-            .map(|p| {
-                let m = p.weights.len();
-                group_rows
-                    .iter()
-                    .flat_map(|&n| std::iter::repeat_n(m.min(n) <= SMALL_DIM, n))
-                    .collect()
-            })
+            .map(|p| small_product_rows(p.weights.len(), group_rows))
             .collect();
         let starts = blocks(&vec![false; t]);
         let per_block = starts
