@@ -53,16 +53,6 @@ impl Default for KalmanParams {
 impl KalmanParams {
     /// Checks that every noise is positive and finite.
     pub fn validate(&self) -> Result<(), EvalError> {
-        let positive = |name: &'static str, value: f64| {
-            if value > 0.0 && value.is_finite() {
-                Ok(())
-            } else {
-                Err(EvalError::BadParameter {
-                    name,
-                    reason: format!("must be positive and finite, got {value}"),
-                })
-            }
-        };
         positive(
             "KalmanParams.accel_noise_std_mps2",
             self.accel_noise_std_mps2,
@@ -325,13 +315,20 @@ impl ConstantVelocityKalman {
 /// A measurement's correlation time must be positive (zero would be white noise, which the
 /// white covariance already is) and finite.
 fn check_persistence(measurement: &VelocityMeasurement) -> Result<(), EvalError> {
-    let secs = measurement.persistence_secs;
-    if secs > 0.0 && secs.is_finite() {
+    positive(
+        "VelocityMeasurement.persistence_secs",
+        measurement.persistence_secs,
+    )
+}
+
+/// Errors, naming the parameter, unless `value` is positive and finite.
+fn positive(name: &'static str, value: f64) -> Result<(), EvalError> {
+    if value > 0.0 && value.is_finite() {
         Ok(())
     } else {
         Err(EvalError::BadParameter {
-            name: "VelocityMeasurement.persistence_secs",
-            reason: format!("must be positive and finite, got {secs}"),
+            name,
+            reason: format!("must be positive and finite, got {value}"),
         })
     }
 }
