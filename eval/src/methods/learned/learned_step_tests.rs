@@ -120,3 +120,39 @@ fn without_a_classifier_gp_icp_still_finds_the_parked_car_at_rest() {
         .velocity_xy_mps;
     assert!(v[0].hypot(v[1]) < 1e-6, "{v:?}");
 }
+
+/// A motion of `velocity` over 0.1 s, from an alignment that is degenerate or pairs `inliers`.
+fn motion(velocity: [f64; 2], degenerate: bool, inliers: usize) -> RigidMotion {
+    RigidMotion {
+        estimate: MotionEstimate::from_velocity(velocity),
+        alignment: crate::methods::baselines::icp::IcpAlignment {
+            target_from_source: nalgebra::Isometry2::translation(
+                velocity[0] * DT,
+                velocity[1] * DT,
+            ),
+            iterations: 0,
+            converged: !degenerate,
+            inlier_count: inliers,
+            inlier_rms_m: if degenerate { f64::NAN } else { 0.05 },
+            degenerate,
+        },
+        dt_secs: DT,
+    }
+}
+
+#[test]
+fn when_neither_icp_aligns_anything_gp_icp_keeps_the_centroid_shift() {
+    let from_gp = motion([0.0, 9.0], true, 0);
+    let from_centroid = motion([8.0, 1.0], true, 0);
+    let kept = better_alignment(Some(from_gp), Some(from_centroid)).unwrap();
+    assert!((kept.estimate.speed_mps - from_centroid.estimate.speed_mps).abs() < 1e-12);
+    assert!((kept.estimate.heading_rad - from_centroid.estimate.heading_rad).abs() < 1e-12);
+}
+
+#[test]
+fn an_alignment_from_the_gp_that_pairs_more_points_wins_over_the_centroid_start() {
+    let from_gp = motion([0.0, 9.0], false, 40);
+    let from_centroid = motion([8.0, 1.0], false, 20);
+    let kept = better_alignment(Some(from_gp), Some(from_centroid)).unwrap();
+    assert!((kept.estimate.heading_rad - from_gp.estimate.heading_rad).abs() < 1e-12);
+}
