@@ -5,6 +5,7 @@
 
 pub(crate) mod cpu_time;
 pub(crate) mod flow_export;
+pub(crate) mod method_flows;
 pub(crate) mod metrics;
 pub(crate) mod moving_iou;
 pub(crate) mod objects;
@@ -15,4 +16,5 @@ pub(crate) mod scan_scoring;
 pub(crate) mod scene_evaluation;
 pub(crate) mod scene_flow;
 pub(crate) mod scene_point;
+pub(crate) mod target_columns;
 pub(crate) mod truth_at_scan;

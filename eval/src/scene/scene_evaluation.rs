@@ -7,28 +7,29 @@ use std::time::Instant;
 
 use patchflow_dataset::SequenceReader;
 use patchflow_learn::{
-    ChangeEvidence, ClusterEstimate, ClusterMotion, FeatureParams, FeaturedSweep, MotionEstimator,
-    MovingBelief, MovingClassifier, ScanMotion, ScanStream, SweepFeatures,
+    ChangeEvidence, ClusterEstimate, FeatureParams, FeaturedSweep, MotionEstimator, MovingBelief,
+    MovingClassifier, ScanStream,
 };
 
 use crate::error::EvalError;
-use crate::methods::baselines::baseline_method::BaselineMethod;
 use crate::methods::baselines::baseline_params::BaselineParams;
-use crate::methods::baselines::baseline_step::{BaselineScan, BaselineTrackers, ClusterFlow};
+use crate::methods::baselines::baseline_step::BaselineTrackers;
 use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
-use crate::methods::estimate::{MotionEstimate, to_estimate};
+use crate::methods::estimate::to_estimate;
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
 use crate::methods::learned::learned_target::LearnedTargetTrackers;
 use crate::methods::learned::plausible_motion::{implausible_estimate, implausible_motion};
-use crate::methods::method::{GpReadout, Method};
+use crate::methods::method::Method;
 use crate::scene::cpu_time::process_cpu_secs;
+use crate::scene::method_flows::{hypothesis_flags, method_flows};
 use crate::scene::objects::ObjectScan;
 use crate::scene::oracle::{observe, target_at, target_cluster};
 use crate::scene::perception_timing::{ScanTiming, StepTiming};
 use crate::scene::result::{SceneResult, SituationResult};
-use crate::scene::scan_scoring::{MethodFlow, object_scans, score_points};
+use crate::scene::scan_scoring::{object_scans, score_points};
 use crate::scene::scene_flow::SceneFlowTally;
 use crate::scene::scene_point::ScenePoints;
+use crate::scene::target_columns::{TargetColumns, push_target_estimates};
 use crate::scene::truth_at_scan::TruthAtScan;
 
 /// What one sequence yields.
@@ -46,7 +47,7 @@ struct Scores {
     objects: Vec<ObjectScan>,
     timing: Vec<ScanTiming>,
     target_truth: Vec<TruthAtScan>,
-    target_estimates: BTreeMap<Method, Vec<Option<MotionEstimate>>>,
+    target_estimates: TargetColumns,
 }
 
 /// The trackers of a sequence: the baselines and the GP-informed ones.
@@ -309,112 +310,15 @@ fn evaluate_scan(
         let target_moving = observation
             .target_cluster()
             .and_then(|c| decisions.get(c).copied().flatten());
-        let target_gp_all = target_gp.first().and_then(|(_, e)| e.all);
-        for (kind, estimate) in target_gp {
-            for (rule, motion) in [
-                (patchflow_learn::MergeRule::All, estimate.all),
-                (patchflow_learn::MergeRule::Best, estimate.best),
-            ] {
-                let method = Method::gp(kind, GpReadout::Merged(rule));
-                let column = scores.target_estimates.entry(method).or_default();
-                column.push(motion.map(to_estimate));
-            }
-            if moving.is_some() {
-                let all = estimate.all.map(to_estimate);
-                let decided = match target_moving {
-                    Some(false) => {
-                        Some(MotionEstimate::at_rest(all.map_or(0.0, |e| e.heading_rad)))
-                    }
-                    _ => all,
-                };
-                let column = scores
-                    .target_estimates
-                    .entry(Method::gp_decided(kind))
-                    .or_default();
-                column.push(decided);
-            }
-        }
-        // GP-KF and GP-ICP on the target with no moving decision, as the baselines' rows.
-        let gp = target_gp_all.map(to_estimate);
-        for (method, estimate) in trackers.target.step(&observation, gp)? {
-            let column = scores.target_estimates.entry(method).or_default();
-            column.push(estimate);
-        }
-        for baseline_method in BaselineMethod::ALL {
-            let method = baseline_method.method();
-            let estimate = observation
-                .target_actor
-                .and_then(|t| baseline.actor_estimate(method, t, &observation));
-            scores
-                .target_estimates
-                .entry(method)
-                .or_default()
-                .push(estimate);
-        }
+        push_target_estimates(
+            &mut scores.target_estimates,
+            target_gp,
+            (moving.is_some(), target_moving),
+            &mut trackers.target,
+            &observation,
+            &baseline,
+        )?;
     }
     scores.timing.push(timing);
     Ok(())
-}
-
-/// Which clusters of the scan are object hypotheses.
-fn hypothesis_flags(features: &SweepFeatures) -> Vec<bool> {
-    let mut flags = vec![false; features.clusters().len()];
-    for c in features.object_hypotheses() {
-        flags[c] = true;
-    }
-    flags
-}
-
-/// How each method moves the scan's points. `decisions` (with a moving classifier): per cluster,
-/// moving or static for the object hypotheses.
-fn method_flows(
-    motions: &[(patchflow_learn::GpKind, ScanMotion)],
-    baseline: &BaselineScan,
-    learned: &BTreeMap<Method, Vec<Option<ClusterFlow>>>,
-    hypotheses: &[bool],
-    decisions: Option<&[Option<bool>]>,
-) -> BTreeMap<Method, MethodFlow> {
-    let mut flows = BTreeMap::new();
-    for (kind, motion) in motions {
-        let [all, best, point] = Method::of_estimator(*kind);
-        let merged = |pick: fn(&ClusterEstimate) -> Option<ClusterMotion>| {
-            let clusters = motion.clusters.iter();
-            let flows = clusters.map(|e| e.as_ref().and_then(pick));
-            MethodFlow::Clusters(
-                flows
-                    .map(|m| m.map(|m| ClusterFlow::Uniform(to_estimate(m))))
-                    .collect(),
-            )
-        };
-        flows.insert(all, merged(|e| e.all));
-        flows.insert(best, merged(|e| e.best));
-        if let Some(decisions) = decisions {
-            let decided = motion.clusters.iter().zip(decisions).map(|(e, moving)| {
-                let all = e.as_ref().and_then(|e| e.all).map(to_estimate);
-                match moving {
-                    Some(false) => {
-                        Some(MotionEstimate::at_rest(all.map_or(0.0, |e| e.heading_rad)))
-                    }
-                    _ => all,
-                }
-                .map(ClusterFlow::Uniform)
-            });
-            flows.insert(
-                Method::gp_decided(*kind),
-                MethodFlow::Clusters(decided.collect()),
-            );
-        }
-        let velocities = motion.points.iter().map(|p| p.map(|p| p.velocity_xy_mps()));
-        flows.insert(point, MethodFlow::Points(velocities.collect()));
-    }
-    for (&method, clusters) in baseline.clusters.iter().chain(learned) {
-        let kept = clusters
-            .iter()
-            .zip(hypotheses)
-            .map(|(flow, &hypothesis)| flow.filter(|_| hypothesis))
-            .collect();
-        flows.insert(method, MethodFlow::Clusters(kept));
-    }
-    flows.insert(Method::ZeroFlow, MethodFlow::Zero);
-    flows
 }
