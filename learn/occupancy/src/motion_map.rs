@@ -130,7 +130,6 @@ impl MotionMap {
             &clusters,
             (params.velocity_points, params.error_points),
             params.held_out_fraction,
-            params.clusters.cell_m,
             &mut rng,
         );
         if velocity_samples.len() < 10 || held_samples.len() < 10 {
