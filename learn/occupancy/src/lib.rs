@@ -41,6 +41,7 @@
 //! ```
 
 mod auc;
+mod changed_cells;
 mod cluster_pairing;
 mod dgpom;
 mod error;
@@ -64,6 +65,7 @@ mod query_grid;
 mod scan_cells;
 mod thinning;
 mod training_samples;
+mod velocity_samples;
 
 pub use auc::roc_auc;
 pub use dgpom::{DgpomMethod, DgpomParams};

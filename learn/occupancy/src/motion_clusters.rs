@@ -8,7 +8,8 @@
 //! a velocity: its direction along the line between the two centroids (from the object into an
 //! arrived cluster, from a vacated cluster to the object), its magnitude the cluster's width
 //! along that line over the scan interval. Same clusters with no Diff cluster next to them are
-//! stationary (velocity 0).
+//! stationary (velocity 0); over a whole training run, `ChangedCells` keeps of them only the cells
+//! the run never saw change.
 //!
 //! One addition: an object that moves farther than its own visible length between scans leaves no
 //! Same cells, so neither of its Diff clusters has an object next to it. Such vacated and arrived
@@ -280,7 +281,10 @@ fn paired(
 
 /// The occupied cells of `map` that `other` saw with no return within one cell (changed), and
 /// those with one (same).
-fn changed_and_same(map: &ScanCells, other: &ScanCells) -> (BTreeSet<Cell>, BTreeSet<Cell>) {
+pub(crate) fn changed_and_same(
+    map: &ScanCells,
+    other: &ScanCells,
+) -> (BTreeSet<Cell>, BTreeSet<Cell>) {
     let mut changed = BTreeSet::new();
     let mut same = BTreeSet::new();
     for (&(c, r), _) in map.cells.iter().filter(|&(_, &occupied)| occupied) {

@@ -1,21 +1,24 @@
 //! The learned motion map (DGPOM paper, Section 2.3): the motion clusters of every pair of
-//! consecutive scans of a training run, a mean velocity field Υ(x) regressed from a subset of
-//! their cells (the paper uses 500 points; both components, one GP each), and an error field ε(x)
-//! regressed from how far Υ misses the velocities of clusters held out from it. The fields are
+//! consecutive scans of a training run (stationary only where the run never saw a change,
+//! `ChangedCells`), a mean velocity field Υ(x) regressed from a subset of their cells (the paper
+//! uses 500 points; both components, one GP each), and an error field ε(x) regressed from how far
+//! Υ misses the velocities of the clusters of held-out scan pairs (`VelocitySamples`). The fields are
 //! sampled on a lattice ([`FieldRaster`]) over what the run observed, and the map is the
 //! [`MotionField`] of DGPOM's kernel.
 
 use nalgebra::{DMatrix, DVector};
 use patchflow_gp::{GpKind, GpModel, GpParams, MotionField};
-use rand::{RngExt, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
+use crate::changed_cells::ChangedCells;
 use crate::cluster_pairing::PairScans;
 use crate::motion_clusters::motion_clusters;
 use crate::scan_cells::ScanCells;
+use crate::velocity_samples::{Sample, VelocitySamples};
 use crate::{
-    ClusterKind, FieldRaster, MotionAccuracy, MotionCluster, MotionClusterParams, OccupancyError,
+    FieldRaster, MotionAccuracy, MotionCluster, MotionClusterParams, OccupancyError,
     OccupancySequence, Result,
 };
 
@@ -29,7 +32,8 @@ pub struct MotionMapParams {
     pub velocity_points: usize,
     /// Held-out cells the error regressor is trained on.
     pub error_points: usize,
-    /// Share of the clusters held out from the velocity regressor for the error field.
+    /// Share of the scan pairs whose clusters are held out from the velocity regressor for the
+    /// error field (every ⌈1/share⌉-th pair, whole).
     pub held_out_fraction: f64,
     /// Smallest error the map reports, m/s (ε^(−1/b) stays bounded where Υ fits exactly).
     pub min_error_mps: f64,
@@ -37,7 +41,7 @@ pub struct MotionMapParams {
     pub raster_m: f64,
     /// Iteration limit of each regressor's marginal-likelihood maximisation.
     pub max_iters: usize,
-    /// Seed of the held-out split and the subsets.
+    /// Seed of the subsets drawn where a kind has more cells than its half of the draw.
     pub seed: u64,
 }
 
@@ -86,9 +90,6 @@ pub struct MotionMap {
     min_error_mps: f64,
 }
 
-/// One regression sample: a cell centre and a value per target.
-type Sample = ([f64; 2], [f64; 2]);
-
 impl MotionMap {
     /// Learns the motion map from every pair of consecutive scans of `training`.
     pub fn learn(training: &OccupancySequence, params: &MotionMapParams) -> Result<Self> {
@@ -114,33 +115,23 @@ impl MotionMap {
                 motion_clusters(&scans, training.scans[k].index, &params.clusters)
             })
             .collect();
-        // A portion of the clusters trains Υ, the rest assesses it.
-        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
-        let held_out: Vec<bool> = clusters
-            .iter()
-            .map(|_| rng.random::<f64>() < params.held_out_fraction)
+        // Stillness only where the run never saw a change (`ChangedCells`).
+        let changed = ChangedCells::of_run(&cells);
+        let clusters: Vec<MotionCluster> = clusters
+            .into_iter()
+            .filter_map(|c| changed.evidence(c))
             .collect();
-        let samples = |held: bool, moving: bool| -> Vec<Sample> {
-            clusters
-                .iter()
-                .zip(&held_out)
-                .filter(|(c, h)| **h == held && (c.kind != ClusterKind::Stationary) == moving)
-                .flat_map(|(c, _)| c.cells_m.iter().map(|&p| (p, c.velocity_mps)))
-                .collect()
-        };
-        // Stationary cells far outnumber moving ones; a plain draw would leave Υ a few moving
-        // cells among hundreds of zeros. Half the draw comes from each kind (all of a kind if it
-        // has fewer), which keeps both the lanes and the still structure in the field.
-        let mut balanced = |held: bool, n: usize| -> Vec<Sample> {
-            let moving = samples(held, true);
-            let take_moving = moving.len().min(n / 2);
-            let still = samples(held, false);
-            let mut out = subset(moving, take_moving, &mut rng);
-            out.extend(subset(still, n - take_moving, &mut rng));
-            out
-        };
-        let velocity_samples = balanced(false, params.velocity_points);
-        let held_samples = balanced(true, params.error_points);
+        // Υ's cells and the held-out pairs' cells for ε (`VelocitySamples`).
+        let mut rng = ChaCha8Rng::seed_from_u64(params.seed);
+        let VelocitySamples {
+            fitted: velocity_samples,
+            held_out: held_samples,
+        } = VelocitySamples::draw(
+            &clusters,
+            (params.velocity_points, params.error_points),
+            params.held_out_fraction,
+            &mut rng,
+        );
         if velocity_samples.len() < 10 || held_samples.len() < 10 {
             return Err(degenerate(format!(
                 "{} motion clusters give {} training and {} held-out cells; at least 10 of each are needed",
@@ -220,21 +211,6 @@ impl MotionField for MotionMap {
     fn error_mps(&self, xy_m: [f64; 2]) -> f64 {
         self.raster.at(ERROR, xy_m).max(self.min_error_mps)
     }
-}
-
-/// `n` of `samples` drawn without replacement (all if there are fewer), in their original order.
-fn subset(samples: Vec<Sample>, n: usize, rng: &mut ChaCha8Rng) -> Vec<Sample> {
-    if samples.len() <= n {
-        return samples;
-    }
-    let mut idx: Vec<usize> = (0..samples.len()).collect();
-    for i in 0..n {
-        let j = rng.random_range(i..idx.len());
-        idx.swap(i, j);
-    }
-    let mut chosen = idx[..n].to_vec();
-    chosen.sort_unstable();
-    chosen.into_iter().map(|i| samples[i]).collect()
 }
 
 /// The regressor's mean at `points`, in batches.

@@ -4,9 +4,9 @@
 //! `NOISE_FLOOR` (all GPs), `FREE` (free-sample spacing, m), `PAST_FREE=0`, `SCANS`, `METHODS`,
 //! `QUERY`, `FITS` (print every fit), `DIAG` (1 − AUC by class of query point), `ORACLE=ε` (the
 //! exact T-junction lane velocities with error ε), `MIN_CELLS`, `CROSSING`, `DUMP`; for the motion
-//! map alone `MM_SEED` (its held-out split and subsets), `VEL_POINTS` (cells of Υ and of ε),
-//! `CLUSTERS=1|2` (each moving cluster against its actor), `CLDUMP` and `ACTORS` (every cluster,
-//! every actor near the T-junction's lanes, to stderr).
+//! map alone `MM_SEED` (the subsets it draws where a kind has more cells than its half),
+//! `VEL_POINTS` (cells of Υ and of ε), `CLUSTERS=1|2` (each moving cluster against its actor),
+//! `CLDUMP` and `ACTORS` (every cluster, every actor near the T-junction's lanes, to stderr).
 
 use std::sync::Arc;
 use std::time::Instant;
