@@ -48,8 +48,7 @@ pub struct EstimatorParams {
     /// the GP refitted with that noise shape; a vote's variance then carries the noise GP's
     /// prediction at its patch. `false`: the thesis' GP alone.
     pub most_likely_noise: bool,
-    /// Optimiser iteration limit per GP. With [`Self::most_likely_noise`] the noise-weighted
-    /// refit, which starts at the first fit's optimum, gets a third of it.
+    /// Optimiser iteration limit per GP.
     pub max_iters: usize,
     /// Seed of sampling and GP initialisation.
     pub seed: u64,
