@@ -51,7 +51,7 @@ impl<K: Kernel> GpObjective<K> {
             params.kernel().clone(),
             params.start_pseudo_inputs(),
         )?;
-        let start = match params.start_hyper() {
+        let start = match params.start_hyper_values() {
             Some(h) => warm_start(h, &seeded)?,
             None => seeded,
         };

@@ -10,7 +10,6 @@ use serde::{Deserialize, Serialize};
 
 use super::hyper::Hyper;
 use super::kernel::Kernel;
-use super::model::GpModel;
 use super::stationary::Stationary;
 use crate::{GpError, Result};
 
@@ -192,14 +191,9 @@ impl<K: Kernel> GpParams<K> {
         self
     }
 
-    /// Starts the optimiser at `model`'s fitted hyperparameters (kernel, σ², pseudo-inputs and,
-    /// for SPGP-HET, h) instead of the seeded start: a warm start for refitting the same inputs,
-    /// as the second round of the most-likely heteroscedastic GP does with its noise weights
-    /// (the values are in the standardised units of `model`'s fit, which a fit on the same `x`
-    /// and `y` reproduces). The model's kind and input dimension must match; with
-    /// [`Self::optimise_pseudo_inputs`]`(false)` its pseudo-inputs stay where it left them.
-    pub fn start_from(mut self, model: &GpModel<K>) -> Self {
-        self.start_hyper = Some(model.hyper.clone());
+    /// Starts the optimiser at these hyperparameters (see [`GpParams::start_from`]).
+    pub(crate) fn start_hyper(mut self, h: Hyper<K>) -> Self {
+        self.start_hyper = Some(h);
         self
     }
 
@@ -308,7 +302,7 @@ impl<K: Kernel> GpValidParams<K> {
         self.0.start_pseudo_inputs.as_ref()
     }
     /// The fitted hyperparameters to start from ([`GpParams::start_from`]), if any.
-    pub(crate) fn start_hyper(&self) -> Option<&Hyper<K>> {
+    pub(crate) fn start_hyper_values(&self) -> Option<&Hyper<K>> {
         self.0.start_hyper.as_ref()
     }
     /// Per-sample noise weights, if any.
