@@ -142,8 +142,8 @@ impl BenchPlan {
 
     /// `--quick`: the five situations without the dense scene; every training track but only
     /// the last third of its sweeps; SPGP-HET only (the thesis' headline GP; cross-validation
-    /// still compares it with SPGP); fewer samples, pseudo-inputs, iterations and folds; one
-    /// seed; a realism study on situations 1 and 5 at the `ideal` rung beside `urban`; and
+    /// still compares it with SPGP) with the default's samples, pseudo-inputs and iterations;
+    /// a smaller cross-validation; one seed; a realism study on situations 1 and 5 at the `ideal` rung beside `urban`; and
     /// occupancy maps at three of the seven query times.
     pub fn quick() -> Self {
         let full = Self::full();
@@ -161,9 +161,9 @@ impl BenchPlan {
             },
             training_sweep_share: QUICK_SWEEP_SHARE,
             seeds: 1,
-            samples: 1200,
-            pseudo_inputs: 60,
-            max_iters: 150,
+            // The default's samples, pseudo-inputs and iterations: the quick run trains the
+            // default's seed-7 model on a third of the sweeps (docs/speed.md, stop 38: 1,200
+            // samples and 60 pseudo-inputs met the bar in 3 of 5 situations for the same CPU).
             cv: CvParams {
                 folds: 2,
                 samples: 600,

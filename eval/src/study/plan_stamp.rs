@@ -110,7 +110,7 @@ mod tests {
     }
 
     #[test]
-    fn the_quick_plan_differs_from_the_full_one_in_samples_and_the_training_share() {
+    fn the_quick_plan_differs_from_the_full_one_in_the_training_share() {
         let full = PlanStamp::of(&StudyPlan::from_bench(
             StudyFactor::Rate,
             &BenchPlan::full(),
@@ -120,10 +120,6 @@ mod tests {
             &BenchPlan::quick(),
         ));
         let differences = full.differences(&quick);
-        assert!(
-            differences.iter().any(|d| d.starts_with("samples:")),
-            "{differences:?}"
-        );
         assert!(
             differences
                 .iter()

@@ -25,6 +25,17 @@ impl<K: Kernel> GpParams<K> {
     pub fn fit(&self, x: &DMatrix<f64>, y: &DVector<f64>) -> Result<GpModel<K>> {
         self.check()?.fit(x, y)
     }
+
+    /// Starts the optimiser at `model`'s fitted hyperparameters (kernel, σ², pseudo-inputs and,
+    /// for SPGP-HET, h) instead of the seeded start: a warm start for refitting the same inputs,
+    /// e.g. with new noise weights. The values are in the standardised units of `model`'s fit,
+    /// which a fit on the same `x` and `y` reproduces. (The most-likely heteroscedastic refit
+    /// does not use it: docs/speed.md, "Issue 24's time targets: stop 38".) The model's kind
+    /// and input dimension must match; with
+    /// [`Self::optimise_pseudo_inputs`]`(false)` its pseudo-inputs stay where it left them.
+    pub fn start_from(self, model: &GpModel<K>) -> Self {
+        self.start_hyper(model.hyper.clone())
+    }
 }
 
 /// Caches what prediction needs (thesis eqs. 3.32-3.33, or 3.20-3.21 for the full GP).

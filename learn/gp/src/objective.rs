@@ -41,8 +41,9 @@ impl<K: Kernel> GpObjective<K> {
     pub(crate) fn standardised(params: &GpValidParams<K>, data: TrainData) -> Result<Self> {
         let kind = params.kind();
         let data = data.with_point_data(params.kernel());
-        // Seeded initialisation: random-subset pseudo-inputs, the kernel's start (gp.md §5.3).
-        let start = initial_hyper(
+        // Seeded initialisation: random-subset pseudo-inputs, the kernel's start (gp.md §5.3);
+        // or a fitted model's values (a warm start).
+        let seeded = initial_hyper(
             &data,
             kind,
             params.pseudo_inputs(),
@@ -50,6 +51,10 @@ impl<K: Kernel> GpObjective<K> {
             params.kernel().clone(),
             params.start_pseudo_inputs(),
         )?;
+        let start = match params.start_hyper_values() {
+            Some(h) => warm_start(h, &seeded)?,
+            None => seeded,
+        };
         if let Some(z) = params.start_pseudo_inputs()
             && z.ncols() != data.dims()
         {
@@ -117,6 +122,23 @@ impl<K: Kernel> GpObjective<K> {
     }
 }
 
+/// A warm start's hyperparameters, checked against the seeded start's shape (the kernel's
+/// parameter count and the pseudo-inputs' columns, both set by the data's input dimension).
+fn warm_start<K: Kernel>(h: &Hyper<K>, seeded: &Hyper<K>) -> Result<Hyper<K>> {
+    let (want, got) = (seeded.pseudo_inputs.ncols(), h.pseudo_inputs.ncols());
+    if h.kernel.n_params() != seeded.kernel.n_params()
+        || (h.pseudo_inputs.nrows() > 0 && got != want)
+    {
+        return Err(GpError::InvalidParams(format!(
+            "the warm start's model has {} kernel parameters and {got}-dimensional pseudo-inputs, \
+             the data need {} and {want}",
+            h.kernel.n_params(),
+            seeded.kernel.n_params()
+        )));
+    }
+    Ok(h.clone())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -146,5 +168,87 @@ mod tests {
             "fd {fd} vs {}",
             g[i]
         );
+    }
+
+    /// y = sin(x0) + 0.3·x1 on 60 points, x in [-3, 3]².
+    fn plane_sine() -> (DMatrix<f64>, DVector<f64>) {
+        let x = DMatrix::from_fn(60, 2, |i, d| ((i * (d + 3) * 7) % 61) as f64 / 10.0 - 3.0);
+        let y = DVector::from_fn(60, |i, _| x[(i, 0)].sin() + 0.3 * x[(i, 1)]);
+        (x, y)
+    }
+
+    #[test]
+    fn a_warm_started_fit_starts_from_the_given_models_hyperparameters() {
+        let (x, y) = plane_sine();
+        for kind in [GpKind::Spgp, GpKind::SpgpHet, GpKind::Full] {
+            let first = GpParams::new(kind)
+                .pseudo_inputs(6)
+                .max_iters(30)
+                .fit(&x, &y)
+                .expect("fits");
+            let params = GpParams::new(kind)
+                .pseudo_inputs(6)
+                .seed(99)
+                .start_from(&first)
+                .check()
+                .expect("valid");
+            let obj = GpObjective::new(&params, &x, &y).expect("sets up");
+            let want = obj.layout.pack(&first.hyper);
+            assert_eq!(obj.start(), want, "{kind}: the start is the model's vector");
+            // No iterations: the fit ends where it started, at the model's values (within the
+            // round trip through the log and logit coordinates).
+            let refit = GpParams::new(kind)
+                .pseudo_inputs(6)
+                .max_iters(0)
+                .start_from(&first)
+                .fit(&x, &y)
+                .expect("refits");
+            let got = obj.layout.pack(&refit.hyper);
+            let gap = (&got - &want).amax();
+            assert!(gap < 1e-9, "{kind}: moved {gap} in no iterations");
+            assert!((refit.fit_report().nlml - first.fit_report().nlml).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn a_warm_start_from_a_fitted_model_needs_fewer_iterations_than_the_seeded_start() {
+        let (x, y) = plane_sine();
+        let params = || {
+            GpParams::new(GpKind::SpgpHet)
+                .pseudo_inputs(6)
+                .max_iters(300)
+        };
+        let cold = params().fit(&x, &y).expect("fits");
+        let warm = params().start_from(&cold).fit(&x, &y).expect("refits");
+        assert!(
+            warm.fit_report().iterations * 4 < cold.fit_report().iterations.max(4),
+            "warm {} against cold {} iterations",
+            warm.fit_report().iterations,
+            cold.fit_report().iterations
+        );
+        assert!(warm.fit_report().nlml <= cold.fit_report().nlml + 1e-9);
+    }
+
+    #[test]
+    fn a_warm_start_from_another_kind_or_input_dimension_is_an_error() {
+        let (x, y) = plane_sine();
+        let spgp = GpParams::new(GpKind::Spgp)
+            .pseudo_inputs(6)
+            .max_iters(5)
+            .fit(&x, &y)
+            .expect("fits");
+        for kind in [GpKind::SpgpHet, GpKind::Full] {
+            assert!(
+                GpParams::new(kind).start_from(&spgp).check().is_err(),
+                "{kind}"
+            );
+        }
+        let wider = DMatrix::from_fn(60, 3, |i, d| x[(i, d.min(1))] + d as f64 * 0.1);
+        let err = GpParams::new(GpKind::Spgp)
+            .pseudo_inputs(6)
+            .start_from(&spgp)
+            .fit(&wider, &y)
+            .expect_err("three inputs against a two-input model");
+        assert!(err.to_string().contains("warm start"), "{err}");
     }
 }

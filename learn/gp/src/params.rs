@@ -8,6 +8,7 @@ use std::str::FromStr;
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
+use super::hyper::Hyper;
 use super::kernel::Kernel;
 use super::stationary::Stationary;
 use crate::{GpError, Result};
@@ -71,6 +72,7 @@ pub struct GpParams<K = Stationary> {
     optimise_pseudo_inputs: bool,
     zero_mean: bool,
     start_pseudo_inputs: Option<DMatrix<f64>>,
+    start_hyper: Option<Hyper<K>>,
     noise_weights: Option<DVector<f64>>,
 }
 
@@ -98,6 +100,7 @@ impl GpParams {
             optimise_pseudo_inputs: true,
             zero_mean: false,
             start_pseudo_inputs: None,
+            start_hyper: None,
             noise_weights: None,
         }
     }
@@ -120,6 +123,8 @@ impl<K: Kernel> GpParams<K> {
             optimise_pseudo_inputs: self.optimise_pseudo_inputs,
             zero_mean: self.zero_mean,
             start_pseudo_inputs: self.start_pseudo_inputs,
+            // A start of another kernel type cannot carry over.
+            start_hyper: None,
             noise_weights: self.noise_weights,
         }
     }
@@ -186,6 +191,12 @@ impl<K: Kernel> GpParams<K> {
         self
     }
 
+    /// Starts the optimiser at these hyperparameters (see [`GpParams::start_from`]).
+    pub(crate) fn start_hyper(mut self, h: Hyper<K>) -> Self {
+        self.start_hyper = Some(h);
+        self
+    }
+
     /// A fixed relative noise level per training sample (sparse kinds): sample n's noise
     /// variance is σ²·w_n, σ² still learned (Kersting et al. 2007's G3 with the noise shape of
     /// its noise GP; gp.md §7). Must hold one positive finite value per training row.
@@ -216,6 +227,12 @@ impl<K: Kernel> GpParams<K> {
             if w.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
                 return bad("noise weights must be positive and finite");
             }
+        }
+        if let Some(h) = &self.start_hyper
+            && ((self.kind == GpKind::SpgpHet) != h.pseudo_noise.is_some()
+                || (self.kind == GpKind::Full) != (h.pseudo_inputs.nrows() == 0))
+        {
+            return bad("a warm start needs a model of the same GP kind");
         }
         if let Some(z) = &self.start_pseudo_inputs
             && (self.kind == GpKind::Full || z.nrows() == 0 || z.iter().any(|v| !v.is_finite()))
@@ -283,6 +300,10 @@ impl<K: Kernel> GpValidParams<K> {
     /// Given starting pseudo-inputs, if any.
     pub fn start_pseudo_inputs(&self) -> Option<&DMatrix<f64>> {
         self.0.start_pseudo_inputs.as_ref()
+    }
+    /// The fitted hyperparameters to start from ([`GpParams::start_from`]), if any.
+    pub(crate) fn start_hyper_values(&self) -> Option<&Hyper<K>> {
+        self.0.start_hyper.as_ref()
     }
     /// Per-sample noise weights, if any.
     pub fn noise_weights(&self) -> Option<&DVector<f64>> {

@@ -11,11 +11,13 @@ use super::params::EstimatorValidParams;
 use super::projection::Projection;
 use crate::{LearnError, Result};
 
-/// Optimiser iterations of the noise GP (a smooth function of few inputs; its fit is cheap).
-const NOISE_GP_ITERS: usize = 100;
+/// Optimiser iterations of the noise GP. Each costs about as much as one of the mean GP's (the
+/// inputs' 242 length-scales dominate); 50 instead of 100 moved no situation's SPGP-HET-ALL
+/// figures by more than its spread over seeds 7-9 and saved a fifth of the training (docs/speed.md,
+/// "Issue 24's time targets: stop 38").
+const NOISE_GP_ITERS: usize = 50;
 /// Pseudo-inputs of the noise GP at most.
 const NOISE_GP_PSEUDO: usize = 40;
-
 /// The noise GP of the most-likely heteroscedastic GP: log of the relative noise level.
 #[derive(Debug, Clone)]
 pub struct NoiseModel {
@@ -84,7 +86,9 @@ impl Regressor {
             });
         }
         // Kersting et al. 2007, one round: held-out (leave-one-out) residuals of the first fit,
-        // a noise GP on their log, then the mean GP again with that noise shape held fixed.
+        // a noise GP on their log, then the mean GP again with that noise shape held fixed,
+        // from the seeded start (a warm start from the first fit, GpParams::start_from, moved
+        // situation 3 over the bar for the mean over seeds 7-9: docs/speed.md).
         // z_i = log((y_i − μ_i)² + var f_i): the held-out squared error less the first fit's
         // own homoscedastic σ², which Kersting's ½[(y − μ)² + var y] keeps and only further
         // rounds wash out; a constant bias of the log (E log χ²₁ ≈ −1.27) cancels in the offset,
