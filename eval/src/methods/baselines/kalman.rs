@@ -71,12 +71,20 @@ impl KalmanParams {
 /// The innovation of a measurement against the predicted state: `y = z − Hx`, `S = HPHᵀ + R`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Innovation {
-    /// Residual, metres.
+    /// Residual: metres for a centroid, m/s for a velocity.
     pub residual_m: Vector2<f64>,
-    /// Its covariance, m².
+    /// Its covariance, m² (or (m/s)²).
     pub covariance: Matrix2<f64>,
     /// Squared Mahalanobis distance `yᵀ S⁻¹ y` (χ² with 2 dof under the model).
     pub mahalanobis_sq: f64,
+}
+
+impl Innovation {
+    /// `ln N(y; 0, S)`: how likely the filter found the measurement.
+    pub fn log_likelihood(&self) -> f64 {
+        let det = self.covariance.determinant().max(f64::MIN_POSITIVE);
+        -0.5 * (self.mahalanobis_sq + det.ln()) - (2.0 * std::f64::consts::PI).ln()
+    }
 }
 
 /// A constant-velocity Kalman filter tracking one centroid.
@@ -229,7 +237,11 @@ impl ConstantVelocityKalman {
     /// Corrects the state with a direct velocity measurement (`GP-KF`: the GP's merged heading
     /// and speed, thesis 3.1.4), `z = [0 I I] x + w`, `w ~ N(0, Σ)` (the last block is the
     /// sensor's persistent error, see the module's doc); Joseph-form covariance update.
-    pub fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {
+    /// Returns the velocity innovation.
+    pub fn update_velocity(
+        &mut self,
+        measurement: &VelocityMeasurement,
+    ) -> Result<Innovation, EvalError> {
         check_persistence(measurement)?;
         *self = self.with_persistent_error_prior(measurement);
         let h = H_VELOCITY;
@@ -249,7 +261,22 @@ impl ConstantVelocityKalman {
         self.covariance = i_kh * self.covariance * i_kh.transpose()
             + gain * measurement.covariance * gain.transpose();
         self.velocity_updates += 1;
-        Ok(())
+        Ok(Innovation {
+            residual_m: residual,
+            covariance: s,
+            mahalanobis_sq: residual.dot(&(s_inv * residual)),
+        })
+    }
+
+    /// The state and its covariance (for mixing the filters of an interacting multiple model).
+    pub(crate) fn moments(&self) -> (Vector6<f64>, Matrix6<f64>) {
+        (self.state, self.covariance)
+    }
+
+    /// Replaces the state and its covariance (an interacting multiple model's mixed start).
+    pub(crate) fn set_moments(&mut self, state: Vector6<f64>, covariance: Matrix6<f64>) {
+        self.state = state;
+        self.covariance = covariance;
     }
 
     /// The filter as a velocity measurement finds it: at the first one, the measuring GP's

@@ -20,6 +20,7 @@
 
 use crate::error::EvalError;
 use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
+use crate::methods::baselines::track_filter::TrackFilter;
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
 
 /// Knobs of the tracker.
@@ -57,11 +58,11 @@ pub enum TrackStatus {
 
 /// One tracked object.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Track {
+pub struct Track<F = ConstantVelocityKalman> {
     /// Unique id, never reused.
     pub id: usize,
     /// Its filter.
-    pub filter: ConstantVelocityKalman,
+    pub filter: F,
     /// Tentative or confirmed.
     pub status: TrackStatus,
     /// Consecutive scans with an associated cluster.
@@ -72,16 +73,23 @@ pub struct Track {
 
 /// The tracker state.
 #[derive(Debug, Clone)]
-pub struct MultiTargetTracker {
+pub struct MultiTargetTracker<F = ConstantVelocityKalman> {
     params: TrackerParams,
-    tracks: Vec<Track>,
+    tracks: Vec<Track<F>>,
     next_id: usize,
     last_stamp_secs: Option<f64>,
 }
 
 impl MultiTargetTracker {
-    /// An empty tracker.
+    /// An empty tracker of constant-velocity filters (`KF-AUTO`).
     pub fn new(params: TrackerParams) -> Result<Self, EvalError> {
+        Self::with_track_filter(params)
+    }
+}
+
+impl<F: TrackFilter> MultiTargetTracker<F> {
+    /// An empty tracker whose tracks run the filter `F` (`GP-KF`: [`crate::methods::baselines::gp_trust_filter::GpTrustFilter`]).
+    pub fn with_track_filter(params: TrackerParams) -> Result<Self, EvalError> {
         params.kalman.validate()?;
         if params.gate_chi2.is_nan() || params.gate_chi2 <= 0.0 {
             return Err(EvalError::BadParameter {
@@ -98,12 +106,12 @@ impl MultiTargetTracker {
     }
 
     /// The live tracks.
-    pub fn tracks(&self) -> &[Track] {
+    pub fn tracks(&self) -> &[Track<F>] {
         &self.tracks
     }
 
     /// The live track with this id.
-    pub fn track(&self, id: usize) -> Option<&Track> {
+    pub fn track(&self, id: usize) -> Option<&Track<F>> {
         self.tracks.iter().find(|t| t.id == id)
     }
 
@@ -205,7 +213,7 @@ impl MultiTargetTracker {
             if assigned.is_none() {
                 let mut track = Track {
                     id: self.next_id,
-                    filter: ConstantVelocityKalman::new(centroids_xy[ci], self.params.kalman)?,
+                    filter: F::start(centroids_xy[ci], self.params.kalman)?,
                     status: TrackStatus::Tentative,
                     consecutive_hits: 1,
                     consecutive_misses: 0,

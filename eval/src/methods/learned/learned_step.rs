@@ -22,9 +22,11 @@ use crate::error::EvalError;
 use crate::methods::baselines::baseline_params::BaselineParams;
 use crate::methods::baselines::baseline_step::{ClusterFlow, thinned};
 use crate::methods::baselines::cluster_association::CentroidAssociator;
+use crate::methods::baselines::gp_trust_filter::GpTrustFilter;
 use crate::methods::baselines::rigid_motion::{
     RigidMotion, icp_rigid_motion, icp_rigid_motion_from,
 };
+use crate::methods::baselines::track_filter::TrackFilter;
 use crate::methods::baselines::tracker::{MultiTargetTracker, TrackStatus};
 use crate::methods::baselines::velocity_measurement::{GpVelocityNoise, VelocityMeasurement};
 use crate::methods::estimate::MotionEstimate;
@@ -54,7 +56,7 @@ fn at_rest(estimate: Option<MotionEstimate>) -> ClusterFlow {
 pub struct LearnedTrackers {
     params: BaselineParams,
     noise: GpVelocityNoise,
-    tracker: MultiTargetTracker,
+    tracker: MultiTargetTracker<GpTrustFilter>,
     associator: CentroidAssociator,
     previous: Option<ScanObservation>,
 }
@@ -66,7 +68,7 @@ impl LearnedTrackers {
         Ok(Self {
             params: *params,
             noise,
-            tracker: MultiTargetTracker::new(params.tracker)?,
+            tracker: MultiTargetTracker::with_track_filter(params.tracker)?,
             associator: CentroidAssociator::new(params.association),
             previous: None,
         })

@@ -1,0 +1,96 @@
+//! Tests of GP-KF's interacting multiple model over the GP's trust.
+
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::*;
+use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
+
+const DT: f64 = 0.1;
+
+/// Centroids of a car driving +x at 8 m/s, 0.3 m of noise per axis.
+fn centroids(n: usize, seed: u64) -> Vec<[f64; 2]> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..n)
+        .map(|k| {
+            let noise = rng.random_range(-0.3..0.3);
+            [8.0 * k as f64 * DT, noise]
+        })
+        .collect()
+}
+
+/// Runs `F` over the centroids with the GP reading `gp_heading_deg(k)` at 8 m/s (merged variance
+/// as small as the floors allow); returns the final heading error in degrees and the filter.
+fn run<F: TrackFilter>(gp_heading_deg: impl Fn(usize) -> f64) -> (f64, F) {
+    let noise = GpVelocityNoise::default();
+    let z = centroids(60, 5);
+    let mut filter = F::start(z[0], KalmanParams::default()).unwrap();
+    for (k, zk) in z.iter().enumerate() {
+        if k > 0 {
+            filter.predict(DT);
+            filter.update(*zk).unwrap();
+        }
+        let h = gp_heading_deg(k).to_radians();
+        let reading = VelocityMeasurement::from_heading_speed(h, 0.0, 8.0, 0.0, &noise);
+        filter.update_velocity(&reading).unwrap();
+    }
+    let e = filter.estimate().unwrap();
+    (e.heading_rad.to_degrees().abs(), filter)
+}
+
+/// A GP that reads the car 40-90° off, to either side, scan after scan.
+fn wild(k: usize) -> f64 {
+    let side = if (k / 3).is_multiple_of(2) { 1.0 } else { -1.0 };
+    side * (40.0 + (k * 37 % 50) as f64)
+}
+
+#[test]
+fn a_gp_that_reads_wildly_loses_the_tracks_trust() {
+    let (_, filter) = run::<GpTrustFilter>(wild);
+    assert!(filter.gp_trust() < 0.05, "trust {}", filter.gp_trust());
+}
+
+#[test]
+fn with_a_wild_gp_the_track_follows_the_centroids_better_than_one_fixed_noise_does() {
+    let (trusting, _) = run::<GpTrustFilter>(wild);
+    let (fixed, _) = run::<ConstantVelocityKalman>(wild);
+    assert!(trusting < 5.0, "IMM heading error {trusting}°");
+    assert!(
+        trusting < 0.5 * fixed,
+        "IMM {trusting}° against one noise {fixed}°"
+    );
+}
+
+#[test]
+fn a_gp_that_agrees_with_the_centroids_keeps_the_tracks_trust() {
+    let (error, filter) = run::<GpTrustFilter>(|k| if k.is_multiple_of(2) { 3.0 } else { -3.0 });
+    assert!(filter.gp_trust() > 0.5, "trust {}", filter.gp_trust());
+    assert!(error < 3.0, "heading error {error}°");
+}
+
+#[test]
+fn without_gp_readings_the_filter_is_the_constant_velocity_filter() {
+    let z = centroids(30, 9);
+    let mut imm = GpTrustFilter::start(z[0], KalmanParams::default()).unwrap();
+    let mut kf = ConstantVelocityKalman::new(z[0], KalmanParams::default()).unwrap();
+    for zk in &z[1..] {
+        TrackFilter::predict(&mut imm, DT);
+        kf.predict(DT);
+        TrackFilter::update(&mut imm, *zk).unwrap();
+        kf.update(*zk).unwrap();
+    }
+    let (a, b) = (imm.estimate().unwrap(), kf.estimate().unwrap());
+    assert!((a.heading_rad - b.heading_rad).abs() < 1e-9);
+    assert!((a.speed_mps - b.speed_mps).abs() < 1e-9);
+}
+
+#[test]
+fn on_its_first_gp_reading_a_track_reports_the_gps_motion() {
+    let noise = GpVelocityNoise::default();
+    let mut filter = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
+    let reading = VelocityMeasurement::from_heading_speed(0.0, 0.0, 8.0, 0.0, &noise);
+    filter.update_velocity(&reading).unwrap();
+    let e = filter.estimate().unwrap();
+    assert!((e.speed_mps - 8.0).abs() < 0.2, "{e:?}");
+    assert!(e.heading_rad.abs() < 1e-9, "{e:?}");
+}

@@ -1,0 +1,63 @@
+//! What the multi-target tracker needs of a track's filter: a prediction, a centroid gate and
+//! update, a velocity misfit and update, and the motion estimate it reports. `KF-AUTO` tracks
+//! with one constant-velocity filter ([`ConstantVelocityKalman`]); `GP-KF` with an interacting
+//! multiple model over how far the GP can be trusted ([`crate::methods::baselines::gp_trust_filter::GpTrustFilter`]).
+
+use crate::error::EvalError;
+use crate::methods::baselines::kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
+use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
+use crate::methods::estimate::MotionEstimate;
+
+/// A track's filter, as the tracker drives it.
+pub trait TrackFilter: Clone + std::fmt::Debug {
+    /// A filter started at the first centroid measurement.
+    fn start(first_centroid_xy: [f64; 2], params: KalmanParams) -> Result<Self, EvalError>;
+    /// Propagates the filter by `dt_secs`.
+    fn predict(&mut self, dt_secs: f64);
+    /// The innovation of a centroid against the predicted state (the gate reads it).
+    fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError>;
+    /// Corrects the filter with a centroid.
+    fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError>;
+    /// Squared Mahalanobis distance of a measured velocity from the one the track predicts.
+    fn velocity_mahalanobis_sq(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError>;
+    /// Corrects the filter with a measured velocity.
+    fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError>;
+    /// The motion estimate, once the filter reports one.
+    fn estimate(&self) -> Option<MotionEstimate>;
+    /// Velocity measurements taken in so far.
+    fn velocity_updates(&self) -> usize;
+}
+
+impl TrackFilter for ConstantVelocityKalman {
+    fn start(first_centroid_xy: [f64; 2], params: KalmanParams) -> Result<Self, EvalError> {
+        Self::new(first_centroid_xy, params)
+    }
+
+    fn predict(&mut self, dt_secs: f64) {
+        ConstantVelocityKalman::predict(self, dt_secs);
+    }
+
+    fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
+        ConstantVelocityKalman::innovation(self, centroid_xy)
+    }
+
+    fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
+        ConstantVelocityKalman::update(self, centroid_xy)
+    }
+
+    fn velocity_mahalanobis_sq(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError> {
+        ConstantVelocityKalman::velocity_mahalanobis_sq(self, measurement)
+    }
+
+    fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {
+        ConstantVelocityKalman::update_velocity(self, measurement).map(|_| ())
+    }
+
+    fn estimate(&self) -> Option<MotionEstimate> {
+        ConstantVelocityKalman::estimate(self)
+    }
+
+    fn velocity_updates(&self) -> usize {
+        ConstantVelocityKalman::velocity_updates(self)
+    }
+}
