@@ -142,7 +142,8 @@ impl BenchPlan {
 
     /// `--quick`: the five situations without the dense scene; every training track but only
     /// the last third of its sweeps; SPGP-HET only (the thesis' headline GP; cross-validation
-    /// still compares it with SPGP) with the default's samples, pseudo-inputs and iterations;
+    /// still compares it with SPGP) with the default's samples, pseudo-inputs and iterations,
+    /// and without the thesis preset's rows;
     /// a smaller cross-validation; one seed; a realism study on situations 1 and 5 at the `ideal` rung beside `urban`; and
     /// occupancy maps at three of the seven query times.
     pub fn quick() -> Self {
@@ -161,6 +162,9 @@ impl BenchPlan {
             },
             training_sweep_share: QUICK_SWEEP_SHARE,
             seeds: 1,
+            // A first look: the thesis preset's rows are the full run's (its sampling pass, its
+            // fit and its per-target runs cost a sixth of the quick run; docs/speed.md, stop 39).
+            thesis_preset: false,
             // The default's samples, pseudo-inputs and iterations: the quick run trains the
             // default's seed-7 model on a third of the sweeps (docs/speed.md, stop 38: 1,200
             // samples and 60 pseudo-inputs met the bar in 3 of 5 situations for the same CPU).
