@@ -13,12 +13,13 @@ use crate::scenario::{Scenario, sweep_memory_bytes};
 /// Sequences generated at once when their sweeps fit in memory together.
 const SEQUENCES_AT_ONCE: usize = 2;
 
-/// Address space a second sequence adds beyond its sweep and world: the thread that steps it
-/// and its sweep writer, each a stack and an allocator arena (see `memory_budget.rs`).
-const EXTRA_BYTES_PER_SEQUENCE: u64 = 2 * (66 << 20);
+/// Address space two sequences at once add beyond their sweeps and worlds: the two threads that
+/// step them and the second sweep writer, each a stack and an allocator arena (66 MiB, see
+/// `memory_budget.rs`).
+const EXTRA_BYTES_AT_ONCE: u64 = 3 * (66 << 20);
 
 /// How many sequences to generate at once: two when more than one is to be generated and the
-/// two largest sweeps (and the threads of the second) fit in `budget` together, else one.
+/// two largest sweeps fit in `budget` together with the extra threads, else one.
 pub(crate) fn sequences_at_once(scenarios: &[&Scenario], budget: Option<MemoryBudget>) -> usize {
     if scenarios.len() < 2 {
         return 1;
@@ -27,7 +28,7 @@ pub(crate) fn sequences_at_once(scenarios: &[&Scenario], budget: Option<MemoryBu
     needs.sort_unstable_by(|a, b| b.cmp(a));
     let together = needs[..SEQUENCES_AT_ONCE]
         .iter()
-        .fold(EXTRA_BYTES_PER_SEQUENCE, |sum, &b| sum.saturating_add(b));
+        .fold(EXTRA_BYTES_AT_ONCE, |sum, &b| sum.saturating_add(b));
     match budget {
         Some(budget) if together > budget.bytes => 1,
         _ => SEQUENCES_AT_ONCE,

@@ -146,7 +146,7 @@ impl BenchPlan {
     /// still compares it with SPGP) with the default's samples, pseudo-inputs and iterations,
     /// and without the thesis preset's rows;
     /// a smaller cross-validation; one seed; a realism study on situations 1 and 5 at the `ideal` rung beside `urban`; and
-    /// occupancy maps at three of the seven query times.
+    /// occupancy maps at two of the seven query times.
     pub fn quick() -> Self {
         let full = Self::full();
         let five = embedded("situation");
@@ -164,7 +164,7 @@ impl BenchPlan {
             training_sweep_share: QUICK_SWEEP_SHARE,
             seeds: 1,
             // A first look: the thesis preset's rows are the full run's (its sampling pass, its
-            // fit and its per-target runs cost a sixth of the quick run; docs/speed.md, stop 39).
+            // fit and its per-target runs cost an eighth of the quick run's CPU; docs/speed.md, stop 39).
             thesis_preset: false,
             // The default's samples, pseudo-inputs and iterations: the quick run trains the
             // default's seed-7 model on a third of the sweeps (docs/speed.md, stop 38: 1,200
