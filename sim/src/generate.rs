@@ -8,12 +8,13 @@ use patchflow_dataset::{
 
 use crate::disk_space::{bytes_under, check_disk_space, free_bytes};
 use crate::error::{Result, SimError};
-use crate::memory_budget::check_memory;
+use crate::memory_budget::{check_memory, memory_budget};
 use crate::output_folder::{check_manifest_is_ours, check_sequence_folder};
 use crate::provenance::{Provenance, provenance};
 use crate::scenario::{
     EMBEDDED_OCCUPANCY_SCENARIOS, EMBEDDED_SCENARIOS, Realism, Scenario, WorkEstimate,
 };
+use crate::sequence_queue::{generate_each, sequences_at_once};
 pub use crate::shard::Shard;
 use crate::simulation::Simulation;
 
@@ -167,7 +168,7 @@ pub enum Progress {
 pub fn generate_dataset(
     sources: &[ScenarioSource],
     options: &GenerateOptions,
-    progress: &dyn Fn(Progress),
+    progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<Manifest> {
     let mut scenarios = sources
         .iter()
@@ -212,12 +213,18 @@ pub fn generate_dataset(
         path: options.out.clone(),
         source,
     })?;
-    for (i, scenario) in scenarios.iter().enumerate() {
-        if options.shard.takes(i) {
-            let seed = options.seed;
-            generate_sequence(scenario, &options.out, seed, options.overwrite, progress)?;
-        }
-    }
+    // Two sequences at once where memory allows (`sequence_queue.rs`): the same files.
+    let ours: Vec<&Scenario> = ours.into_iter().map(|(s, _)| s).collect();
+    let at_once = sequences_at_once(&ours, memory_budget());
+    generate_each(&ours, at_once, &|scenario| {
+        generate_sequence(
+            scenario,
+            &options.out,
+            options.seed,
+            options.overwrite,
+            progress,
+        )
+    })?;
     // Shards finishing at once rewrite the manifest one at a time.
     let _lock = FolderLock::acquire(&options.out, &|| {})?;
     let manifest = Manifest::scan(&options.out)?;
@@ -234,7 +241,7 @@ pub fn generate_sequence(
     root: &Path,
     seed: u64,
     overwrite: bool,
-    progress: &dyn Fn(Progress),
+    progress: &(dyn Fn(Progress) + Sync),
 ) -> Result<()> {
     let name = scenario.name.clone();
     check_sequence_folder(root, &name)?;

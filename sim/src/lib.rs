@@ -25,6 +25,7 @@ mod resume_tests;
 mod scenario;
 mod scene;
 mod seed;
+mod sequence_queue;
 mod shard;
 mod simulation;
 mod world;

@@ -34,11 +34,16 @@ fn quick_prefix(plan: &BenchPlan) -> String {
         }
     };
     format!(
-        "Quick run (`--quick`): sequences {} (the full run: {}); GP kinds trained {} (the full run: {}; cross-validation compares SPGP and SPGP-HET either way); the realism study at {rungs}; occupancy maps at query times t = {} and predictions ahead from scans {} (the full run: t = {}, scans {}). ",
+        "Quick run (`--quick`): sequences {} (the full run: {}); GP kinds trained {} (the full run: {}; cross-validation compares SPGP and SPGP-HET either way){}; the realism study at {rungs}; occupancy maps at query times t = {} and predictions ahead from scans {} (the full run: t = {}, scans {}). ",
         plan.situation_names().join(", "),
         full.situation_names().join(", "),
         plan.gp_names().join(", "),
         full.gp_names().join(", "),
+        if plan.thesis_preset {
+            ""
+        } else {
+            "; no thesis preset (the full run reports its `SPGP-HET-ALL (thesis)` rows)"
+        },
         list(&plan.occupancy_params.query_scans),
         list(&plan.ahead_params.start_scans),
         list(&full.occupancy_params.query_scans),

@@ -29,8 +29,9 @@ pub const QUICK_REALISM_SITUATIONS: [&str; 2] = ["situation1", "situation5"];
 pub const QUICK_REALISM_RUNGS: [Realism; 2] = [Realism::Ideal, Realism::Urban];
 
 /// The occupancy query times `--quick` maps (of the paper's t = 3 … 9): the two of its Figure 6
-/// and the last.
-pub const QUICK_OCCUPANCY_QUERY_SCANS: [usize; 3] = [3, 5, 9];
+/// (the last, t = 9, is the full run's; each query time costs the quick run about 10 s of CPU,
+/// docs/speed.md, stop 39).
+pub const QUICK_OCCUPANCY_QUERY_SCANS: [usize; 2] = [3, 5];
 
 /// The start scan `--quick` predicts ahead from (of the default 3 … 6).
 pub const QUICK_AHEAD_START_SCANS: [usize; 1] = [3];
@@ -142,9 +143,10 @@ impl BenchPlan {
 
     /// `--quick`: the five situations without the dense scene; every training track but only
     /// the last third of its sweeps; SPGP-HET only (the thesis' headline GP; cross-validation
-    /// still compares it with SPGP) with the default's samples, pseudo-inputs and iterations;
+    /// still compares it with SPGP) with the default's samples, pseudo-inputs and iterations,
+    /// and without the thesis preset's rows;
     /// a smaller cross-validation; one seed; a realism study on situations 1 and 5 at the `ideal` rung beside `urban`; and
-    /// occupancy maps at three of the seven query times.
+    /// occupancy maps at two of the seven query times.
     pub fn quick() -> Self {
         let full = Self::full();
         let five = embedded("situation");
@@ -161,6 +163,9 @@ impl BenchPlan {
             },
             training_sweep_share: QUICK_SWEEP_SHARE,
             seeds: 1,
+            // A first look: the thesis preset's rows are the full run's (its sampling pass, its
+            // fit and its per-target runs cost an eighth of the quick run's CPU; docs/speed.md, stop 39).
+            thesis_preset: false,
             // The default's samples, pseudo-inputs and iterations: the quick run trains the
             // default's seed-7 model on a third of the sweeps (docs/speed.md, stop 38: 1,200
             // samples and 60 pseudo-inputs met the bar in 3 of 5 situations for the same CPU).
