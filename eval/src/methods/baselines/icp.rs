@@ -25,6 +25,7 @@
 
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use nalgebra::{Isometry2, Point2, Rotation2, Translation2, UnitComplex, Vector2};
+use rayon::prelude::*;
 
 use crate::methods::baselines::rigid_fit::fit_rigid_svd;
 use crate::methods::observation::centroid_of;
@@ -222,23 +223,31 @@ fn correspondences(
     gate_m: f64,
 ) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
     let gate_sq = gate_m * gate_m;
-    let mut paired_source = Vec::with_capacity(source.len());
-    let mut paired_target = Vec::with_capacity(source.len());
-    for p in source {
+    let pair = |p: &[f64; 2]| {
         let moved = transform.transform_point(&Point2::new(p[0], p[1]));
         let nearest = tree
             .query(&[moved.x, moved.y])
             .nearest_one::<SquaredEuclidean<f64>>()
             .execute();
-        if nearest.distance <= gate_sq
-            && let Some(q) = target.get(nearest.item as usize)
-        {
-            paired_source.push(*p);
-            paired_target.push(*q);
-        }
+        (nearest.distance <= gate_sq)
+            .then(|| target.get(nearest.item as usize).map(|q| (*p, *q)))
+            .flatten()
+    };
+    if source.len() < PARALLEL_MIN_POINTS {
+        return source.iter().filter_map(pair).unzip();
     }
-    (paired_source, paired_target)
+    // Large clusters: the lookups in blocks over both cores, gathered in order (the same pairs).
+    let blocks: Vec<Vec<([f64; 2], [f64; 2])>> = source
+        .par_chunks(PARALLEL_BLOCK_POINTS)
+        .map(|block| block.iter().filter_map(pair).collect())
+        .collect();
+    blocks.into_iter().flatten().unzip()
 }
+
+/// Clusters with at least this many points look up their nearest neighbours in parallel blocks.
+const PARALLEL_MIN_POINTS: usize = 512;
+/// Points per parallel block of nearest-neighbour lookups.
+const PARALLEL_BLOCK_POINTS: usize = 256;
 
 /// RMS and median of the pair residuals under `transform`, metres.
 fn residual_stats(

@@ -221,3 +221,31 @@ fn rigid_motion_moves_each_current_point_back_to_where_it_came_from() {
         icp_motion_estimate(&source, &target, 0.1, &IcpParams::default())
     );
 }
+
+#[test]
+fn a_large_cluster_pairs_the_same_points_in_parallel_blocks_as_one_by_one() {
+    let target: Vec<[f64; 2]> = (0..3000)
+        .map(|i| {
+            let a = i as f64 * 0.003;
+            [10.0 * a.cos() + 0.01 * (i % 7) as f64, 4.0 * a.sin()]
+        })
+        .collect();
+    let source: Vec<[f64; 2]> = target.iter().map(|p| [p[0] + 0.05, p[1] - 0.02]).collect();
+    let tree = ImmutableKdTree::<f64, 2>::new_from_slice(&target).unwrap();
+    let transform = Isometry2::new(Vector2::new(-0.04, 0.01), 0.002);
+    let (paired_source, paired_target) = correspondences(&source, &target, &tree, &transform, 0.03);
+    let one_by_one: (Vec<[f64; 2]>, Vec<[f64; 2]>) = source
+        .iter()
+        .filter_map(|p| {
+            let moved = transform.transform_point(&Point2::new(p[0], p[1]));
+            let nearest = tree
+                .query(&[moved.x, moved.y])
+                .nearest_one::<SquaredEuclidean<f64>>()
+                .execute();
+            (nearest.distance <= 0.03 * 0.03).then(|| (*p, target[nearest.item as usize]))
+        })
+        .unzip();
+    assert!(source.len() >= PARALLEL_MIN_POINTS);
+    assert!(!paired_source.is_empty() && paired_source.len() < source.len());
+    assert_eq!((paired_source, paired_target), one_by_one);
+}
