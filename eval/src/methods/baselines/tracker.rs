@@ -88,7 +88,8 @@ impl MultiTargetTracker {
 }
 
 impl<F: TrackFilter> MultiTargetTracker<F> {
-    /// An empty tracker whose tracks run the filter `F` (`GP-KF`: [`crate::methods::baselines::gp_trust_filter::GpTrustFilter`]).
+    /// An empty tracker whose tracks run the filter `F` (`GP-KF`: `GpTrustFilter`, an interacting
+    /// multiple model over the GP's trust).
     pub fn with_track_filter(params: TrackerParams) -> Result<Self, EvalError> {
         params.kalman.validate()?;
         if params.gate_chi2.is_nan() || params.gate_chi2 <= 0.0 {
