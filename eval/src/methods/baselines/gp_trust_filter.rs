@@ -110,8 +110,12 @@ impl TrackFilter for GpTrustFilter {
         let to = |i: usize, j: usize| if i == j { 1.0 - switch } else { switch };
         let predicted = [0, 1].map(|j| (0..2).map(|i| to(i, j) * previous[i]).sum::<f64>());
         let mixed = [0, 1].map(|j| {
-            let weights = [0, 1].map(|i| to(i, j) * previous[i] / predicted[j].max(1e-300));
-            self.mixture(weights)
+            if predicted[j] > 0.0 {
+                self.mixture([0, 1].map(|i| to(i, j) * previous[i] / predicted[j]))
+            } else {
+                // A mode nothing can switch into keeps its own state.
+                self.modes[j].moments()
+            }
         });
         for (mode, (mean, covariance)) in self.modes.iter_mut().zip(mixed) {
             mode.set_moments(mean, covariance);

@@ -94,3 +94,16 @@ fn on_its_first_gp_reading_a_track_reports_the_gps_motion() {
     assert!((e.speed_mps - 8.0).abs() < 0.2, "{e:?}");
     assert!(e.heading_rad.abs() < 1e-9, "{e:?}");
 }
+
+#[test]
+fn a_mode_nothing_can_switch_into_keeps_its_own_state() {
+    let z = centroids(5, 3);
+    let mut filter = GpTrustFilter::start(z[0], KalmanParams::default()).unwrap();
+    filter.predicted = [1.0, 0.0];
+    let before = filter.modes[UNRELIABLE].moments();
+    TrackFilter::predict(&mut filter, DT);
+    let mut expected = ConstantVelocityKalman::new(z[0], KalmanParams::default()).unwrap();
+    expected.set_moments(before.0, before.1);
+    expected.predict(DT);
+    assert_eq!(filter.modes[UNRELIABLE].moments(), expected.moments());
+}
