@@ -18,6 +18,24 @@ fn squared_distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(a, b)| (a - b).powi(2)).sum()
 }
 
+/// k-means++'s draw: an index with probability proportional to its weight (uniform when every
+/// weight is zero). `weights` must not be empty.
+fn draw_proportional(weights: &[f64], rng: &mut ChaCha8Rng) -> usize {
+    let total: f64 = weights.iter().sum();
+    if total > 0.0 {
+        let mut target = rng.random_range(0.0..total);
+        for (i, &w) in weights.iter().enumerate() {
+            if target < w {
+                return i;
+            }
+            target -= w;
+        }
+        weights.len() - 1
+    } else {
+        rng.random_range(0..weights.len())
+    }
+}
+
 /// The rows of a matrix, one after the other (the matrix is stored by columns, so a row's
 /// values are N apart; copied once, every distance reads contiguous memory).
 fn rows_of(x: &DMatrix<f64>) -> Vec<f64> {
@@ -49,21 +67,7 @@ pub fn kmeans(x: &DMatrix<f64>, k: usize, seed: u64) -> DMatrix<f64> {
         .map(|i| squared_distance(row(i), &centres[..d]))
         .collect();
     for c in 1..k {
-        let total: f64 = nearest.iter().sum();
-        let pick = if total > 0.0 {
-            let mut target = rng.random_range(0.0..total);
-            let mut chosen = n - 1;
-            for (i, &w) in nearest.iter().enumerate() {
-                if target < w {
-                    chosen = i;
-                    break;
-                }
-                target -= w;
-            }
-            chosen
-        } else {
-            rng.random_range(0..n)
-        };
+        let pick = draw_proportional(&nearest, &mut rng);
         centres[c * d..(c + 1) * d].copy_from_slice(row(pick));
         let centre = &centres[c * d..(c + 1) * d];
         for (i, best) in nearest.iter_mut().enumerate() {
@@ -173,21 +177,7 @@ mod tests {
         centres.set_row(0, &x.row(rng.random_range(0..n)));
         let mut nearest: Vec<f64> = (0..n).map(|i| dist(x, i, &centres, 0)).collect();
         for c in 1..k {
-            let total: f64 = nearest.iter().sum();
-            let pick = if total > 0.0 {
-                let mut target = rng.random_range(0.0..total);
-                let mut chosen = n - 1;
-                for (i, &w) in nearest.iter().enumerate() {
-                    if target < w {
-                        chosen = i;
-                        break;
-                    }
-                    target -= w;
-                }
-                chosen
-            } else {
-                rng.random_range(0..n)
-            };
+            let pick = draw_proportional(&nearest, &mut rng);
             centres.set_row(c, &x.row(pick));
             for (i, best) in nearest.iter_mut().enumerate() {
                 *best = best.min(dist(x, i, &centres, c));
