@@ -47,6 +47,9 @@ pub struct GpTrustFilter {
     switch_secs: Option<f64>,
     /// Per-axis standard deviation of a reading in the unreliable mode, m/s.
     unreliable_std_mps: f64,
+    /// The moment-matched mixture given the measurements so far, one filter; kept current by
+    /// every step, because the gate reads it once per cluster of the scan.
+    combined: ConstantVelocityKalman,
 }
 
 impl GpTrustFilter {
@@ -80,12 +83,11 @@ impl GpTrustFilter {
         (mean, covariance)
     }
 
-    /// A single filter holding the mixture given this scan's measurements so far.
-    fn combined(&self) -> ConstantVelocityKalman {
+    /// Sets [`Self::combined`] to the mixture given this scan's measurements so far.
+    fn refresh_combined(&mut self) {
         let (mean, covariance) = self.mixture(self.posterior());
-        let mut filter = self.modes[TRUSTED].clone();
-        filter.set_moments(mean, covariance);
-        filter
+        self.combined = self.modes[TRUSTED].clone();
+        self.combined.set_moments(mean, covariance);
     }
 }
 
@@ -93,6 +95,7 @@ impl TrackFilter for GpTrustFilter {
     fn start(first_centroid_xy: [f64; 2], params: KalmanParams) -> Result<Self, EvalError> {
         let filter = ConstantVelocityKalman::new(first_centroid_xy, params)?;
         Ok(Self {
+            combined: filter.clone(),
             modes: [filter.clone(), filter],
             predicted: [0.5, 0.5],
             log_likelihood: [0.0, 0.0],
@@ -123,10 +126,11 @@ impl TrackFilter for GpTrustFilter {
         }
         self.predicted = predicted;
         self.log_likelihood = [0.0, 0.0];
+        self.refresh_combined();
     }
 
     fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
-        self.combined().innovation(centroid_xy)
+        self.combined.innovation(centroid_xy)
     }
 
     fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
@@ -134,11 +138,12 @@ impl TrackFilter for GpTrustFilter {
         for (mode, ll) in self.modes.iter_mut().zip(&mut self.log_likelihood) {
             *ll += mode.update(centroid_xy)?.log_likelihood();
         }
+        self.refresh_combined();
         Ok(innovation)
     }
 
     fn velocity_mahalanobis_sq(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError> {
-        self.combined().velocity_mahalanobis_sq(measurement)
+        self.combined.velocity_mahalanobis_sq(measurement)
     }
 
     fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {
@@ -152,6 +157,7 @@ impl TrackFilter for GpTrustFilter {
             self.log_likelihood[j] += innovation.log_likelihood();
         }
         self.switch_secs = Some(measurement.persistence_secs);
+        self.refresh_combined();
         Ok(())
     }
 
