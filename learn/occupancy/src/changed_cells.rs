@@ -86,6 +86,8 @@ mod tests {
             cell_m: 0.5,
             stamp_secs: t,
             cells,
+            beam_step_rad: 0.0,
+            reach_m: 0.0,
         }
     }
 

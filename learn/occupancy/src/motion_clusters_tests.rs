@@ -156,3 +156,103 @@ fn crossing_cars_are_paired_with_themselves_when_the_scans_around_bear_it_out() 
         );
     }
 }
+
+/// A scan at `t` from the origin: `beams` beams over 180° (from +x counter-clockwise) out to
+/// `range_m`, against arbitrary segments.
+fn sparse_scan(t: f64, beams: u32, range_m: f64, segments: &[([f64; 2], [f64; 2])]) -> PlanarScan {
+    let step = std::f64::consts::PI / f64::from(beams - 1);
+    let beams = (0..beams)
+        .map(|j| {
+            let (s, c) = (step * f64::from(j)).sin_cos();
+            // Ray–segment intersection: r·(c, s) = a + u·(b − a), 0 ≤ u ≤ 1.
+            let range = segments
+                .iter()
+                .filter_map(|&(a, b)| {
+                    let e = [b[0] - a[0], b[1] - a[1]];
+                    let det = e[0] * s - e[1] * c;
+                    if det.abs() < 1e-12 {
+                        return None;
+                    }
+                    let r = (e[0] * a[1] - e[1] * a[0]) / det;
+                    let u = (c * a[1] - s * a[0]) / det;
+                    (r > 0.0 && (0.0..=1.0).contains(&u)).then_some(r)
+                })
+                .fold(f64::INFINITY, f64::min);
+            let hit = range <= range_m;
+            let r = if hit { range } else { range_m };
+            Beam {
+                start_m: [0.0, 0.0],
+                end_m: [c * r, s * r],
+                hit,
+            }
+        })
+        .collect();
+    PlanarScan {
+        index: t as usize,
+        stamp_secs: t,
+        sensor_m: [0.0, 0.0],
+        yaw_rad: std::f64::consts::FRAC_PI_2,
+        beams,
+    }
+}
+
+#[test]
+fn a_far_face_that_leaves_one_return_a_scan_is_paired_when_the_beams_are_sparser_than_a_cell() {
+    // 91 beams 2° apart: 1.05 m apart at 30 m. A 0.6 m face, square to the beam, moves 8° (4.19
+    // m) round the scanner at 30 m every second, on a beam each scan: one return, one cell.
+    let face = |t: f64| {
+        let (s, c) = (60f64 + 8.0 * t).to_radians().sin_cos();
+        let centre = [30.0 * c, 30.0 * s];
+        let half = [-0.3 * s, 0.3 * c];
+        (
+            [centre[0] - half[0], centre[1] - half[1]],
+            [centre[0] + half[0], centre[1] + half[1]],
+        )
+    };
+    let wall = ([-100.0, 50.0], [100.0, 50.0]);
+    let p = MotionClusterParams::default();
+    let cells: Vec<ScanCells> = (0..4)
+        .map(|t| {
+            let t = f64::from(t);
+            ScanCells::from_scan(&sparse_scan(t, 91, 60.0, &[wall, face(t)]), p.cell_m)
+        })
+        .collect();
+    let scans = PairScans {
+        first: &cells[1],
+        second: &cells[2],
+        before: Some(&cells[0]),
+        after: Some(&cells[3]),
+    };
+    let paired: Vec<MotionCluster> = motion_clusters(&scans, 2, &p)
+        .into_iter()
+        .filter(|c| c.association == Association::Paired)
+        .collect();
+    assert_eq!(paired.len(), 2, "{paired:?}");
+    // The chord from 68° to 76° at 30 m: 4.19 m along 162°.
+    let (s, c) = 162f64.to_radians().sin_cos();
+    for cl in &paired {
+        assert_eq!(cl.cells_m.len(), 1);
+        let [vx, vy] = cl.velocity_mps;
+        assert!(
+            (vx - 4.19 * c).abs() < 0.3 && (vy - 4.19 * s).abs() < 0.3,
+            "{vx}, {vy}"
+        );
+    }
+    // The same scans from a scanner whose beams are under a cell apart at 60 m (0.25°): there
+    // one cell is an edge flickering.
+    let denser = |map: &ScanCells| ScanCells {
+        beam_step_rad: 0.25f64.to_radians(),
+        ..map.clone()
+    };
+    let (first, second) = (denser(&cells[1]), denser(&cells[2]));
+    let dense = PairScans {
+        first: &first,
+        second: &second,
+        ..scans
+    };
+    assert!(
+        motion_clusters(&dense, 2, &p)
+            .iter()
+            .all(|c| c.association != Association::Paired)
+    );
+}

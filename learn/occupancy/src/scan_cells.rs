@@ -22,6 +22,11 @@ pub(crate) struct ScanCells {
     pub stamp_secs: f64,
     /// Every observed cell and whether it holds a return.
     pub cells: BTreeMap<Cell, bool>,
+    /// Angle between neighbouring beams (the median over the scan), radians; 0 for a scan of
+    /// fewer than two beams.
+    pub beam_step_rad: f64,
+    /// Length of the scan's longest beam, metres (a beam with no return runs to the range).
+    pub reach_m: f64,
 }
 
 impl ScanCells {
@@ -40,7 +45,18 @@ impl ScanCells {
             cell_m,
             stamp_secs: scan.stamp_secs,
             cells,
+            beam_step_rad: median_beam_step_rad(scan),
+            reach_m: scan
+                .beams
+                .iter()
+                .map(|b| (b.end_m[0] - b.start_m[0]).hypot(b.end_m[1] - b.start_m[1]))
+                .fold(0.0, f64::max),
         }
+    }
+
+    /// How far apart neighbouring beams are at the end of the scan's reach, metres.
+    pub fn far_beam_spacing_m(&self) -> f64 {
+        self.reach_m * self.beam_step_rad
     }
 
     /// Whether the scan observed `cell`, and if so whether it is occupied.
@@ -55,6 +71,27 @@ impl ScanCells {
             (cell.1 as f64 + 0.5) * self.cell_m,
         ]
     }
+}
+
+/// The median angle between consecutive beams of `scan` (those that differ), radians.
+fn median_beam_step_rad(scan: &PlanarScan) -> f64 {
+    let azimuth = |b: &crate::Beam| (b.end_m[1] - b.start_m[1]).atan2(b.end_m[0] - b.start_m[0]);
+    let mut steps: Vec<f64> = scan
+        .beams
+        .windows(2)
+        .map(|w| {
+            let d = azimuth(&w[1]) - azimuth(&w[0]);
+            // Wrapped into [−π, π): beams either side of ±180° are neighbours too.
+            (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+        })
+        .map(f64::abs)
+        .filter(|d| *d > 1e-9)
+        .collect();
+    if steps.is_empty() {
+        return 0.0;
+    }
+    steps.sort_by(f64::total_cmp);
+    steps[steps.len() / 2]
 }
 
 /// The clusters of `cells`: two cells are linked when neither their columns nor their rows differ
@@ -108,6 +145,31 @@ mod tests {
         assert_eq!(cells.state((7, 0)), None);
         assert_eq!(cells.state((3, 1)), None);
         assert_eq!(cells.centre_m((6, 0)), [3.25, 0.25]);
+    }
+
+    #[test]
+    fn the_far_beam_spacing_is_the_reach_times_the_scans_angular_step() {
+        // 91 beams 2° apart over 180° from (1, 2).
+        let beams = (0..91)
+            .map(|j| {
+                let a = f64::from(2 * j).to_radians();
+                Beam {
+                    start_m: [1.0, 2.0],
+                    end_m: [1.0 + 20.0 * a.cos(), 2.0 + 20.0 * a.sin()],
+                    hit: false,
+                }
+            })
+            .collect();
+        let scan = PlanarScan {
+            index: 0,
+            stamp_secs: 0.0,
+            sensor_m: [1.0, 2.0],
+            yaw_rad: 0.0,
+            beams,
+        };
+        let cells = ScanCells::from_scan(&scan, 0.5);
+        let expected = 20.0 * 2f64.to_radians();
+        assert!((cells.far_beam_spacing_m() - expected).abs() < 1e-9);
     }
 
     #[test]

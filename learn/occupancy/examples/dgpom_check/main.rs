@@ -1,12 +1,13 @@
 //! Development check: learn the motion map of `<name>_train` in DATASET and score DGPOM and the
 //! GPOMs on `<name>` at t = 3 … 9. `cargo run --release -p patchflow-occupancy --example
 //! dgpom_check -- DATASET [NAME]`. Environment: `ITERS` (DGPOM's L-BFGS iterations, 50),
-//! `NOISE_FLOOR` (all GPs), `FREE` (free-sample spacing, m), `PAST_FREE=0`, `SCANS`, `METHODS`,
+//! `NOISE_FLOOR` (all GPs), `PSEUDO` (SPGP's pseudo-inputs, all GPs), `FREE` (free-sample spacing, m), `PAST_FREE=0`, `SCANS`, `METHODS`,
 //! `QUERY`, `FITS` (print every fit), `DIAG` (1 − AUC by class of query point), `ORACLE=ε` (the
 //! exact T-junction lane velocities with error ε), `MIN_CELLS`, `CROSSING`, `DUMP`; for the motion
 //! map alone `MM_SEED` (the subsets it draws where a kind has more cells than its half),
 //! `VEL_POINTS` (cells of Υ and of ε), `CLUSTERS=1|2` (each moving cluster against its actor),
-//! `CLDUMP` and `ACTORS` (every cluster, every actor near the T-junction's lanes, to stderr).
+//! `CLDUMP` and `ACTORS` (every cluster, every actor near the T-junction's lanes, to stderr),
+//! `LANES` (Υ's error by region of the busy intersection), `HITS` (its west street's returns).
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -16,7 +17,7 @@ use patchflow_gp::MotionField;
 use patchflow_occupancy::*;
 
 mod diagnose;
-use diagnose::{cluster_quality, diagnose};
+use diagnose::{cluster_quality, diagnose, lane_regions};
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -68,6 +69,37 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
             })
             .collect();
         println!("y {y:5.1}: {}", v.join("  "));
+    }
+    if std::env::var("HITS").is_ok() {
+        // The returns beyond x = −20 m near the west street, scans 100-105, and the actors there.
+        let by_scan = train.truth.actors_by_scan();
+        for (k, (scan, (_, actors))) in train
+            .scans
+            .iter()
+            .zip(by_scan.iter())
+            .enumerate()
+            .skip(100)
+            .take(6)
+        {
+            let hits: Vec<String> = scan
+                .beams
+                .iter()
+                .filter(|b| b.hit && b.end_m[0] < -20.0 && b.end_m[1].abs() < 6.0)
+                .map(|b| format!("({:.1},{:.1})", b.end_m[0], b.end_m[1]))
+                .collect();
+            println!("scan {k}: hits {}", hits.join(" "));
+            for a in actors {
+                if a.centre_m[0] < -20.0 && a.centre_m[1].abs() < 6.0 {
+                    println!(
+                        "   actor {} at ({:.1},{:.1})",
+                        a.name, a.centre_m[0], a.centre_m[1]
+                    );
+                }
+            }
+        }
+    }
+    if std::env::var("LANES").is_ok() {
+        lane_regions(&map, &train);
     }
     if std::env::var("CLUSTERS").is_ok() {
         cluster_quality(&map, &train);
@@ -168,6 +200,8 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let solver = GpSolver {
         noise_floor: std::env::var("NOISE_FLOOR")
             .map_or(Ok(GpSolver::default().noise_floor), |v| v.parse())?,
+        pseudo_inputs: std::env::var("PSEUDO")
+            .map_or(Ok(GpSolver::default().pseudo_inputs), |v| v.parse())?,
         ..GpSolver::default()
     };
     // GPOM_ITERS: the GPOMs' iteration limit on both paths (default theirs: 25 exact, 50 SPGP).
