@@ -79,11 +79,11 @@ pub struct MotionClusterParams {
     /// Diff clusters with no object next to them and fewer cells are not paired, where the
     /// scanner samples densely: its beams are at most a cell apart even at the end of its reach
     /// (a 3-D lidar's 0.2° columns), so every surface leaves several returns per cell and a
-    /// one-cell change is an edge flickering (the 3-D slice's DGPOM fell by 0.008-0.017 when they
-    /// were paired). A sparse scanner (a 1° SICK-like one beyond 29 m) sees a far car as one
-    /// return a scan and a pedestrian as one cell anywhere, so it pairs every Diff cluster,
-    /// still only where the scans around bear the pair out (`fewest_cells`). Next to an object
-    /// every Diff cluster counts.
+    /// one-cell change is an edge flickering (the 3-D slice's DGPOM fell by 0.002-0.016 when they
+    /// were paired). A sparse scanner (a 1° SICK-like one reaching 80 m, its beams 1.4 m apart
+    /// there) sees a far car as one return a scan and a pedestrian as one cell anywhere, so it
+    /// pairs every Diff cluster, still only where the scans around bear the pair out
+    /// (`fewest_cells`). Next to an object every Diff cluster counts.
     pub min_cells: usize,
     /// Fastest motion a vacated and an arrived cluster are paired across, m/s.
     pub max_speed_mps: f64,
