@@ -174,3 +174,33 @@ fn the_white_mode_carries_no_persistent_gp_error_after_mixing() {
     assert_eq!(covariance.fixed_rows::<2>(4).norm(), 0.0);
     assert_eq!(covariance.fixed_columns::<2>(4).norm(), 0.0);
 }
+
+#[test]
+fn a_wild_gp_reading_does_not_push_the_track_off_its_nearer_fragment() {
+    use crate::methods::baselines::tracker::{MultiTargetTracker, TrackerParams};
+    // The track trusts a GP 5° off; at scan 20 the cluster splits, and the GP reads the nearer
+    // fragment 90° off (it misreads the right object, as in situation 4).
+    let noise = GpVelocityNoise::default();
+    let good = VelocityMeasurement::from_heading_speed(5f64.to_radians(), 0.0, 8.0, 0.0, &noise);
+    let wild = VelocityMeasurement::from_heading_speed(95f64.to_radians(), 0.0, 8.0, 0.0, &noise);
+    let mut tracker =
+        MultiTargetTracker::<GpTrustFilter>::with_track_filter(TrackerParams::default()).unwrap();
+    let mut id = None;
+    for k in 0..20 {
+        let taken = tracker
+            .step_measured(
+                k,
+                k as f64 * DT,
+                &[[8.0 * k as f64 * DT, 0.0]],
+                &[Some(good)],
+            )
+            .unwrap();
+        id = taken[0];
+    }
+    let predicted = 8.0 * 20.0 * DT;
+    let fragments = [[predicted - 0.35, 0.0], [predicted + 0.2, 0.0]];
+    let taken = tracker
+        .step_measured(20, 2.0, &fragments, &[None, Some(wild)])
+        .unwrap();
+    assert_eq!(taken[1], id, "the nearer fragment stays with the track");
+}
