@@ -3,22 +3,25 @@
 //!
 //! The GP reads some objects well scan after scan and others wildly (a crossing car behind parked
 //! cars: 40-90° off for several scans, docs/results.md); one fixed measurement noise either lets
-//! the wild readings pull the track off or keeps the good ones from helping. So each track runs
-//! two constant-velocity filters on the same centroids and GP readings:
+//! the wild readings pull the track off or keeps the good ones from helping; and where the GP
+//! reads well (a turn) its error is white, and a persistent-error model would hold it back as a
+//! bias. So each track runs three constant-velocity filters on the same centroids and GP readings:
+//! - **white**: the GP's velocity with its white noise only (its state holds no persistent
+//!   error);
 //! - **trusted**: the GP's velocity with the noise [`VelocityMeasurement`] gives it (white and
 //!   persistent error, thesis 3.1.4's Gaussian);
 //! - **unreliable**: the same reading with the spread of the filter's own velocity prior
 //!   (`KalmanParams::initial_velocity_std_mps` per axis), i.e. a reading that tells next to
 //!   nothing, as a clutter measurement does.
 //!
-//! Each scan the two are mixed (the IMM's interaction step) with a switching probability from the
-//! GP error's correlation time (`1 − exp(−Δt/τ)`), each predicts and updates, and each one's
+//! Each scan the three are mixed (the IMM's interaction step) with a switching probability from
+//! the GP error's correlation time (`1 − exp(−Δt/τ)`, shared equally among the other modes), each predicts and updates, and each one's
 //! probability is weighed by how likely it found the scan's centroid and velocity (the product of
-//! the sequential innovations' likelihoods). The track reports the filter of the likelier mode
-//! (its gate and association read the moment-matched mixture of both). On its first GP reading a
-//! track holds no evidence yet and the GP's reading, trusted, is likelier, so GP-KF still reports
-//! the GP's motion from the first scan; the mixture would report a speed between the GP's and
-//! rest there (measured: docs/results.md). The
+//! the sequential innovations' likelihoods). The track reports the filter of the likeliest mode
+//! (its gate reads the moment-matched mixture; the association the modes' mixed likelihood of a
+//! GP reading). On its first GP reading a track holds no evidence yet and the GP's reading, taken
+//! as white, is likeliest, so GP-KF still reports the GP's motion from the first scan; the
+//! mixture would report a speed between the GP's and rest there (measured: docs/results.md). The
 //! filter learns per track how far the GP can be trusted from what the centroids and the GP's own
 //! consistency say; it never reads the truth.
 
@@ -30,19 +33,23 @@ use crate::methods::baselines::track_filter::TrackFilter;
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
 use crate::methods::estimate::MotionEstimate;
 
-/// Index of the mode that trusts the GP's noise model.
-const TRUSTED: usize = 0;
+/// Number of modes.
+const MODES: usize = 3;
+/// Index of the mode that takes the GP's error as white (scan to scan).
+const WHITE: usize = 0;
+/// Index of the mode that trusts the GP's noise model with its persistent error.
+const TRUSTED: usize = 1;
 /// Index of the mode that takes the GP's reading as next to uninformative.
-const UNRELIABLE: usize = 1;
+const UNRELIABLE: usize = 2;
 
-/// Two constant-velocity filters, GP trusted and GP unreliable, and their probabilities.
+/// Three constant-velocity filters, GP white, trusted and unreliable, and their probabilities.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpTrustFilter {
-    modes: [ConstantVelocityKalman; 2],
+    modes: [ConstantVelocityKalman; MODES],
     /// Mode probabilities before this scan's measurements (after the last prediction).
-    predicted: [f64; 2],
+    predicted: [f64; MODES],
     /// Log-likelihood of this scan's measurements so far, per mode.
-    log_likelihood: [f64; 2],
+    log_likelihood: [f64; MODES],
     /// Correlation time of the GP's error, once a velocity was measured, seconds.
     switch_secs: Option<f64>,
     /// Per-axis standard deviation of a reading in the unreliable mode, m/s.
@@ -57,14 +64,15 @@ impl GpTrustFilter {
     /// model says, given everything measured so far (read by the tests).
     #[cfg(test)]
     pub(crate) fn gp_trust(&self) -> f64 {
-        self.posterior()[TRUSTED]
+        1.0 - self.posterior()[UNRELIABLE]
     }
 
     /// Mode probabilities given this scan's measurements.
-    fn posterior(&self) -> [f64; 2] {
-        let top = self.log_likelihood[0].max(self.log_likelihood[1]);
-        let w = [0, 1].map(|j| self.predicted[j] * (self.log_likelihood[j] - top).exp());
-        let sum = w[0] + w[1];
+    fn posterior(&self) -> [f64; MODES] {
+        let top = self.log_likelihood.iter().copied().fold(f64::MIN, f64::max);
+        let w: [f64; MODES] =
+            std::array::from_fn(|j| self.predicted[j] * (self.log_likelihood[j] - top).exp());
+        let sum: f64 = w.iter().sum();
         if sum > 0.0 && sum.is_finite() {
             w.map(|x| x / sum)
         } else {
@@ -73,14 +81,31 @@ impl GpTrustFilter {
     }
 
     /// The mixture's mean and covariance under `weights` (moment matching).
-    fn mixture(&self, weights: [f64; 2]) -> (Vector6<f64>, Matrix6<f64>) {
+    fn mixture(&self, weights: [f64; MODES]) -> (Vector6<f64>, Matrix6<f64>) {
         let moments = self.modes.each_ref().map(ConstantVelocityKalman::moments);
-        let mean = moments[0].0 * weights[0] + moments[1].0 * weights[1];
-        let covariance = (0..2).fold(Matrix6::zeros(), |acc, j| {
+        let mean = (0..MODES).fold(Vector6::zeros(), |acc, j| acc + moments[j].0 * weights[j]);
+        let covariance = (0..MODES).fold(Matrix6::zeros(), |acc, j| {
             let d = moments[j].0 - mean;
             acc + (moments[j].1 + d * d.transpose()) * weights[j]
         });
         (mean, covariance)
+    }
+
+    /// The reading as each mode takes it: with white error only, with its own noise model
+    /// (white and persistent), and with the filter's velocity prior.
+    fn readings(&self, measurement: &VelocityMeasurement) -> [VelocityMeasurement; MODES] {
+        let white = VelocityMeasurement {
+            persistent_covariance: Matrix2::zeros(),
+            ..*measurement
+        };
+        let unreliable = VelocityMeasurement {
+            covariance: Matrix2::identity() * self.unreliable_std_mps.powi(2),
+            ..*measurement
+        };
+        let mut readings = [*measurement; MODES];
+        readings[WHITE] = white;
+        readings[UNRELIABLE] = unreliable;
+        readings
     }
 
     /// Sets [`Self::combined`] to the mixture given this scan's measurements so far.
@@ -96,9 +121,9 @@ impl TrackFilter for GpTrustFilter {
         let filter = ConstantVelocityKalman::new(first_centroid_xy, params)?;
         Ok(Self {
             combined: filter.clone(),
-            modes: [filter.clone(), filter],
-            predicted: [0.5, 0.5],
-            log_likelihood: [0.0, 0.0],
+            modes: std::array::from_fn(|_| filter.clone()),
+            predicted: [1.0 / MODES as f64; MODES],
+            log_likelihood: [0.0; MODES],
             switch_secs: None,
             unreliable_std_mps: params.initial_velocity_std_mps,
         })
@@ -110,22 +135,38 @@ impl TrackFilter for GpTrustFilter {
         let switch = self
             .switch_secs
             .map_or(0.0, |tau| 1.0 - (-dt_secs / tau).exp());
-        let to = |i: usize, j: usize| if i == j { 1.0 - switch } else { switch };
-        let predicted = [0, 1].map(|j| (0..2).map(|i| to(i, j) * previous[i]).sum::<f64>());
-        let mixed = [0, 1].map(|j| {
-            if predicted[j] > 0.0 {
-                self.mixture([0, 1].map(|i| to(i, j) * previous[i] / predicted[j]))
+        let to = |i: usize, j: usize| {
+            if i == j {
+                1.0 - switch
+            } else {
+                switch / (MODES - 1) as f64
+            }
+        };
+        let predicted: [f64; MODES] =
+            std::array::from_fn(|j| (0..MODES).map(|i| to(i, j) * previous[i]).sum::<f64>());
+        let mixed: [(Vector6<f64>, Matrix6<f64>); MODES] = std::array::from_fn(|j| {
+            let (mut mean, mut covariance) = if predicted[j] > 0.0 {
+                self.mixture(std::array::from_fn(|i| {
+                    to(i, j) * previous[i] / predicted[j]
+                }))
             } else {
                 // A mode nothing can switch into keeps its own state.
                 self.modes[j].moments()
+            };
+            if j == WHITE {
+                // This mode's GP has no persistent error: its state holds none.
+                mean.fixed_rows_mut::<2>(4).fill(0.0);
+                covariance.fixed_rows_mut::<2>(4).fill(0.0);
+                covariance.fixed_columns_mut::<2>(4).fill(0.0);
             }
+            (mean, covariance)
         });
         for (mode, (mean, covariance)) in self.modes.iter_mut().zip(mixed) {
             mode.set_moments(mean, covariance);
             mode.predict(dt_secs);
         }
         self.predicted = predicted;
-        self.log_likelihood = [0.0, 0.0];
+        self.log_likelihood = [0.0; MODES];
         self.refresh_combined();
     }
 
@@ -142,19 +183,26 @@ impl TrackFilter for GpTrustFilter {
         Ok(innovation)
     }
 
-    fn velocity_mahalanobis_sq(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError> {
-        self.combined.velocity_mahalanobis_sq(measurement)
+    /// The IMM's likelihood of the reading: each mode's, weighed by its probability so far.
+    fn velocity_log_likelihood(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError> {
+        let readings = self.readings(measurement);
+        let p = self.posterior();
+        let mut ll = [f64::NEG_INFINITY; MODES];
+        for j in 0..MODES {
+            if p[j] > 0.0 {
+                let innovation = self.modes[j].velocity_innovation(&readings[j])?;
+                ll[j] = p[j].ln() + innovation.log_likelihood();
+            }
+        }
+        let top = ll.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Ok(top + ll.iter().map(|l| (l - top).exp()).sum::<f64>().ln())
     }
 
     fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {
-        let unreliable = VelocityMeasurement {
-            covariance: Matrix2::identity() * self.unreliable_std_mps.powi(2),
-            ..*measurement
-        };
-        let readings = [*measurement, unreliable];
-        for j in [TRUSTED, UNRELIABLE] {
-            let innovation = self.modes[j].update_velocity(&readings[j])?;
-            self.log_likelihood[j] += innovation.log_likelihood();
+        let readings = self.readings(measurement);
+        let modes = self.modes.iter_mut().zip(&readings);
+        for ((mode, reading), ll) in modes.zip(&mut self.log_likelihood) {
+            *ll += mode.update_velocity(reading)?.log_likelihood();
         }
         self.switch_secs = Some(measurement.persistence_secs);
         self.refresh_combined();
@@ -163,12 +211,8 @@ impl TrackFilter for GpTrustFilter {
 
     fn estimate(&self) -> Option<MotionEstimate> {
         let p = self.posterior();
-        let likelier = if p[TRUSTED] >= p[UNRELIABLE] {
-            TRUSTED
-        } else {
-            UNRELIABLE
-        };
-        self.modes[likelier].estimate()
+        let likeliest = (0..MODES).fold(0, |best, j| if p[j] > p[best] { j } else { best });
+        self.modes[likeliest].estimate()
     }
 
     fn velocity_updates(&self) -> usize {

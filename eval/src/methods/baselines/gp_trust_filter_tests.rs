@@ -99,11 +99,108 @@ fn on_its_first_gp_reading_a_track_reports_the_gps_motion() {
 fn a_mode_nothing_can_switch_into_keeps_its_own_state() {
     let z = centroids(5, 3);
     let mut filter = GpTrustFilter::start(z[0], KalmanParams::default()).unwrap();
-    filter.predicted = [1.0, 0.0];
+    filter.predicted = [1.0, 0.0, 0.0];
     let before = filter.modes[UNRELIABLE].moments();
     TrackFilter::predict(&mut filter, DT);
     let mut expected = ConstantVelocityKalman::new(z[0], KalmanParams::default()).unwrap();
     expected.set_moments(before.0, before.1);
     expected.predict(DT);
     assert_eq!(filter.modes[UNRELIABLE].moments(), expected.moments());
+}
+
+#[test]
+fn a_split_target_whose_fragment_carries_a_consistent_gp_reading_stays_with_its_track() {
+    use crate::methods::baselines::tracker::{MultiTargetTracker, TrackerParams};
+    // A car drives +x at 8 m/s and the GP reads it 5° off every scan, which the IMM keeps
+    // trusting. At scan 20 its cluster splits: the fragment the GP read lies 0.3 m ahead of the
+    // track's prediction, its sibling (no reading, as under the per-target protocol) 0.25 m
+    // behind. By position alone the sibling is nearer; the reading is evidence for the track.
+    let noise = GpVelocityNoise::default();
+    let reading = VelocityMeasurement::from_heading_speed(5f64.to_radians(), 0.0, 8.0, 0.0, &noise);
+    let mut tracker =
+        MultiTargetTracker::<GpTrustFilter>::with_track_filter(TrackerParams::default()).unwrap();
+    let mut id = None;
+    for k in 0..20 {
+        let taken = tracker
+            .step_measured(
+                k,
+                k as f64 * DT,
+                &[[8.0 * k as f64 * DT, 0.0]],
+                &[Some(reading)],
+            )
+            .unwrap();
+        id = taken[0];
+    }
+    let track = tracker.track(id.unwrap()).unwrap();
+    assert!(
+        track.filter.gp_trust() > 0.5,
+        "trust {}",
+        track.filter.gp_trust()
+    );
+    let predicted = 8.0 * 20.0 * DT;
+    let fragments = [[predicted - 0.25, 0.0], [predicted + 0.3, 0.0]];
+    // The case the likelihood ratio is for: with the reading's squared misfit added to the
+    // fragment's distance (stop 36's cost), the sibling would be cheaper.
+    let mut predicted_track = track.filter.clone();
+    TrackFilter::predict(&mut predicted_track, DT);
+    let d2 = fragments.map(|c| predicted_track.innovation(c).unwrap().mahalanobis_sq);
+    let misfit = predicted_track
+        .combined
+        .velocity_innovation(&reading)
+        .unwrap();
+    assert!(d2[0] < d2[1] + misfit.mahalanobis_sq, "{d2:?} {misfit:?}");
+    let taken = tracker
+        .step_measured(20, 2.0, &fragments, &[None, Some(reading)])
+        .unwrap();
+    assert_eq!(
+        taken[1], id,
+        "the fragment with the reading stays with the track"
+    );
+}
+
+#[test]
+fn the_white_mode_carries_no_persistent_gp_error_after_mixing() {
+    // A GP 25° off every scan: the persistent mode learns a standing error; after each mixing
+    // step the white mode's error states are exactly zero, mean and covariance.
+    let (_, mut filter) = run::<GpTrustFilter>(|_| 25.0);
+    let (mean, _) = filter.modes[TRUSTED].moments();
+    assert!(
+        mean.fixed_rows::<2>(4).norm() > 0.1,
+        "persistent mode {mean:?}"
+    );
+    TrackFilter::predict(&mut filter, DT);
+    let (mean, covariance) = filter.modes[WHITE].moments();
+    assert_eq!(mean.fixed_rows::<2>(4).norm(), 0.0);
+    assert_eq!(covariance.fixed_rows::<2>(4).norm(), 0.0);
+    assert_eq!(covariance.fixed_columns::<2>(4).norm(), 0.0);
+}
+
+#[test]
+fn a_wild_gp_reading_does_not_push_the_track_off_its_nearer_fragment() {
+    use crate::methods::baselines::tracker::{MultiTargetTracker, TrackerParams};
+    // The track trusts a GP 5° off; at scan 20 the cluster splits, and the GP reads the nearer
+    // fragment 90° off (it misreads the right object, as in situation 4).
+    let noise = GpVelocityNoise::default();
+    let good = VelocityMeasurement::from_heading_speed(5f64.to_radians(), 0.0, 8.0, 0.0, &noise);
+    let wild = VelocityMeasurement::from_heading_speed(95f64.to_radians(), 0.0, 8.0, 0.0, &noise);
+    let mut tracker =
+        MultiTargetTracker::<GpTrustFilter>::with_track_filter(TrackerParams::default()).unwrap();
+    let mut id = None;
+    for k in 0..20 {
+        let taken = tracker
+            .step_measured(
+                k,
+                k as f64 * DT,
+                &[[8.0 * k as f64 * DT, 0.0]],
+                &[Some(good)],
+            )
+            .unwrap();
+        id = taken[0];
+    }
+    let predicted = 8.0 * 20.0 * DT;
+    let fragments = [[predicted - 0.35, 0.0], [predicted + 0.2, 0.0]];
+    let taken = tracker
+        .step_measured(20, 2.0, &fragments, &[None, Some(wild)])
+        .unwrap();
+    assert_eq!(taken[1], id, "the nearer fragment stays with the track");
 }

@@ -212,13 +212,13 @@ impl ConstantVelocityKalman {
         Ok(innovation)
     }
 
-    /// Squared Mahalanobis distance of a velocity measurement from the velocity this track
-    /// predicts the sensor to read (its velocity plus the sensor's persistent error),
-    /// `rᵀ (H_v P H_vᵀ + Σ)⁻¹ r`: how well a cluster's measured velocity fits this track.
-    pub fn velocity_mahalanobis_sq(
+    /// The innovation of a velocity measurement against the velocity this track predicts the
+    /// sensor to read (its velocity plus the sensor's persistent error), `S = H_v P H_vᵀ + Σ`:
+    /// how well a cluster's measured velocity fits this track, before any update.
+    pub fn velocity_innovation(
         &self,
         measurement: &VelocityMeasurement,
-    ) -> Result<f64, EvalError> {
+    ) -> Result<Innovation, EvalError> {
         check_persistence(measurement)?;
         let prior = self.with_persistent_error_prior(measurement);
         let predicted = H_VELOCITY * prior.state;
@@ -231,7 +231,11 @@ impl ConstantVelocityKalman {
             name: "VelocityMeasurement.covariance",
             reason: "innovation covariance is singular".into(),
         })?;
-        Ok(residual.dot(&(s_inv * residual)))
+        Ok(Innovation {
+            residual_m: residual,
+            covariance: s,
+            mahalanobis_sq: residual.dot(&(s_inv * residual)),
+        })
     }
 
     /// Corrects the state with a direct velocity measurement (`GP-KF`: the GP's merged heading

@@ -1,5 +1,5 @@
 //! What the multi-target tracker needs of a track's filter: a prediction, a centroid gate and
-//! update, a velocity misfit and update, and the motion estimate it reports. `KF-AUTO` tracks
+//! update, a velocity likelihood and update, and the motion estimate it reports. `KF-AUTO` tracks
 //! with one constant-velocity filter ([`ConstantVelocityKalman`]); `GP-KF` with an interacting
 //! multiple model over how far the GP can be trusted ([`crate::methods::baselines::gp_trust_filter::GpTrustFilter`]).
 
@@ -18,8 +18,9 @@ pub trait TrackFilter: Clone + std::fmt::Debug {
     fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError>;
     /// Corrects the filter with a centroid.
     fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError>;
-    /// Squared Mahalanobis distance of a measured velocity from the one the track predicts.
-    fn velocity_mahalanobis_sq(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError>;
+    /// `ln p(reading | this track)`: how likely the track, as predicted, finds a measured
+    /// velocity (the association compares it with a new track's, [`crate::methods::baselines::tracker`]).
+    fn velocity_log_likelihood(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError>;
     /// Corrects the filter with a measured velocity.
     fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError>;
     /// The motion estimate, once the filter reports one.
@@ -45,8 +46,8 @@ impl TrackFilter for ConstantVelocityKalman {
         ConstantVelocityKalman::update(self, centroid_xy)
     }
 
-    fn velocity_mahalanobis_sq(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError> {
-        ConstantVelocityKalman::velocity_mahalanobis_sq(self, measurement)
+    fn velocity_log_likelihood(&self, measurement: &VelocityMeasurement) -> Result<f64, EvalError> {
+        Ok(self.velocity_innovation(measurement)?.log_likelihood())
     }
 
     fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {

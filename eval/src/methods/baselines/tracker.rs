@@ -7,8 +7,10 @@
 //!    centroid innovation `yᵀS⁻¹y` is at most `gate_chi2` (9.21 = χ²₂ at 99 %);
 //! 3. associate greedily, one-to-one: confirmed tracks before tentative ones, then the smallest
 //!    distance first (ties broken by track id, then cluster index, so the result is deterministic);
-//!    a cluster that comes with a measured velocity (`GP-KF`) adds that velocity's squared
-//!    Mahalanobis distance from the track's, so a track keeps the object moving its way;
+//!    a cluster that comes with a measured velocity (`GP-KF`) subtracts 2 ln of how much likelier
+//!    this track finds that velocity than a new track would (when it is likelier), so a track
+//!    keeps the object moving its way, and a cluster without a reading competes on the same
+//!    footing (its ratio is 1);
 //! 4. update the associated tracks; a tentative track becomes confirmed after `confirm_hits`
 //!    consecutive hits;
 //! 5. track end: a tentative track is deleted at its first miss, a confirmed one after more than
@@ -152,18 +154,33 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         }
         self.last_stamp_secs = Some(stamp_secs);
         // 2. Gate.
+        let new_track_log_likelihood = (0..centroids_xy.len())
+            .map(|ci| {
+                velocity_of(ci)
+                    .map(|v| F::start([0.0, 0.0], self.params.kalman)?.velocity_log_likelihood(&v))
+                    .transpose()
+            })
+            .collect::<Result<Vec<_>, EvalError>>()?;
         let mut candidates = Vec::new();
         for (ti, track) in self.tracks.iter().enumerate() {
             for (ci, c) in centroids_xy.iter().enumerate() {
                 let d2 = track.filter.innovation(*c)?.mahalanobis_sq;
                 if d2 <= self.params.gate_chi2 {
                     let rank = usize::from(track.status == TrackStatus::Tentative);
-                    // A cluster with a measured velocity (GP-KF) is a 4-D measurement: its
-                    // velocity's misfit joins the cost, so a track keeps the object moving its
-                    // way rather than a neighbour's cluster that happens to lie nearer.
-                    let cost = match velocity_of(ci) {
-                        Some(v) => d2 + track.filter.velocity_mahalanobis_sq(&v)?,
-                        None => d2,
+                    // A cluster with a measured velocity (GP-KF) adds the velocity's evidence
+                    // for this track against a new one: −2 ln of the likelihood ratio (a
+                    // feature-aided track score; Blackman and Popoli 1999, §6.2). A cluster
+                    // without a reading adds nothing, which is that ratio's value for a
+                    // dimension not measured, so clusters with and without a reading compare
+                    // like with like. Only evidence for counts: the GP misreads the right
+                    // object for runs of scans, and where only one cluster carries a reading
+                    // (the per-target protocol) a penalty would push the track off it alone.
+                    let cost = match (velocity_of(ci), new_track_log_likelihood[ci]) {
+                        (Some(v), Some(new_track)) => {
+                            let ratio = track.filter.velocity_log_likelihood(&v)? - new_track;
+                            d2 - 2.0 * ratio.max(0.0)
+                        }
+                        _ => d2,
                     };
                     candidates.push((rank, cost, track.id, ti, ci));
                 }
