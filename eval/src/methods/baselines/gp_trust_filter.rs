@@ -14,16 +14,16 @@
 //!   (`KalmanParams::initial_velocity_std_mps` per axis), i.e. a reading that tells next to
 //!   nothing, as a clutter measurement does.
 //!
-//! Each scan the three are mixed (the IMM's interaction step) with a switching probability from
-//! the GP error's correlation time (`1 − exp(−Δt/τ)`, shared equally among the other modes),
-//! each predicts and updates, and each one's probability is weighed by how likely it found the
-//! scan's centroid and velocity (the product of the sequential innovations' likelihoods). The track reports the filter of the likeliest mode
-//! (its gate reads the moment-matched mixture; the association the modes' mixed likelihood of a
-//! GP reading). On its first GP reading a track holds no evidence yet and the GP's reading, taken
-//! as white, is likeliest, so GP-KF still reports the GP's motion from the first scan; the
-//! mixture would report a speed between the GP's and rest there (measured: docs/results.md). The
-//! filter learns per track how far the GP can be trusted from what the centroids and the GP's own
-//! consistency say; it never reads the truth.
+//! Each scan the three are mixed (the IMM's interaction step) with a switching probability from the
+//! GP error's correlation time (`1 − exp(−Δt/τ)`, shared equally among the other modes), each
+//! predicts and updates, and each one's probability is weighed by how likely it found the scan's
+//! centroid and velocity (the product of the sequential innovations' likelihoods). The track
+//! reports the filter of the likeliest mode (its gate reads the moment-matched mixture; the
+//! association the modes' mixed likelihood of a GP reading). On its first GP reading a track holds
+//! no evidence yet and the GP's reading, taken as white, is likeliest, so GP-KF still reports the
+//! GP's motion from the first scan; the mixture would report a speed between the GP's and rest
+//! there (measured: docs/results.md). The filter learns per track how far the GP can be trusted
+//! from what the centroids and the GP's own consistency say; it never reads the truth.
 
 use nalgebra::{Matrix2, Matrix6, Vector6};
 
