@@ -4,22 +4,34 @@
 use super::*;
 use crate::{Beam, PlanarScan};
 
-/// A scan at `t` of 721 beams over 180° against horizontal segments `(y, x_from, x_to)`.
-fn scan(t: f64, segments: &[(f64, f64, f64)]) -> PlanarScan {
-    let beams = (0..721)
+/// A scan at `t` from the origin: `beams` beams over 180° (from +x counter-clockwise) out to
+/// `range_m`, against segments.
+fn scan_of_segments(
+    t: f64,
+    beams: u32,
+    range_m: f64,
+    segments: &[([f64; 2], [f64; 2])],
+) -> PlanarScan {
+    let step = std::f64::consts::PI / f64::from(beams - 1);
+    let beams = (0..beams)
         .map(|j| {
-            let a = (f64::from(j) / 4.0).to_radians();
-            let (c, s) = (a.cos(), a.sin());
+            let (s, c) = (step * f64::from(j)).sin_cos();
+            // Ray–segment intersection: r·(c, s) = a + u·(b − a), 0 ≤ u ≤ 1.
             let range = segments
                 .iter()
-                .filter(|_| s > 1e-9)
-                .filter_map(|&(y, x0, x1)| {
-                    let r = y / s;
-                    (x0..=x1).contains(&(r * c)).then_some(r)
+                .filter_map(|&(a, b)| {
+                    let e = [b[0] - a[0], b[1] - a[1]];
+                    let det = e[0] * s - e[1] * c;
+                    if det.abs() < 1e-12 {
+                        return None;
+                    }
+                    let r = (e[0] * a[1] - e[1] * a[0]) / det;
+                    let u = (c * a[1] - s * a[0]) / det;
+                    (r > 0.0 && (0.0..=1.0).contains(&u)).then_some(r)
                 })
                 .fold(f64::INFINITY, f64::min);
-            let hit = range <= 20.0;
-            let r = if hit { range } else { 20.0 };
+            let hit = range <= range_m;
+            let r = if hit { range } else { range_m };
             Beam {
                 start_m: [0.0, 0.0],
                 end_m: [c * r, s * r],
@@ -34,6 +46,16 @@ fn scan(t: f64, segments: &[(f64, f64, f64)]) -> PlanarScan {
         yaw_rad: std::f64::consts::FRAC_PI_2,
         beams,
     }
+}
+
+/// A scan at `t` of 721 beams over 180° (0.25° apart, out to 20 m) against horizontal segments
+/// `(y, x_from, x_to)`.
+fn scan(t: f64, segments: &[(f64, f64, f64)]) -> PlanarScan {
+    let segments: Vec<([f64; 2], [f64; 2])> = segments
+        .iter()
+        .map(|&(y, x0, x1)| ([x0, y], [x1, y]))
+        .collect();
+    scan_of_segments(t, 721, 20.0, &segments)
 }
 
 const WALL: (f64, f64, f64) = (10.1, -12.0, 12.0);
@@ -157,45 +179,6 @@ fn crossing_cars_are_paired_with_themselves_when_the_scans_around_bear_it_out() 
     }
 }
 
-/// A scan at `t` from the origin: `beams` beams over 180° (from +x counter-clockwise) out to
-/// `range_m`, against arbitrary segments.
-fn sparse_scan(t: f64, beams: u32, range_m: f64, segments: &[([f64; 2], [f64; 2])]) -> PlanarScan {
-    let step = std::f64::consts::PI / f64::from(beams - 1);
-    let beams = (0..beams)
-        .map(|j| {
-            let (s, c) = (step * f64::from(j)).sin_cos();
-            // Ray–segment intersection: r·(c, s) = a + u·(b − a), 0 ≤ u ≤ 1.
-            let range = segments
-                .iter()
-                .filter_map(|&(a, b)| {
-                    let e = [b[0] - a[0], b[1] - a[1]];
-                    let det = e[0] * s - e[1] * c;
-                    if det.abs() < 1e-12 {
-                        return None;
-                    }
-                    let r = (e[0] * a[1] - e[1] * a[0]) / det;
-                    let u = (c * a[1] - s * a[0]) / det;
-                    (r > 0.0 && (0.0..=1.0).contains(&u)).then_some(r)
-                })
-                .fold(f64::INFINITY, f64::min);
-            let hit = range <= range_m;
-            let r = if hit { range } else { range_m };
-            Beam {
-                start_m: [0.0, 0.0],
-                end_m: [c * r, s * r],
-                hit,
-            }
-        })
-        .collect();
-    PlanarScan {
-        index: t as usize,
-        stamp_secs: t,
-        sensor_m: [0.0, 0.0],
-        yaw_rad: std::f64::consts::FRAC_PI_2,
-        beams,
-    }
-}
-
 #[test]
 fn a_far_face_that_leaves_one_return_a_scan_is_paired_when_the_beams_are_sparser_than_a_cell() {
     // 91 beams 2° apart: 1.05 m apart at 30 m. A 0.6 m face, square to the beam, moves 8° (4.19
@@ -214,7 +197,7 @@ fn a_far_face_that_leaves_one_return_a_scan_is_paired_when_the_beams_are_sparser
     let cells: Vec<ScanCells> = (0..4)
         .map(|t| {
             let t = f64::from(t);
-            ScanCells::from_scan(&sparse_scan(t, 91, 60.0, &[wall, face(t)]), p.cell_m)
+            ScanCells::from_scan(&scan_of_segments(t, 91, 60.0, &[wall, face(t)]), p.cell_m)
         })
         .collect();
     let scans = PairScans {

@@ -246,30 +246,23 @@ impl ConstantVelocityKalman {
         &mut self,
         measurement: &VelocityMeasurement,
     ) -> Result<Innovation, EvalError> {
-        check_persistence(measurement)?;
+        let innovation = self.velocity_innovation(measurement)?;
         *self = self.with_persistent_error_prior(measurement);
         let h = H_VELOCITY;
-        let z = Vector2::new(
-            measurement.velocity_xy_mps[0],
-            measurement.velocity_xy_mps[1],
-        );
-        let residual = z - h * self.state;
-        let s = h * self.covariance * h.transpose() + measurement.covariance;
-        let s_inv = s.try_inverse().ok_or_else(|| EvalError::BadParameter {
-            name: "VelocityMeasurement.covariance",
-            reason: "innovation covariance is singular".into(),
-        })?;
+        let s_inv = innovation
+            .covariance
+            .try_inverse()
+            .ok_or_else(|| EvalError::BadParameter {
+                name: "VelocityMeasurement.covariance",
+                reason: "innovation covariance is singular".into(),
+            })?;
         let gain: Matrix6x2<f64> = self.covariance * h.transpose() * s_inv;
-        self.state += gain * residual;
+        self.state += gain * innovation.residual_m;
         let i_kh = Matrix6::identity() - gain * h;
         self.covariance = i_kh * self.covariance * i_kh.transpose()
             + gain * measurement.covariance * gain.transpose();
         self.velocity_updates += 1;
-        Ok(Innovation {
-            residual_m: residual,
-            covariance: s,
-            mahalanobis_sq: residual.dot(&(s_inv * residual)),
-        })
+        Ok(innovation)
     }
 
     /// The state and its covariance (for mixing the filters of an interacting multiple model).
