@@ -5,7 +5,8 @@
 //!   measure the GP's merged heading and speed as a velocity with its covariance (thesis 3.1.4,
 //!   [`VelocityMeasurement`]); a track is started from the first scan's GP reading and reports
 //!   once its heading's standard deviation (the IMM mixture's) is within 12.5°, half the
-//!   thesis' 25° bar ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of hits.
+//!   thesis' 25° bar ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of hits
+//!   (a cluster the moving classifier calls moving gets the track's motion from the first scan).
 //! - `GP-ICP`: `ICP-AUTO`'s nearest-centroid association, ICP started from the GP's motion over
 //!   the interval as well as from the centroid alignment; the alignment that pairs more points
 //!   (beyond 5 %), else the one with the smaller residual, wins. Point-to-point ICP stops in the
@@ -131,10 +132,11 @@ impl LearnedTrackers {
                     return Some(at_rest(heading));
                 }
                 let track = self.tracker.track((*id)?)?;
-                // A track reports once its own heading uncertainty supports it.
-                track
-                    .filter
-                    .heading_settled()
+                // A track reports once its own heading uncertainty supports it. Before that, a
+                // cluster the classifier calls moving still gets the track's motion: the decision
+                // is that it moves, and no estimate would be scored as standing still.
+                let moving = of(c).moving == Some(true);
+                (moving || track.filter.heading_settled())
                     .then(|| track.filter.estimate())
                     .flatten()
                     .map(ClusterFlow::Uniform)
