@@ -2,8 +2,9 @@
 //! SPGP-HET model and the moving classifier a `bench --keep-data` folder saved, runs the target
 //! protocol of every situation (the baselines, GP-KF and GP-ICP; `evaluate_targets_with_baselines`,
 //! as the realism study and the further seeds do) and prints each method's heading and speed RMSE
-//! with the bounds: GP-KF against min(KF-AUTO, SPGP-HET-ALL) + 2° and KF-AUTO's speed,
-//! GP-ICP against ICP-AUTO likewise.
+//! and coverage with the bounds: GP-KF against min(KF-AUTO, SPGP-HET-ALL) + 2° and
+//! KF-AUTO's speed, GP-ICP against ICP-AUTO likewise. `TRACE=situationN` also prints that
+//! situation scan by scan, with the heading standard deviation the GP and GP-KF state.
 //!
 //! `cargo run --release -p patchflow-eval --example learned_targets -- BENCH_OUT [MODEL.json]`
 

@@ -24,7 +24,7 @@
 //! no evidence yet and the GP's reading, taken as white, is likeliest, so the filter's estimate
 //! is the GP's motion from the first scan (the mixture would give a speed between the GP's and
 //! rest there; docs/results.md). GP-KF reports it once the mixture's heading is known to within
-//! [`MAX_UNCONFIRMED_HEADING_STD_DEG`] ([`GpTrustFilter::heading_settled`]). The filter learns per
+//! [`MAX_REPORTED_HEADING_STD_DEG`] ([`GpTrustFilter::heading_settled`]). The filter learns per
 //! track how far the GP can be trusted from what the centroids and the GP's own consistency say;
 //! it never reads the truth.
 
@@ -48,7 +48,7 @@ const UNRELIABLE: usize = 2;
 /// The largest heading standard deviation with which a GP-KF track reports its motion: half the
 /// 25° within which the thesis counts a heading as found (4.4), so that the report's ±2σ
 /// interval lies inside that bar.
-pub const MAX_UNCONFIRMED_HEADING_STD_DEG: f64 = 12.5;
+pub const MAX_REPORTED_HEADING_STD_DEG: f64 = 12.5;
 
 /// The white mode's acceleration noise once the track has GP readings, m/s²: about half a g, the
 /// lateral acceleration of a car turning at a city junction. Where the GP reads an object well,
@@ -82,11 +82,12 @@ impl GpTrustFilter {
     }
 
     /// Whether the track's own uncertainty supports a report (track confirmation by covariance,
-    /// in place of `KF-AUTO`'s count of hits): the heading standard deviation of the moment-matched mixture (the IMM's estimate, which counts
-    /// the GP's persistent error and the chance that its reading tells nothing) is at most
-    /// [`MAX_UNCONFIRMED_HEADING_STD_DEG`]. A track started on one GP reading does not qualify
-    /// however tight the GP says it is: the GP's stated variance is not calibrated on one scan
-    /// (docs/results.md), and the persistent error its noise model adds (20°) is wider than the bar.
+    /// in place of `KF-AUTO`'s count of hits): the heading standard deviation of the
+    /// moment-matched mixture (the IMM's estimate, which counts the GP's persistent error and the
+    /// chance that its reading tells nothing) is at most [`MAX_REPORTED_HEADING_STD_DEG`]. A track
+    /// started on one GP reading does not qualify however tight the GP says it is: the GP's
+    /// stated variance is not calibrated on one scan (docs/results.md), and the persistent error
+    /// its noise model adds (20°) is wider than the bar.
     pub fn heading_settled(&self) -> bool {
         let estimate = MotionEstimate::from_velocity_with_covariance(
             self.combined.velocity(),
@@ -94,7 +95,7 @@ impl GpTrustFilter {
         );
         estimate
             .heading_var
-            .is_some_and(|var| var.sqrt() <= MAX_UNCONFIRMED_HEADING_STD_DEG.to_radians())
+            .is_some_and(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians())
     }
 
     /// Mode probabilities given this scan's measurements.
