@@ -2,8 +2,9 @@
 //! SPGP-HET model and the moving classifier a `bench --keep-data` folder saved, runs the target
 //! protocol of every situation (the baselines, GP-KF and GP-ICP; `evaluate_targets_with_baselines`,
 //! as the realism study and the further seeds do) and prints each method's heading and speed RMSE
-//! with the bounds: GP-KF against min(KF-AUTO, SPGP-HET-ALL) + 2° and KF-AUTO's speed,
-//! GP-ICP against ICP-AUTO likewise.
+//! and coverage with the bounds: GP-KF against min(KF-AUTO, SPGP-HET-ALL) + 2° and
+//! KF-AUTO's speed, GP-ICP against ICP-AUTO likewise. `TRACE=situationN` also prints that
+//! situation scan by scan, with the heading standard deviation the GP and GP-KF state.
 //!
 //! `cargo run --release -p patchflow-eval --example learned_targets -- BENCH_OUT [MODEL.json]`
 
@@ -42,29 +43,41 @@ fn main() -> Result<(), Failure> {
         Method::IcpAuto,
         Method::GpIcp,
     ];
-    println!("| situation | method | heading RMSE (°) | speed RMSE (m/s) |");
-    println!("|---|---|---|---|");
+    println!("| situation | method | heading RMSE (°) | speed RMSE (m/s) | coverage |");
+    println!("|---|---|---|---|---|");
     let mut within = [[0usize; 2]; 2];
     let trace = std::env::var("TRACE").ok();
     for situation in &report.situations {
         if trace.as_deref() == Some(situation.name.as_str()) {
             println!(
-                "scan | true h,s | SPGP h,s | KF-AUTO h,s | GP-KF h,s | ICP-AUTO h,s | GP-ICP h,s"
+                "scan | true h,s | SPGP h,s,σh | KF-AUTO h,s | GP-KF h,s,σh | ICP-AUTO h,s | GP-ICP h,s"
             );
             let show =
                 |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
                     Some(e) => format!("{:7.1} {:5.2}", e.heading_rad.to_degrees(), e.speed_mps),
                     None => "      -     -".to_owned(),
                 };
+            // The heading's standard deviation as the method states it, degrees.
+            let spread =
+                |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
+                    Some(patchflow_eval::MotionEstimate {
+                        heading_var: Some(var),
+                        ..
+                    }) => format!(" {:5.1}", var.sqrt().to_degrees()),
+                    _ => "     -".to_owned(),
+                };
             for (k, t) in situation.truth.iter().enumerate() {
                 let col = |m: Method| show(situation.methods.get(&m).and_then(|v| v.get(k)));
+                let sd = |m: Method| spread(situation.methods.get(&m).and_then(|v| v.get(k)));
                 println!(
-                    "{k:3} | {:7.1} {:5.2} | {} | {} | {} | {} | {}",
+                    "{k:3} | {:7.1} {:5.2} | {}{} | {} | {}{} | {} | {}",
                     t.heading_rad.to_degrees(),
                     t.speed_mps,
                     col(Method::SpgpHetAll),
+                    sd(Method::SpgpHetAll),
                     col(Method::KfAuto),
                     col(Method::GpKf),
+                    sd(Method::GpKf),
                     col(Method::IcpAuto),
                     col(Method::GpIcp)
                 );
@@ -80,7 +93,10 @@ fn main() -> Result<(), Failure> {
                 m.heading_rmse_deg.unwrap_or(f64::NAN),
                 m.speed_rmse_mps.unwrap_or(f64::NAN),
             );
-            println!("| {} | {method} | {h:.1} | {s:.2} |", situation.name);
+            println!(
+                "| {} | {method} | {h:.1} | {s:.2} | {:.3} |",
+                situation.name, m.coverage
+            );
             rows.push((method, h, s));
         }
         let of = |wanted: Method| rows.iter().find(|(m, ..)| *m == wanted).map(|r| (r.1, r.2));

@@ -143,6 +143,12 @@ impl ConstantVelocityKalman {
 
     /// Motion model (eq. 3.44): propagate state and covariance by `dt_secs`.
     pub fn predict(&mut self, dt_secs: f64) {
+        self.predict_with_accel_noise(dt_secs, self.params.accel_noise_std_mps2);
+    }
+
+    /// [`Self::predict`] with the acceleration noise `accel_noise_std_mps2` instead of the
+    /// filter's own (`GP-KF`'s white mode, which lets a well-read object turn).
+    pub(crate) fn predict_with_accel_noise(&mut self, dt_secs: f64, accel_noise_std_mps2: f64) {
         let dt = dt_secs;
         let mut f = Matrix6::identity();
         f[(0, 2)] = dt;
@@ -153,7 +159,7 @@ impl ConstantVelocityKalman {
             .map_or(1.0, |(_, persistence_secs)| (-dt / persistence_secs).exp());
         f[(4, 4)] = decay;
         f[(5, 5)] = decay;
-        let q_var = self.params.accel_noise_std_mps2.powi(2);
+        let q_var = accel_noise_std_mps2.powi(2);
         let (q_pp, q_pv, q_vv) = (
             dt.powi(4) / 4.0 * q_var,
             dt.powi(3) / 2.0 * q_var,

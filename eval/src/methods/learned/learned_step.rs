@@ -3,8 +3,10 @@
 //!
 //! - `GP-KF`: the `KF-AUTO` tracker (its own association over all clusters) whose filters also
 //!   measure the GP's merged heading and speed as a velocity with its covariance (thesis 3.1.4,
-//!   [`VelocityMeasurement`]); a track reports from the first scan it took a GP measurement, so
-//!   it needs no two-point initiation.
+//!   [`VelocityMeasurement`]); a track is started from the first scan's GP reading and reports
+//!   once its heading's standard deviation (the IMM mixture's) is within 12.5°, half the
+//!   thesis' 25° bar ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of hits
+//!   (a cluster the moving classifier calls moving gets the track's motion from the first scan).
 //! - `GP-ICP`: `ICP-AUTO`'s nearest-centroid association, ICP started from the GP's motion over
 //!   the interval as well as from the centroid alignment; the alignment that pairs more points
 //!   (beyond 5 %), else the one with the smaller residual, wins. Point-to-point ICP stops in the
@@ -27,7 +29,7 @@ use crate::methods::baselines::rigid_motion::{
     RigidMotion, icp_rigid_motion, icp_rigid_motion_from,
 };
 use crate::methods::baselines::track_filter::TrackFilter;
-use crate::methods::baselines::tracker::{MultiTargetTracker, TrackStatus};
+use crate::methods::baselines::tracker::MultiTargetTracker;
 use crate::methods::baselines::velocity_measurement::{GpVelocityNoise, VelocityMeasurement};
 use crate::methods::estimate::MotionEstimate;
 use crate::methods::method::Method;
@@ -130,9 +132,11 @@ impl LearnedTrackers {
                     return Some(at_rest(heading));
                 }
                 let track = self.tracker.track((*id)?)?;
-                let trusted =
-                    track.status == TrackStatus::Confirmed || track.filter.velocity_updates() > 0;
-                trusted
+                // A track reports once its own heading uncertainty supports it. Before that, a
+                // cluster the classifier calls moving still gets the track's motion: the decision
+                // is that it moves, and no estimate would be scored as standing still.
+                let moving = of(c).moving == Some(true);
+                (moving || track.filter.heading_settled())
                     .then(|| track.filter.estimate())
                     .flatten()
                     .map(ClusterFlow::Uniform)
