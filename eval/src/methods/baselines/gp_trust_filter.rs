@@ -46,8 +46,8 @@ const TRUSTED: usize = 1;
 const UNRELIABLE: usize = 2;
 
 /// The largest heading standard deviation with which a GP-KF track reports its motion: half the
-/// 25° within which the thesis counts a heading as found (4.4), so that the report's ±2σ
-/// interval lies inside that bar.
+/// 25° bar a heading estimate is held to (README; the thesis' real-data heading errors all lie
+/// under it, Tables 4.6-4.14), so that the report's ±2σ interval lies inside that bar.
 pub const MAX_REPORTED_HEADING_STD_DEG: f64 = 12.5;
 
 /// The white mode's acceleration noise once the track has GP readings, m/s²: about half a g, the
