@@ -14,7 +14,8 @@
 //! times the samples (`pls20+x3`; each sample count is its own importance draw, as `bench`
 //! draws it: a set's samples are in dataset order, so the first N of a larger draw would hold
 //! only the first tracks' samples); `top<CM>` and `bot<CM>` move the height slice's top and
-//! bottom edge to CM centimetres above the ground (`top85`), each its own draw.
+//! bottom edge to CM centimetres above the ground (`top85`), and `cell<CM>` sets the map cell to
+//! CM centimetres (`cell20`: the 11 × 11 patches then reach twice as far), each its own draw.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -52,6 +53,9 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
             }
             other if other.starts_with("bot") => {
                 p.features.slice_min_m = other[3..].parse::<f64>()? / 100.0;
+            }
+            other if other.starts_with("cell") => {
+                p.features.cell_m = other[4..].parse::<f64>()? / 100.0;
             }
             other if other.starts_with("pls") => p.projection_dims = other[3..].parse()?,
             other if other.starts_with('x') => factor = other[1..].parse()?,
