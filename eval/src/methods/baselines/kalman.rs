@@ -80,6 +80,27 @@ pub struct Innovation {
 }
 
 impl Innovation {
+    /// The innovation of `residual` under `covariance` and `S⁻¹`, which the update's gain reuses;
+    /// a singular `S` is an error naming `noise`, the parameter that sets it.
+    fn with_inverse(
+        residual_m: Vector2<f64>,
+        covariance: Matrix2<f64>,
+        noise: &'static str,
+    ) -> Result<(Self, Matrix2<f64>), EvalError> {
+        let inverse = covariance
+            .try_inverse()
+            .ok_or_else(|| EvalError::BadParameter {
+                name: noise,
+                reason: "innovation covariance is singular".into(),
+            })?;
+        let innovation = Self {
+            residual_m,
+            covariance,
+            mahalanobis_sq: residual_m.dot(&(inverse * residual_m)),
+        };
+        Ok((innovation, inverse))
+    }
+
     /// `ln N(y; 0, S)`: how likely the filter found the measurement.
     pub fn log_likelihood(&self) -> f64 {
         let det = self.covariance.determinant().max(f64::MIN_POSITIVE);
@@ -182,33 +203,25 @@ impl ConstantVelocityKalman {
 
     /// The innovation of a centroid measurement against the current (predicted) state.
     pub fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
+        Ok(self.centroid_innovation(centroid_xy)?.0)
+    }
+
+    /// [`Self::innovation`] and its `S⁻¹`.
+    fn centroid_innovation(
+        &self,
+        centroid_xy: [f64; 2],
+    ) -> Result<(Innovation, Matrix2<f64>), EvalError> {
         let z = Vector2::new(centroid_xy[0], centroid_xy[1]);
-        let residual_m = z - H * self.state;
-        let covariance = H * self.covariance * H.transpose() + self.measurement_covariance();
-        let inverse = covariance
-            .try_inverse()
-            .ok_or_else(|| EvalError::BadParameter {
-                name: "KalmanParams.centroid_noise_std_m",
-                reason: "innovation covariance is singular".into(),
-            })?;
-        let mahalanobis_sq = residual_m.dot(&(inverse * residual_m));
-        Ok(Innovation {
-            residual_m,
-            covariance,
-            mahalanobis_sq,
-        })
+        Innovation::with_inverse(
+            z - H * self.state,
+            H * self.covariance * H.transpose() + self.measurement_covariance(),
+            "KalmanParams.centroid_noise_std_m",
+        )
     }
 
     /// Sensor model (eq. 3.45): correct the state with a centroid measurement.
     pub fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
-        let innovation = self.innovation(centroid_xy)?;
-        let s_inv = innovation
-            .covariance
-            .try_inverse()
-            .ok_or_else(|| EvalError::BadParameter {
-                name: "KalmanParams.centroid_noise_std_m",
-                reason: "innovation covariance is singular".into(),
-            })?;
+        let (innovation, s_inv) = self.centroid_innovation(centroid_xy)?;
         let gain: Matrix6x2<f64> = self.covariance * H.transpose() * s_inv;
         self.state += gain * innovation.residual_m;
         let i_kh = Matrix6::identity() - gain * H;
@@ -225,6 +238,14 @@ impl ConstantVelocityKalman {
         &self,
         measurement: &VelocityMeasurement,
     ) -> Result<Innovation, EvalError> {
+        Ok(self.velocity_innovation_and_inverse(measurement)?.0)
+    }
+
+    /// [`Self::velocity_innovation`] and its `S⁻¹`.
+    fn velocity_innovation_and_inverse(
+        &self,
+        measurement: &VelocityMeasurement,
+    ) -> Result<(Innovation, Matrix2<f64>), EvalError> {
         check_persistence(measurement)?;
         let prior = self.with_persistent_error_prior(measurement);
         let predicted = H_VELOCITY * prior.state;
@@ -232,16 +253,11 @@ impl ConstantVelocityKalman {
             measurement.velocity_xy_mps[0] - predicted[0],
             measurement.velocity_xy_mps[1] - predicted[1],
         );
-        let s = H_VELOCITY * prior.covariance * H_VELOCITY.transpose() + measurement.covariance;
-        let s_inv = s.try_inverse().ok_or_else(|| EvalError::BadParameter {
-            name: "VelocityMeasurement.covariance",
-            reason: "innovation covariance is singular".into(),
-        })?;
-        Ok(Innovation {
-            residual_m: residual,
-            covariance: s,
-            mahalanobis_sq: residual.dot(&(s_inv * residual)),
-        })
+        Innovation::with_inverse(
+            residual,
+            H_VELOCITY * prior.covariance * H_VELOCITY.transpose() + measurement.covariance,
+            "VelocityMeasurement.covariance",
+        )
     }
 
     /// Corrects the state with a direct velocity measurement (`GP-KF`: the GP's merged heading
@@ -252,16 +268,9 @@ impl ConstantVelocityKalman {
         &mut self,
         measurement: &VelocityMeasurement,
     ) -> Result<Innovation, EvalError> {
-        let innovation = self.velocity_innovation(measurement)?;
+        let (innovation, s_inv) = self.velocity_innovation_and_inverse(measurement)?;
         *self = self.with_persistent_error_prior(measurement);
         let h = H_VELOCITY;
-        let s_inv = innovation
-            .covariance
-            .try_inverse()
-            .ok_or_else(|| EvalError::BadParameter {
-                name: "VelocityMeasurement.covariance",
-                reason: "innovation covariance is singular".into(),
-            })?;
         let gain: Matrix6x2<f64> = self.covariance * h.transpose() * s_inv;
         self.state += gain * innovation.residual_m;
         let i_kh = Matrix6::identity() - gain * h;
