@@ -7,6 +7,8 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use patchflow_dataset::wrap_angle_rad;
+
 use crate::PlanarScan;
 use crate::occupancy_grid::{cell_of, traced_cells};
 
@@ -79,12 +81,8 @@ fn median_beam_step_rad(scan: &PlanarScan) -> f64 {
     let mut steps: Vec<f64> = scan
         .beams
         .windows(2)
-        .map(|w| {
-            let d = azimuth(&w[1]) - azimuth(&w[0]);
-            // Wrapped into [−π, π): beams either side of ±180° are neighbours too.
-            (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
-        })
-        .map(f64::abs)
+        // Wrapped into [−π, π): beams either side of ±180° are neighbours too.
+        .map(|w| wrap_angle_rad(azimuth(&w[1]) - azimuth(&w[0])).abs())
         .filter(|d| *d > 1e-9)
         .collect();
     if steps.is_empty() {
