@@ -21,7 +21,7 @@ use crate::methods::baselines::baseline_method::run_all_baselines;
 use crate::methods::baselines::baseline_params::BaselineParams;
 use crate::methods::estimate::MotionEstimate;
 use crate::methods::estimate::to_estimate;
-use crate::methods::learned::learned_target::LearnedTargetTrackers;
+use crate::methods::learned::learned_target::{LearnedTargetTrackers, tracked_estimator};
 use crate::methods::method::Method;
 use crate::methods::observation::ScanObservation;
 use crate::pipeline::dataset_evaluation::sequences_to_evaluate;
@@ -118,7 +118,7 @@ fn evaluate_target(
     let mut methods: Vec<BTreeMap<Method, Vec<Option<MotionEstimate>>>> =
         vec![BTreeMap::new(); runs.len()];
     let mut observations: Vec<ScanObservation> = Vec::new();
-    // Per scan: the target's moving decision; per run and scan: its first GP's ALL estimate.
+    // Per scan: the target's moving decision; per run and scan: its tracked GP's ALL estimate.
     let mut target_moving: Vec<Option<bool>> = Vec::new();
     let mut target_all: Vec<Vec<Option<MotionEstimate>>> = vec![Vec::new(); runs.len()];
     let mut belief = MovingBelief::default();
@@ -155,15 +155,17 @@ fn evaluate_target(
             observations.push(observation);
         }
         let runs_and_columns = runs.iter().zip(&group_of).zip(&mut methods);
-        for (((run, groups), columns), first_all) in runs_and_columns.zip(&mut target_all) {
+        for (((run, groups), columns), tracked_all) in runs_and_columns.zip(&mut target_all) {
+            // GP-KF and GP-ICP read the estimator the whole evaluation gives them.
+            let tracked = tracked_estimator(run.iter().map(MotionEstimator::gp_kind));
             for (i, (estimator, &group)) in run.iter().zip(groups).enumerate() {
                 let own = &scan.features[group];
                 let estimate = match target_cluster(own, &scan.sweep) {
                     Some(c) => estimator.estimate_cluster(own, own.clusters().members(c))?,
                     None => ClusterEstimate::default(),
                 };
-                if i == 0 {
-                    first_all.push(estimate.all.map(to_estimate));
+                if i == tracked {
+                    tracked_all.push(estimate.all.map(to_estimate));
                 }
                 for (rule, motion) in [
                     (MergeRule::All, estimate.all),
@@ -192,9 +194,9 @@ fn evaluate_target(
     // Thesis 3.2: the baselines, run once; they do not learn, so every run gets the same.
     if let Some(params) = baselines {
         let estimates = run_all_baselines(&name, &observations, params)?;
-        for (columns, first_all) in methods.iter_mut().zip(&target_all) {
+        for (columns, tracked_all) in methods.iter_mut().zip(&target_all) {
             columns.extend(estimates.clone());
-            columns.extend(learned_targets(&observations, first_all, params)?);
+            columns.extend(learned_targets(&observations, tracked_all, params)?);
         }
     }
     let results = methods
@@ -301,5 +303,59 @@ mod tests {
                 .iter()
                 .any(Option::is_some)
         );
+    }
+
+    #[test]
+    fn gp_kf_and_gp_icp_read_the_spgp_het_estimator_when_spgp_is_listed_first() {
+        let dir = tempfile::tempdir().unwrap();
+        // The tiny scene for a second: long enough for GP-KF's track to report.
+        let tiny =
+            include_str!("../../../scenarios/tiny.toml").replace("sweeps = 3", "sweeps = 10");
+        let scenario = dir.path().join("longer.toml");
+        std::fs::write(&scenario, tiny).unwrap();
+        let options = GenerateOptions {
+            out: dir.path().join("data"),
+            seed: 5,
+            shard: Shard::ALL,
+            overwrite: false,
+            realism: None,
+        };
+        generate_dataset(&[ScenarioSource::File(scenario)], &options, &|_| {}).unwrap();
+        let dataset = Dataset::open(&dir.path().join("data")).unwrap();
+        let trained = |gp| {
+            let params = EstimatorParams {
+                gp,
+                samples: 40,
+                pseudo_inputs: 5,
+                max_iters: 10,
+                ..EstimatorParams::default()
+            };
+            MotionEstimator::train(&dataset, &params).unwrap()
+        };
+        let (spgp, het) = (trained(GpKind::Spgp), trained(GpKind::SpgpHet));
+        let gp_icp = |estimators: &[MotionEstimator]| {
+            let whole = evaluate_dataset(
+                &dataset,
+                estimators,
+                &BaselineParams::default(),
+                None,
+                &|| {},
+            )
+            .unwrap();
+            let alone = evaluate_targets_with_baselines(
+                &dataset,
+                estimators,
+                &BaselineParams::default(),
+                None,
+            )
+            .unwrap();
+            assert_eq!(alone.situations, whole.situations);
+            let column = |m: Method| whole.situations[0].methods[&m].clone();
+            (column(Method::GpKf), column(Method::GpIcp))
+        };
+        let both = gp_icp(&[spgp.clone(), het.clone()]);
+        assert!(both.0.iter().any(Option::is_some), "GP-KF reports");
+        assert_eq!(both, gp_icp(&[het]));
+        assert_ne!(both, gp_icp(&[spgp]), "the two GPs read the target alike");
     }
 }

@@ -17,7 +17,7 @@ use crate::methods::baselines::baseline_step::BaselineTrackers;
 use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
 use crate::methods::estimate::to_estimate;
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
-use crate::methods::learned::learned_target::LearnedTargetTrackers;
+use crate::methods::learned::learned_target::{LearnedTargetTrackers, tracked_estimator};
 use crate::methods::learned::plausible_motion::{implausible_estimate, implausible_motion};
 use crate::methods::method::Method;
 use crate::scene::cpu_time::process_cpu_secs;
@@ -63,7 +63,8 @@ struct Trackers {
 /// Evaluates every estimator and baseline on one sequence. Scan `k` of the result is sweep
 /// `k + 1`: the first sweep has no predecessor, so no difference map and no estimate. With a
 /// moving classifier, the `+MOS` readouts, GP-KF and GP-ICP take its moving/static decision.
-/// GP-KF and GP-ICP read the first estimator's merged (ALL) estimates.
+/// GP-KF and GP-ICP read the merged (ALL) estimates of the SPGP-HET estimator among those sharing
+/// the first one's maps, else of the first ([`tracked_estimator`]).
 ///
 /// The whole-scene scores use the estimators trained with the first estimator's feature
 /// parameters (they share its maps and clusters); an estimator trained with other parameters
@@ -95,6 +96,16 @@ pub fn evaluate_sequence(
         };
         group_of.push(group);
     }
+    // GP-KF's and GP-ICP's estimator, among those sharing the first one's maps.
+    let shared: Vec<usize> = (0..estimators.len())
+        .filter(|&k| group_of[k] == 0)
+        .collect();
+    let tracked = shared
+        .get(tracked_estimator(
+            shared.iter().map(|&k| estimators[k].gp_kind()),
+        ))
+        .copied()
+        .unwrap_or(0);
     let has_target = sequence.len() >= 2 && sequence.read_sweep(0)?.target().is_some();
     let mut trackers = Trackers {
         baselines: BaselineTrackers::new(&name, baselines)?,
@@ -129,7 +140,12 @@ pub fn evaluate_sequence(
             &scan,
             (cpu_start, change_secs),
             dt,
-            (estimators, &group_of, moving_now),
+            &ScanModels {
+                estimators,
+                group_of: &group_of,
+                tracked,
+                moving: moving_now,
+            },
             has_target.then_some(&name),
             &mut trackers,
             &mut scores,
@@ -171,25 +187,40 @@ pub fn evaluate_sequence(
     })
 }
 
+/// What evaluates a scan: the estimators, each one's feature group (0: the first estimator's
+/// maps, which the whole scene uses), the one GP-KF and GP-ICP read, and the moving classifier
+/// with the change it reads.
+#[derive(Clone, Copy)]
+struct ScanModels<'a> {
+    estimators: &'a [MotionEstimator],
+    group_of: &'a [usize],
+    tracked: usize,
+    moving: Option<(&'a MovingClassifier, &'a ChangeEvidence)>,
+}
+
 /// One scan: the estimators' whole-scan step, the target's estimate, the baselines, the scores.
 fn evaluate_scan(
     scan: &FeaturedSweep,
     (cpu_start, change_secs): (Option<f64>, f64),
     dt_secs: f64,
-    (estimators, group_of, moving): (
-        &[MotionEstimator],
-        &[usize],
-        Option<(&MovingClassifier, &ChangeEvidence)>,
-    ),
+    models: &ScanModels,
     situation: Option<&String>,
     trackers: &mut Trackers,
     scores: &mut Scores,
 ) -> Result<(), EvalError> {
+    let ScanModels {
+        estimators,
+        group_of,
+        tracked,
+        moving,
+    } = *models;
     let features = &scan.features[0];
     let mut timing = ScanTiming::with_features(features.timing());
     // Thesis Algorithm 3.1, steps 3 and 4, on the whole scan, per estimator sharing these maps.
     let mut motions = Vec::new();
     let mut learned_cpu = None; // features and the first estimator's step, then issue 27's stages
+    // GP-KF's and GP-ICP's estimator among these: those before it in the list share its maps.
+    let tracked_motion = group_of[..tracked].iter().filter(|g| **g == 0).count();
     for (estimator, _) in estimators.iter().zip(group_of).filter(|(_, g)| **g == 0) {
         let motion = estimator.estimate_features(features)?;
         learned_cpu = learned_cpu.or(cpu_start.zip(process_cpu_secs()).map(|(a, b)| b - a));
@@ -259,11 +290,11 @@ fn evaluate_scan(
     let start = Instant::now();
     let baseline = trackers.baselines.step(observation.clone(), &wanted)?;
     timing.baselines_secs = start.elapsed().as_secs_f64();
-    // GP-KF on every cluster, GP-ICP where ICP-AUTO runs, from the first estimator's ALL.
+    // GP-KF on every cluster, GP-ICP where ICP-AUTO runs, from the tracked estimator's ALL.
     let learned: Vec<LearnedCluster> = (0..features.clusters().len())
         .map(|c| LearnedCluster {
             gp: motions
-                .first()
+                .get(tracked_motion)
                 .and_then(|(_, m)| m.clusters[c].and_then(|e| e.all))
                 .map(to_estimate),
             moving: decisions[c],
@@ -312,7 +343,7 @@ fn evaluate_scan(
             .and_then(|c| decisions.get(c).copied().flatten());
         push_target_estimates(
             &mut scores.target_estimates,
-            target_gp,
+            (target_gp, tracked),
             (moving.is_some(), target_moving),
             &mut trackers.target,
             &observation,

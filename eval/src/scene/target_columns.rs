@@ -18,17 +18,17 @@ use crate::methods::observation::ScanObservation;
 pub(crate) type TargetColumns = BTreeMap<Method, Vec<Option<MotionEstimate>>>;
 
 /// Appends one scan's estimates of the target to `columns`. `target_gp`: each estimator's estimate
-/// of the target's cluster; `target_moving`: the moving classifier's decision on it, when
-/// `with_classifier`.
+/// of the target's cluster, GP-KF and GP-ICP reading the one at `tracked`; `target_moving`: the
+/// moving classifier's decision on it, when `with_classifier`.
 pub(crate) fn push_target_estimates(
     columns: &mut TargetColumns,
-    target_gp: Vec<(GpKind, ClusterEstimate)>,
+    (target_gp, tracked): (Vec<(GpKind, ClusterEstimate)>, usize),
     (with_classifier, target_moving): (bool, Option<bool>),
     target_trackers: &mut LearnedTargetTrackers,
     observation: &ScanObservation,
     baseline: &BaselineScan,
 ) -> Result<(), EvalError> {
-    let target_gp_all = target_gp.first().and_then(|(_, e)| e.all);
+    let target_gp_all = target_gp.get(tracked).and_then(|(_, e)| e.all);
     for (kind, estimate) in target_gp {
         for (rule, motion) in [
             (patchflow_learn::MergeRule::All, estimate.all),

@@ -10,6 +10,8 @@
 
 use std::collections::BTreeMap;
 
+use patchflow_learn::GpKind;
+
 use crate::error::EvalError;
 use crate::methods::baselines::baseline_params::BaselineParams;
 use crate::methods::baselines::velocity_measurement::GpVelocityNoise;
@@ -17,6 +19,16 @@ use crate::methods::estimate::MotionEstimate;
 use crate::methods::learned::learned_step::{LearnedCluster, LearnedTrackers};
 use crate::methods::method::Method;
 use crate::methods::observation::ScanObservation;
+
+/// Which estimator GP-KF and GP-ICP read, of estimators of these GP kinds: the first SPGP-HET
+/// one (the thesis' estimator, whose `SPGP-HET-ALL` rows their bounds are set against), else
+/// the first. `bench` trains SPGP and SPGP-HET side by side, SPGP first.
+pub fn tracked_estimator(kinds: impl IntoIterator<Item = GpKind>) -> usize {
+    kinds
+        .into_iter()
+        .position(|k| k == GpKind::SpgpHet)
+        .unwrap_or(0)
+}
 
 /// GP-KF's and GP-ICP's state for one situation's target.
 #[derive(Debug)]
@@ -64,6 +76,14 @@ impl LearnedTargetTrackers {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_learned_trackers_read_the_spgp_het_estimator_wherever_it_stands() {
+        assert_eq!(tracked_estimator([GpKind::Spgp, GpKind::SpgpHet]), 1);
+        assert_eq!(tracked_estimator([GpKind::SpgpHet, GpKind::Spgp]), 0);
+        assert_eq!(tracked_estimator([GpKind::Spgp]), 0);
+        assert_eq!(tracked_estimator([]), 0);
+    }
     use crate::methods::observation::{ActorCluster, ClusterObservation};
 
     /// Scan `k`: the target, an L-shaped car outline driving +x at 8 m/s, and a parked car.
