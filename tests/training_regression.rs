@@ -142,17 +142,18 @@ fn check_held_out(scene: &str, params: &EstimatorParams, bounds: (f64, f64)) {
 
 /// Bounds of the default estimator's held-out errors (heading °, speed m/s) on `ideal` and
 /// `urban` with its per-vehicle fleet (seed 5, 400 training and 200 test samples, 20
-/// pseudo-inputs, 60 iterations). Measured 2026-12-03 with the height slice under the belt line
-/// (0.5-0.85 m, `BELOW_BELT_SLICE_M`): 74.64°/1.774 m/s on `ideal`, 67.72°/1.738 m/s on
-/// `urban`; with the previous 0.5-1.0 m slice 48.61°/1.209 and 78.75°/1.624 (55.59°/1.136
-/// without the fleet); with a 0.35-0.85 m slice 29.56°/1.150 and 79.07°/1.733. This small
-/// one-sided scene's per-sample heading swings by tens of degrees with the slice while the
-/// thesis preset's stays at 16-25°, so these bounds catch a broken model, not a worse one; on
-/// the situations' targets the lower top gains on every seed (docs/estimator.md). Which part of
+/// pseudo-inputs, 60 iterations). Measured 2026-12-04 with the default's patches on maps of
+/// 0.20 m cells (`WIDE_PATCH_CELL_M`): 70.24°/2.036 m/s on `ideal`, 48.15°/2.022 m/s on
+/// `urban`; with the thesis' 0.10 m patches (stop 41's default) 74.64°/1.774 and 67.72°/1.738;
+/// with the previous 0.5-1.0 m slice 48.61°/1.209 and 78.75°/1.624 (55.59°/1.136 without the
+/// fleet); with a 0.35-0.85 m slice 29.56°/1.150 and 79.07°/1.733. This small one-sided scene's
+/// per-sample heading swings by tens of degrees with the slice while the thesis preset's stays
+/// at 16-25°, so these bounds catch a broken model, not a worse one; on the situations' targets
+/// the lower top and the wider patches gain on every seed (docs/estimator.md). Which part of
 /// the default makes it so fragile here is not measured (the most-likely noise GP's refit on
 /// 400 samples is one suspect). Held-out samples are drawn ones only, no mirror images.
-const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (80.0, 1.92);
-const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (73.0, 1.88);
+const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (76.0, 2.19);
+const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (54.0, 2.17);
 /// The thesis preset's (its 0.5-1.0 m slice): measured 16.24°/1.008 m/s on `ideal`,
 /// 25.07°/1.231 m/s on `urban` (21.11°/0.418 m/s without the fleet).
 const THESIS_HELD_OUT_IDEAL: (f64, f64) = (18.5, 1.15);

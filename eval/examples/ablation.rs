@@ -14,8 +14,10 @@
 //! times the samples (`pls20+x3`; each sample count is its own importance draw, as `bench`
 //! draws it: a set's samples are in dataset order, so the first N of a larger draw would hold
 //! only the first tracks' samples); `top<CM>` and `bot<CM>` move the height slice's top and
-//! bottom edge to CM centimetres above the ground (`top85`), and `cell<CM>` sets the map cell to
-//! CM centimetres (`cell20`: the 11 × 11 patches then reach twice as far), each its own draw.
+//! bottom edge to CM centimetres above the ground (`top85`), `cell<CM>` sets the cell of the maps
+//! the patches sample to CM centimetres (`cell10`: the thesis' 1.1 m patches on the maps
+//! themselves; `cell20`, the default: 2.2 m patches on maps of their own) and `maps<CM>` the
+//! cell of the maps themselves (the clusters' cells), each its own draw.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -55,6 +57,9 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
                 p.features.slice_min_m = other[3..].parse::<f64>()? / 100.0;
             }
             other if other.starts_with("cell") => {
+                p.features.patch_cell_m = other[4..].parse::<f64>()? / 100.0;
+            }
+            other if other.starts_with("maps") => {
                 p.features.cell_m = other[4..].parse::<f64>()? / 100.0;
             }
             other if other.starts_with("pls") => p.projection_dims = other[3..].parse()?,

@@ -59,7 +59,7 @@ mod timing;
 pub use error::{LearnError, Result};
 
 // ── Parameters (thesis defaults, 4.3) ───────────────────────────────────────────────────────
-pub use estimator::{BELOW_BELT_SLICE_M, EstimatorParams, EstimatorValidParams};
+pub use estimator::{BELOW_BELT_SLICE_M, EstimatorParams, EstimatorValidParams, WIDE_PATCH_CELL_M};
 pub use features::{FeatureParams, FeatureValidParams, GaborParams, GroundMode};
 
 // ── One sweep's features (thesis Chapter 2) ─────────────────────────────────────────────────

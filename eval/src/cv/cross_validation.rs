@@ -83,7 +83,7 @@ pub fn cross_validate_samples(
         }
         let feature_params = FeatureParams::with_prior(prior);
         let folds = fold_assignment(set.samples.len(), params.folds, params.seed);
-        let gabor = GaborBank::new(&feature_params.gabor, feature_params.cell_m);
+        let gabor = GaborBank::new(&feature_params.gabor, feature_params.patch_cell_m);
         let mirrored = params.mirror_images.then(|| set.mirror_images());
         for feature in [CvFeature::Patch, CvFeature::Gabor] {
             let fold_data = |set: &SampleSet| -> Result<FoldData, EvalError> {

@@ -20,9 +20,11 @@ pub enum StudyFactor {
     Rate,
     /// The lidar's channel count; each point trains and evaluates on its own data.
     Channels,
-    /// The map cell size (thesis 4.3: 0.10 m) with the patch kept at 11 × 11 cells, so the patch
-    /// side follows the cell (0.55, 1.1, 2.2 m): finer maps and smaller patches (thesis Ch. 6).
-    /// Each point samples, trains and evaluates on its own features of the same sweeps.
+    /// The cell of the maps the patches sample (thesis 4.3: 0.10 m, the maps' own) with the patch
+    /// kept at 11 × 11 cells, so the patch side follows the cell (0.55, 1.1, 2.2 m): finer maps
+    /// and smaller patches (thesis Ch. 6). The clusters and the moving classifier keep their
+    /// 0.10 m maps. Each point samples, trains and evaluates on its own features of the same
+    /// sweeps.
     Cell,
 }
 
@@ -124,7 +126,8 @@ impl StudyFactor {
     }
 }
 
-/// Map cell sizes of the cell study, metres: half, once and twice the thesis' 0.10 m (4.3). With
+/// Patch-map cell sizes of the cell study, metres: half, once and twice the thesis' 0.10 m (4.3)
+/// (the default's is 0.20 m, `patchflow_learn::WIDE_PATCH_CELL_M`). With
 /// 11 × 11 cells the patch sides are 0.55, 1.1 and 2.2 m, and the thesis' range of detectable
 /// speeds at 10 Hz (2-10 m/s for 0.10 m cells, 4.3) scales with the cell: 1-5 and 4-20 m/s.
 pub const CELL_SIZES_M: [f64; 3] = [0.05, 0.10, 0.20];
@@ -233,7 +236,7 @@ mod tests {
         assert_eq!(cells, CELL_SIZES_M);
         assert!(points.iter().all(|p| p.train.data_key() == "default"));
         assert_eq!(points[0].train.key(), "0.05m");
-        assert_eq!(points[2].evaluate.features().cell_m, 0.2);
+        assert_eq!(points[2].evaluate.features().patch_cell_m, 0.2);
         assert_eq!(points[1].label, "0.10 m");
     }
 

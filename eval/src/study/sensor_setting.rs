@@ -14,7 +14,8 @@ pub struct SensorSetting {
     pub rate_hz: Option<f64>,
     /// Lidar channels.
     pub channels: Option<u32>,
-    /// Map cell size of the features, metres (not a change of the data: the sweeps are shared).
+    /// Cell size of the maps the estimator's patches sample, metres (not a change of the data:
+    /// the sweeps are shared; the clusters and the moving classifier keep their maps).
     pub cell_m: Option<f64>,
 }
 
@@ -35,12 +36,12 @@ impl SensorSetting {
     }
 
     /// The feature parameters of this setting: the default estimator's (its slice under the belt
-    /// line, not the thesis preset's) with this setting's cell size, so a study's default point
-    /// is the model `bench` trains.
+    /// line, not the thesis preset's) with this setting's patch cell size, so a study's default
+    /// point is the model `bench` trains.
     pub fn features(&self) -> FeatureParams {
         let defaults = EstimatorParams::default().features;
         FeatureParams {
-            cell_m: self.cell_m.unwrap_or(defaults.cell_m),
+            patch_cell_m: self.cell_m.unwrap_or(defaults.patch_cell_m),
             ..defaults
         }
     }
@@ -83,9 +84,10 @@ mod tests {
         }
         .features();
         assert_eq!(
-            (cell.slice_min_m, cell.slice_max_m, cell.cell_m),
+            (cell.slice_min_m, cell.slice_max_m, cell.patch_cell_m),
             (default.slice_min_m, default.slice_max_m, 0.2)
         );
+        assert_eq!(cell.cell_m, default.cell_m);
         assert_ne!(cell.slice_max_m, FeatureParams::default().slice_max_m);
     }
 }

@@ -20,6 +20,6 @@ pub use feature_matrix::rows_to_matrix;
 pub use kmeans::kmeans;
 pub use merge::{Gaussian, MergeRule, MergedHeading};
 pub use motion_estimator::{MotionEstimator, TrainingRecord};
-pub use params::{BELOW_BELT_SLICE_M, EstimatorParams, EstimatorValidParams};
+pub use params::{BELOW_BELT_SLICE_M, EstimatorParams, EstimatorValidParams, WIDE_PATCH_CELL_M};
 pub use projection::Projection;
 pub use regressor::{NoiseModel, Regressor};

@@ -63,6 +63,10 @@ struct FeatureRecord {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     ground: Option<String>,
     cell_m: f64,
+    /// [`FeatureParams::patch_cell_m`]; absent in files written before the patches had maps of
+    /// their own, whose patches sampled the maps themselves (`cell_m`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    patch_cell_m: Option<f64>,
     half_extent_m: f64,
     prior: f64,
     spread: f64,
@@ -80,6 +84,7 @@ impl From<&FeatureParams> for FeatureRecord {
             slice_max_m: p.slice_max_m,
             ground: Some(p.ground.name().to_owned()),
             cell_m: p.cell_m,
+            patch_cell_m: Some(p.patch_cell_m),
             half_extent_m: p.half_extent_m,
             prior: p.prior,
             spread: p.spread,
@@ -99,6 +104,7 @@ impl From<FeatureRecord> for FeatureParams {
             slice_max_m: r.slice_max_m,
             ground: GroundMode::Flat, // set from the version by `ground_of`
             cell_m: r.cell_m,
+            patch_cell_m: r.patch_cell_m.unwrap_or(r.cell_m),
             half_extent_m: r.half_extent_m,
             prior: r.prior,
             spread: r.spread,

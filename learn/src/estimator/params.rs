@@ -18,6 +18,7 @@ use crate::{FeatureKind, FeatureParams, FeatureValidParams, GpKind, LearnError, 
 /// | [`Self::projection_dims`] | 0 (raw 242 values) | 0 |
 /// | [`Self::most_likely_noise`] | no | yes |
 /// | `features.slice_min_m` … `slice_max_m` | 0.5 … 1.0 m | [`BELOW_BELT_SLICE_M`]: 0.5 … 0.85 m |
+/// | `features.patch_cell_m` | 0.10 m (the maps' own cells) | [`WIDE_PATCH_CELL_M`]: 0.20 m |
 #[derive(Debug, Clone, PartialEq)]
 pub struct EstimatorParams {
     /// GP used for all three regressions (sin, cos of the relative heading; speed).
@@ -64,6 +65,14 @@ pub struct EstimatorParams {
 /// arches) to the slice. Measured in docs/estimator.md, "The height slice under the belt line".
 pub const BELOW_BELT_SLICE_M: (f64, f64) = (0.5, 0.85);
 
+/// The default's patch cell (metres): the 11 × 11 patches sample maps of 0.20 m cells built
+/// for them, so a patch reaches 2.2 m, while the clusters' cells and the moving classifier keep
+/// the thesis' 0.10 m maps. The thesis sizes its training speeds to 2-10 m/s (3.1.2): at 10 Hz a
+/// car moves up to 1 m between sweeps, which a 1.1 m patch centred on a point cannot hold with
+/// both the cells it left and the ones it entered; a 2.2 m patch holds them up to 20 m/s.
+/// Measured in docs/estimator.md, "Patches on maps of their own".
+pub const WIDE_PATCH_CELL_M: f64 = 0.20;
+
 impl Default for EstimatorParams {
     fn default() -> Self {
         Self {
@@ -72,6 +81,7 @@ impl Default for EstimatorParams {
             features: FeatureParams {
                 slice_min_m: BELOW_BELT_SLICE_M.0,
                 slice_max_m: BELOW_BELT_SLICE_M.1,
+                patch_cell_m: WIDE_PATCH_CELL_M,
                 ..FeatureParams::default()
             },
             samples: 1600,
@@ -191,16 +201,19 @@ mod tests {
     }
 
     #[test]
-    fn the_thesis_preset_keeps_the_thesis_slice_and_every_other_feature_setting() {
+    fn the_thesis_preset_keeps_the_thesis_slice_and_patches_and_every_other_feature_setting() {
         let thesis = EstimatorParams::thesis().features;
         let default = EstimatorParams::default().features;
         assert_eq!((thesis.slice_min_m, thesis.slice_max_m), (0.5, 1.0));
+        assert_eq!((thesis.cell_m, thesis.patch_cell_m), (0.10, 0.10));
+        assert_eq!(default.patch_cell_m, WIDE_PATCH_CELL_M);
         assert_eq!(
             thesis,
             FeatureParams {
                 slice_min_m: 0.5,
                 slice_max_m: 1.0,
                 speed_jitter_deg: 0.0,
+                patch_cell_m: default.cell_m,
                 ..default
             }
         );

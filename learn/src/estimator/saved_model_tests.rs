@@ -61,3 +61,21 @@ fn a_model_file_of_another_version_is_refused_naming_the_file() {
         "{err}"
     );
 }
+
+#[test]
+fn a_model_file_without_a_patch_cell_reads_its_patches_from_the_maps_themselves() {
+    let dir = tempfile::tempdir().unwrap();
+    let estimator = quick_estimator(dir.path());
+    let path = dir.path().join("model.json");
+    estimator.save(&path).unwrap();
+    // A file written before the patches had maps of their own.
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let features = json["features"].as_object_mut().unwrap();
+    assert!(features.remove("patch_cell_m").is_some());
+    features.insert("cell_m".into(), serde_json::json!(0.2));
+    std::fs::write(&path, serde_json::to_vec(&json).unwrap()).unwrap();
+    let loaded = MotionEstimator::load(&path).unwrap();
+    assert_eq!(loaded.feature_params().patch_cell_m, 0.2);
+    assert!(!loaded.feature_params().has_patch_maps());
+}

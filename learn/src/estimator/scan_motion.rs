@@ -47,7 +47,7 @@ impl MotionEstimator {
         let hypotheses = features.object_hypotheses();
         let samples: Vec<CellSamples> = hypotheses
             .iter()
-            .map(|&c| features.cell_samples(features.clusters().members(c)))
+            .map(|&c| features.patch_cell_samples(features.clusters().members(c)))
             .collect();
         let positions: Vec<&[[f64; 2]]> = samples.iter().map(|s| &s.positions[..]).collect();
         let hypotheses_secs = start.elapsed().as_secs_f64();

@@ -20,8 +20,16 @@ pub struct FeatureParams {
     /// Which ground the slice is measured from: the world plane z = 0 (the thesis' flat road) or
     /// the ground estimated from each sweep (the thesis' future work, 6).
     pub ground: GroundMode,
-    /// Side of a map cell, metres (thesis 4.3: 0.10 m).
+    /// Side of a map cell, metres (thesis 4.3: 0.10 m): the maps the clusters' cells, the
+    /// moving classifier and the map views read.
     pub cell_m: f64,
+    /// Side of a cell of the maps the motion patches sample, metres. The thesis samples its
+    /// 11 × 11 patches from the maps themselves (`cell_m`, so 1.1 m patches); a larger value
+    /// builds a second, coarser pair of maps for the patches alone, whose 11 × 11 samples then
+    /// reach further (0.20 m: 2.2 m, what a car at 10 m/s covers between two 10 Hz sweeps
+    /// with its own length of margin). The estimator predicts once per occupied cell of these
+    /// maps.
+    pub patch_cell_m: f64,
     /// Half the side of the square map window centred on the ego sensor, metres. 40 m covers the
     /// thesis' usable range ("about 40 to 50 metres", 4.1) and gives 800 × 800 cells.
     pub half_extent_m: f64,
@@ -55,6 +63,7 @@ impl Default for FeatureParams {
             slice_max_m: 1.0,
             ground: GroundMode::Estimated,
             cell_m: 0.10,
+            patch_cell_m: 0.10,
             half_extent_m: 40.0,
             prior: 0.5,
             spread: 1.0 / 6.0,
@@ -80,6 +89,36 @@ impl FeatureParams {
         GridWindow::centred(sensor_xy, self.half_extent_m, self.cell_m)
     }
 
+    /// The window of the maps the patches sample: [`Self::map_window`] with cells of
+    /// `patch_cell_m` (the same window when both cells are equal).
+    pub fn patch_window(&self, sensor_xy: [f64; 2]) -> GridWindow {
+        GridWindow::centred(sensor_xy, self.half_extent_m, self.patch_cell_m)
+    }
+
+    /// Whether the patches sample maps of their own ([`Self::patch_cell_m`] differs from
+    /// [`Self::cell_m`]).
+    pub fn has_patch_maps(&self) -> bool {
+        self.patch_cell_m != self.cell_m
+    }
+
+    /// These parameters with the patch cell as the map cell: the maps of a pipeline that needs
+    /// only patches (the training sampler) are the patch maps.
+    pub fn patch_only(&self) -> Self {
+        Self {
+            cell_m: self.patch_cell_m,
+            ..self.clone()
+        }
+    }
+
+    /// These parameters without patch maps of their own (the patch cell set to the map cell):
+    /// for a pipeline that reads the maps but no patches (the moving classifier).
+    pub fn without_patch_maps(&self) -> Self {
+        Self {
+            patch_cell_m: self.cell_m,
+            ..self.clone()
+        }
+    }
+
     /// Cells along a side of the map window.
     pub fn map_side_cells(&self) -> f64 {
         (2.0 * self.half_extent_m / self.cell_m).ceil()
@@ -101,6 +140,7 @@ impl FeatureParams {
             self.slice_min_m,
             self.slice_max_m,
             self.cell_m,
+            self.patch_cell_m,
             self.half_extent_m,
             self.prior,
             self.spread,
@@ -121,18 +161,25 @@ impl FeatureParams {
                 self.cell_m
             ));
         }
+        if !(0.01..=2.0).contains(&self.patch_cell_m) {
+            return bad(&format!(
+                "patch_cell_m = {} m is outside 0.01 to 2 m (the thesis samples its patches from the maps themselves: patch_cell_m = cell_m = 0.10 m)",
+                self.patch_cell_m
+            ));
+        }
         if !(1.0..=500.0).contains(&self.half_extent_m) {
             return bad(&format!(
                 "half_extent_m = {} m is outside 1 to 500 m (maps cover at least 40 m around the ego)",
                 self.half_extent_m
             ));
         }
-        let side = self.map_side_cells();
+        let finest_m = self.cell_m.min(self.patch_cell_m);
+        let side = (2.0 * self.half_extent_m / finest_m).ceil();
         if side > MAX_MAP_SIDE_CELLS {
             let gb = |cells: f64| cells * MAP_BYTES_PER_CELL / 1e9;
             return bad(&format!(
-                "cell_m = {} m and half_extent_m = {} m give maps of {side:.0} × {side:.0} cells, about {:.1} GB per sweep pair; at most {MAX_MAP_SIDE_CELLS} cells a side ({:.2} GB)",
-                self.cell_m,
+                "cells of {} m and half_extent_m = {} m give maps of {side:.0} × {side:.0} cells, about {:.1} GB per sweep pair; at most {MAX_MAP_SIDE_CELLS} cells a side ({:.2} GB)",
+                finest_m,
                 self.half_extent_m,
                 gb(side * side),
                 gb(MAX_MAP_SIDE_CELLS * MAX_MAP_SIDE_CELLS)
@@ -254,6 +301,23 @@ mod tests {
         assert_eq!((p.slice_min_m, p.slice_max_m), (0.5, 1.0));
         assert_eq!(p.ground, GroundMode::Estimated);
         assert!((p.half_extent_m / p.cell_m - 400.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn patches_sample_the_maps_themselves_by_default_as_the_thesis_does() {
+        let p = FeatureParams::default();
+        assert!(!p.has_patch_maps());
+        assert_eq!(p.patch_window([3.0, 4.0]), p.map_window([3.0, 4.0]));
+    }
+
+    #[test]
+    fn a_patch_map_too_fine_for_memory_is_refused_too() {
+        let p = FeatureParams {
+            patch_cell_m: 0.011,
+            ..FeatureParams::default()
+        };
+        let err = p.validate().unwrap_err().to_string();
+        assert!(err.contains("7273 × 7273 cells"), "{err}");
     }
 
     #[test]

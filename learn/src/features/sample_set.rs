@@ -134,13 +134,15 @@ impl SampleSet {
         let total: usize = runs.iter().map(|r| r.1.len()).sum();
         let done = AtomicUsize::new(0);
         let tick = || progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+        // Training reads patches only: its maps are the patches' ones.
+        let patch_params = params.patch_only();
         let sampler = RunSampler {
             readers: &readers,
-            params,
+            params: &patch_params,
             priors: &priors,
             draws: &draw_of,
             kind,
-            gabor: GaborBank::new(&params.gabor, params.cell_m),
+            gabor: GaborBank::new(&params.gabor, params.patch_cell_m),
         };
         let empty = || (0, draws.iter().map(|_| TopN::new(n)).collect::<Vec<_>>());
         let (pool_size, kept_draws) = runs

@@ -40,6 +40,9 @@ pub struct SweepFeatures {
     points: Vec<SlicedPoint>,
     clusters: Clusters,
     maps: MapPair,
+    /// The maps the patches sample when their cells differ from the maps'
+    /// ([`FeatureParams::patch_cell_m`]); `None`: the patches sample `maps` (the thesis).
+    patch_maps: Option<MapPair>,
     gabor: GaborBank,
     params: FeatureParams,
     timing: FeatureTiming,
@@ -94,13 +97,23 @@ impl SweepFeatures {
     ) -> Result<Self> {
         let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
-        // difference; in parallel, 2.2.1: single-link clusters of the end points the maps cover.
+        // difference (and the same on the patches' coarser cells when they have their own); in
+        // parallel, 2.2.1: single-link clusters of the end points the maps cover.
         let window = params.map_window(curr_slice.sensor_xy);
         let (mut maps_secs, mut clusters_secs) = (0.0, 0.0);
-        let (maps, (points, clusters)) = rayon::join(
+        let ((maps, patch_maps), (points, clusters)) = rayon::join(
             || {
                 timed(&mut maps_secs, || {
-                    MapPair::build(prev_slice, curr_slice, window, params)
+                    let patch_maps = || {
+                        params.has_patch_maps().then(|| {
+                            let patch_window = params.patch_window(curr_slice.sensor_xy);
+                            MapPair::build(prev_slice, curr_slice, patch_window, params)
+                        })
+                    };
+                    rayon::join(
+                        || MapPair::build(prev_slice, curr_slice, window, params),
+                        patch_maps,
+                    )
                 })
             },
             || {
@@ -117,7 +130,8 @@ impl SweepFeatures {
             points,
             clusters,
             maps,
-            gabor: GaborBank::new(&params.gabor, params.cell_m),
+            patch_maps,
+            gabor: GaborBank::new(&params.gabor, params.patch_cell_m),
             params: params.params().clone(),
             timing: FeatureTiming {
                 slice_secs: 0.0,
@@ -130,7 +144,8 @@ impl SweepFeatures {
 
     /// The features of a current slice from maps built elsewhere (the training sampler builds
     /// the maps of several priors at once, on one window), without clusters: [`Self::clusters`]
-    /// is empty.
+    /// is empty. The patches sample `maps` (`params` as [`FeatureParams::patch_only`] gives
+    /// them).
     pub(crate) fn without_clusters(
         curr_slice: &HeightSlice,
         maps: MapPair,
@@ -142,6 +157,7 @@ impl SweepFeatures {
             points: points_in_window(curr_slice, maps.reflection.window()),
             clusters: Clusters::default(),
             maps,
+            patch_maps: None,
             gabor,
             params,
             timing: FeatureTiming::default(),
@@ -240,20 +256,37 @@ impl SweepFeatures {
         self.patch_at([p.x_m, p.y_m], axis_rad)
     }
 
+    /// The maps the patches sample: their own on cells of [`FeatureParams::patch_cell_m`], or
+    /// the maps themselves.
+    fn patch_source(&self) -> &MapPair {
+        self.patch_maps.as_ref().unwrap_or(&self.maps)
+    }
+
     /// Patch centred on a world position, rotated to the axis `axis_rad` (thesis 2.2.2).
     pub fn patch_at(&self, xy: [f64; 2], axis_rad: f64) -> Patch {
-        Patch::extract(&self.maps, xy, axis_rad)
+        Patch::extract(self.patch_source(), xy, axis_rad)
     }
 
     /// [`SweepFeatures::patch_at`] written into `values` (a row of a GP input buffer).
     pub fn patch_values_at(&self, xy: [f64; 2], axis_rad: f64, values: &mut [f64; PATCH_LEN]) {
-        Patch::extract_into(&self.maps, xy, axis_rad, values);
+        Patch::extract_into(self.patch_source(), xy, axis_rad, values);
     }
 
     /// The members of a cluster grouped by map cell, one sample at the mean of each cell's points
     /// (see `CellSamples`).
     pub fn cell_samples(&self, members: &[usize]) -> CellSamples {
         CellSamples::group(&self.points, members, self.maps.reflection.window())
+    }
+
+    /// The members of a cluster grouped by cell of the patches' maps (the maps' own cells unless
+    /// [`FeatureParams::patch_cell_m`] differs): where the estimator predicts, once per cell
+    /// its patches resolve.
+    pub fn patch_cell_samples(&self, members: &[usize]) -> CellSamples {
+        CellSamples::group(
+            &self.points,
+            members,
+            self.patch_source().reflection.window(),
+        )
     }
 
     /// Heading patch: aligned to the observation direction sensor → point.

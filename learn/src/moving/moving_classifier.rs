@@ -125,7 +125,8 @@ impl MovingClassifier {
         features: &FeatureParams,
         params: &MovingParams,
     ) -> Result<Self> {
-        let valid = features.check()?;
+        // The classifier reads the maps, never a patch: no patch maps are built for it.
+        let valid = features.without_patch_maps().check()?;
         let mut scans = Vec::new();
         for info in dataset.sequences() {
             scans.extend((1..info.sweeps as usize).map(|k| (info.name.clone(), k)));
