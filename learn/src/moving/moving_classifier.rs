@@ -10,6 +10,9 @@
 //! natural mix comes back in the decision threshold ([`iou_threshold`]). A cluster that is no
 //! object hypothesis (longer than any road user) is static by definition.
 
+use std::collections::BTreeMap;
+use std::collections::btree_map::Entry;
+
 use nalgebra::DMatrix;
 use patchflow_dataset::{Dataset, Sweep};
 use patchflow_gp::{GpModel, PlsParams, Squashing};
@@ -92,30 +95,41 @@ pub struct MovingClassifier {
     pub(super) moving_rows: usize,
 }
 
-/// The rows of scan `k` of a sequence: the maps of sweeps `k − 1` and `k`, the observed change
-/// since sweep `k − 5` (or the first).
-fn scan_rows(
+/// The rows of the chosen scans `ks` (increasing) of a sequence: for scan `k` the maps of sweeps
+/// `k − 1` and `k`, the observed change since sweep `k − 5` (or the first). Each sweep is read
+/// and cut once, however many of the scans need it (all of them when every scan is chosen).
+fn sequence_rows(
     sequence: &patchflow_dataset::SequenceReader,
-    k: usize,
+    ks: &[usize],
     valid: &FeatureValidParams,
 ) -> Result<Vec<MovingRow>> {
-    let current = sequence.read_sweep(k)?;
-    let cut =
-        |i: usize| -> Result<HeightSlice> { HeightSlice::cut(&sequence.read_sweep(i)?, valid) };
-    let (previous, now) = (cut(k - 1)?, HeightSlice::cut(&current, valid)?);
-    let past_index = k.saturating_sub(CHANGE_BASELINE_SCANS);
-    let past = if past_index == k - 1 {
-        previous.clone()
-    } else {
-        cut(past_index)?
-    };
-    let features = SweepFeatures::from_slices(&previous, &now, valid)?;
-    let change = ChangeEvidence::build(&past, &now, valid);
-    Ok(features
-        .object_hypotheses()
-        .into_iter()
-        .map(|c| MovingRow::of(&features, &change, &current, c))
-        .collect())
+    let mut slices: BTreeMap<usize, HeightSlice> = BTreeMap::new();
+    let mut rows = Vec::new();
+    for &k in ks {
+        let past_index = k.saturating_sub(CHANGE_BASELINE_SCANS);
+        // Sweeps before the oldest this scan needs are needed by no later one.
+        slices.retain(|&i, _| i >= past_index);
+        let current = sequence.read_sweep(k)?;
+        for i in [past_index, k - 1] {
+            if let Entry::Vacant(slot) = slices.entry(i) {
+                slot.insert(HeightSlice::cut(&sequence.read_sweep(i)?, valid)?);
+            }
+        }
+        let now = HeightSlice::cut(&current, valid)?;
+        let (Some(past), Some(previous)) = (slices.get(&past_index), slices.get(&(k - 1))) else {
+            continue; // both inserted above
+        };
+        let features = SweepFeatures::from_slices(previous, &now, valid)?;
+        let change = ChangeEvidence::build(past, &now, valid);
+        rows.extend(
+            features
+                .object_hypotheses()
+                .into_iter()
+                .map(|c| MovingRow::of(&features, &change, &current, c)),
+        );
+        slices.insert(k, now);
+    }
+    Ok(rows)
 }
 
 impl MovingClassifier {
@@ -129,15 +143,22 @@ impl MovingClassifier {
         let valid = features.without_patch_maps().check()?;
         let mut scans = Vec::new();
         for info in dataset.sequences() {
-            scans.extend((1..info.sweeps as usize).map(|k| (info.name.clone(), k)));
+            scans.extend((1..info.sweeps as usize).map(|k| (info.name.as_str(), k)));
         }
         let stride = scans.len().div_ceil(params.max_scans.max(1)).max(1);
-        let chosen: Vec<&(String, usize)> = scans.iter().step_by(stride).collect();
-        let per_scan = chosen
+        // Evenly spaced scans, grouped by sequence in dataset order.
+        let mut chosen: Vec<(&str, Vec<usize>)> = Vec::new();
+        for &(name, k) in scans.iter().step_by(stride) {
+            match chosen.last_mut() {
+                Some((last, ks)) if *last == name => ks.push(k),
+                _ => chosen.push((name, vec![k])),
+            }
+        }
+        let per_sequence = chosen
             .par_iter()
-            .map(|(name, k)| scan_rows(&dataset.sequence(name)?, *k, &valid))
+            .map(|(name, ks)| sequence_rows(&dataset.sequence(name)?, ks, &valid))
             .collect::<Result<Vec<_>>>()?;
-        Self::fit(per_scan.into_iter().flatten().collect(), params)
+        Self::fit(per_sequence.into_iter().flatten().collect(), params)
     }
 
     /// Fits the classifier to labelled clusters: at most `params.max_rows / 2` moving ones and as
