@@ -125,7 +125,7 @@ pub enum StudyChoice {
     Rate,
     /// The lidar's channel count.
     Channels,
-    /// The map cell size.
+    /// The cell size of the maps the patches sample.
     Cell,
 }
 

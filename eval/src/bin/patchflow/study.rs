@@ -18,8 +18,8 @@ const READOUT_METHODS: [Method; 3] = [Method::SpgpHetAll, Method::Kf, Method::Ic
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The study: `realism` (the five situations at each rung, trained on `urban`), `rate`
-    /// (5, 10, 20 Hz), `channels` (16, 32, 64, 128) or `cell` (map cells of 0.05, 0.10, 0.20 m;
-    /// patches of 11 × 11 cells).
+    /// (5, 10, 20 Hz), `channels` (16, 32, 64, 128) or `cell` (patch-map cells of 0.05, 0.10,
+    /// 0.20 m; patches of 11 × 11 cells).
     #[arg(value_enum)]
     pub name: StudyChoice,
     /// Output folder (default `results/study-NAME`).
