@@ -67,10 +67,10 @@ pub const BELOW_BELT_SLICE_M: (f64, f64) = (0.5, 0.85);
 
 /// The default's patch cell (metres): the 11 × 11 patches sample maps of 0.20 m cells built
 /// for them, so a patch reaches 2.2 m, while the clusters' cells and the moving classifier keep
-/// the thesis' 0.10 m maps. The thesis sizes its training speeds to 2-10 m/s (3.1.2): at 10 Hz a
-/// car moves up to 1 m between sweeps, which a 1.1 m patch centred on a point cannot hold with
-/// both the cells it left and the ones it entered; a 2.2 m patch holds them up to 20 m/s.
-/// Measured in docs/estimator.md, "Patches on maps of their own".
+/// the thesis' 0.10 m maps. By the thesis' rule (4.3) 0.10 m cells at 10 Hz detect 2-10 m/s: a
+/// car at 10 m/s moves 1 m between sweeps, so a 1.1 m patch centred on its face holds the cells
+/// it entered or the ones it left, rarely both; a 2.2 m patch holds both up to about 10 m/s and
+/// one side up to 20 m/s. Measured in docs/estimator.md, "Stop 42: patches on maps of their own".
 pub const WIDE_PATCH_CELL_M: f64 = 0.20;
 
 impl Default for EstimatorParams {

@@ -24,11 +24,11 @@ pub struct FeatureParams {
     /// moving classifier and the map views read.
     pub cell_m: f64,
     /// Side of a cell of the maps the motion patches sample, metres. The thesis samples its
-    /// 11 × 11 patches from the maps themselves (`cell_m`, so 1.1 m patches); a larger value
-    /// builds a second, coarser pair of maps for the patches alone, whose 11 × 11 samples then
-    /// reach further (0.20 m: 2.2 m, what a car at 10 m/s covers between two 10 Hz sweeps
-    /// with its own length of margin). The estimator predicts once per occupied cell of these
-    /// maps.
+    /// 11 × 11 patches from the maps themselves (`cell_m`, so 1.1 m patches); another value
+    /// builds a second pair of maps for the patches alone, whose 11 × 11 samples then reach
+    /// further (0.20 m cells: 2.2 m patches, by the thesis' rule of 2-10 m/s for 0.10 m cells
+    /// at 10 Hz, 4.3, the motion of 4-20 m/s). The estimator predicts once per occupied cell of
+    /// these maps.
     pub patch_cell_m: f64,
     /// Half the side of the square map window centred on the ego sensor, metres. 40 m covers the
     /// thesis' usable range ("about 40 to 50 metres", 4.1) and gives 800 × 800 cells.
