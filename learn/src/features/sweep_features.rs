@@ -97,7 +97,7 @@ impl SweepFeatures {
     ) -> Result<Self> {
         let start = Instant::now();
         // 2.1.1 and 2.1.2, Eq. 2.8-2.9: both reflection maps on the current window, their
-        // difference (and the same on the patches' coarser cells when they have their own); in
+        // difference (and the same on the patches' own cells when they differ); in
         // parallel, 2.2.1: single-link clusters of the end points the maps cover.
         let window = params.map_window(curr_slice.sensor_xy);
         let (mut maps_secs, mut clusters_secs) = (0.0, 0.0);
