@@ -48,7 +48,7 @@ enum Command {
     Score(score::Args),
     /// The main job: generate, train, cross-validate and evaluate on embedded defaults.
     Bench(bench::Args),
-    /// A study: one factor (realism rung, lidar rate, channels, map cell size) varied, every method scored at each point.
+    /// A study: one factor (realism rung, lidar rate, channels, patch-map cell size) varied, every method scored at each point.
     Study(study::Args),
     /// Occupancy maps (grid, GPOM) of planar-scanner sequences, scored by ROC AUC against exact truth.
     Occupancy(occupancy::Args),

@@ -1,5 +1,5 @@
-//! `patchflow study NAME`: one factor varied (realism rung, lidar rate, channels, map cell size),
-//! everything else fixed and seeded, by the library's study driver
+//! `patchflow study NAME`: one factor varied (realism rung, lidar rate, channels, patch-map cell
+//! size), everything else fixed and seeded, by the library's study driver
 //! ([`patchflow_eval::run_study`]); `--shard I/N` runs every N-th point, `--merge` joins the
 //! shards' points into `study.json`.
 
