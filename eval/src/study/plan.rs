@@ -1,5 +1,5 @@
 //! What a study runs (issue #10): one varied factor (the realism rung, the lidar rate, its
-//! channels, the map cell size), its points in sorted order, and everything else fixed and
+//! channels, the patch-map cell size), its points in sorted order, and everything else fixed and
 //! seeded: the training tracks, the situations, samples, pseudo-inputs, iterations and the seed
 //! of the benchmark.
 
