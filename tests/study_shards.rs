@@ -1,7 +1,7 @@
 //! A study sharded into two halves and merged writes the same `study.json` bytes as the study
 //! run whole (issue #10), on a tiny scene: two rates, each trained and evaluated on its own data;
-//! and two patch-map cell sizes, each sampled, trained and evaluated on its own features of the same
-//! sweeps.
+//! and two patch-map cell sizes, each sampled, trained and evaluated on its own features of the
+//! same sweeps.
 
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
