@@ -333,7 +333,7 @@ mod tests {
             MotionEstimator::train(&dataset, &params).unwrap()
         };
         let (spgp, het) = (trained(GpKind::Spgp), trained(GpKind::SpgpHet));
-        let gp_icp = |estimators: &[MotionEstimator]| {
+        let trackers = |estimators: &[MotionEstimator]| {
             let whole = evaluate_dataset(
                 &dataset,
                 estimators,
@@ -353,9 +353,9 @@ mod tests {
             let column = |m: Method| whole.situations[0].methods[&m].clone();
             (column(Method::GpKf), column(Method::GpIcp))
         };
-        let both = gp_icp(&[spgp.clone(), het.clone()]);
+        let both = trackers(&[spgp.clone(), het.clone()]);
         assert!(both.0.iter().any(Option::is_some), "GP-KF reports");
-        assert_eq!(both, gp_icp(&[het]));
-        assert_ne!(both, gp_icp(&[spgp]), "the two GPs read the target alike");
+        assert_eq!(both, trackers(&[het]));
+        assert_ne!(both, trackers(&[spgp]), "the two GPs read the target alike");
     }
 }

@@ -76,6 +76,7 @@ impl LearnedTargetTrackers {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::methods::observation::{ActorCluster, ClusterObservation};
 
     #[test]
     fn the_learned_trackers_read_the_spgp_het_estimator_wherever_it_stands() {
@@ -84,7 +85,6 @@ mod tests {
         assert_eq!(tracked_estimator([GpKind::Spgp]), 0);
         assert_eq!(tracked_estimator([]), 0);
     }
-    use crate::methods::observation::{ActorCluster, ClusterObservation};
 
     /// Scan `k`: the target, an L-shaped car outline driving +x at 8 m/s, and a parked car.
     fn scan(k: usize) -> ScanObservation {
