@@ -242,28 +242,40 @@ mod tests {
     use crate::methods::baselines::baseline_params::BaselineParams;
     use crate::pipeline::dataset_evaluation::evaluate_dataset;
 
-    #[test]
-    fn the_target_alone_gets_the_same_gp_estimates_as_the_whole_evaluation() {
-        let dir = tempfile::tempdir().unwrap();
-        let tiny = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
+    /// `scenarios/tiny.toml` with `sweeps` sweeps, generated (seed 5) under `dir`.
+    fn tiny_dataset(dir: &std::path::Path, sweeps: u32) -> Dataset {
+        let text = include_str!("../../../scenarios/tiny.toml")
+            .replace("sweeps = 3", &format!("sweeps = {sweeps}"));
+        let scenario = dir.join("tiny.toml");
+        std::fs::write(&scenario, text).unwrap();
         let options = GenerateOptions {
-            out: dir.path().to_owned(),
+            out: dir.join("data"),
             seed: 5,
             shard: Shard::ALL,
             overwrite: false,
             realism: None,
         };
-        generate_dataset(&[ScenarioSource::File(tiny.into())], &options, &|_| {}).unwrap();
-        let dataset = Dataset::open(dir.path()).unwrap();
+        generate_dataset(&[ScenarioSource::File(scenario)], &options, &|_| {}).unwrap();
+        Dataset::open(&dir.join("data")).unwrap()
+    }
+
+    /// A GP of kind `gp` trained at the smallest sizes on `dataset`.
+    fn tiny_estimator(dataset: &Dataset, gp: GpKind) -> MotionEstimator {
         let params = EstimatorParams {
-            gp: GpKind::Spgp,
+            gp,
             samples: 40,
             pseudo_inputs: 5,
             max_iters: 10,
             ..EstimatorParams::default()
         };
-        let estimator = MotionEstimator::train(&dataset, &params).unwrap();
-        let estimators = [estimator];
+        MotionEstimator::train(dataset, &params).unwrap()
+    }
+
+    #[test]
+    fn the_target_alone_gets_the_same_gp_estimates_as_the_whole_evaluation() {
+        let dir = tempfile::tempdir().unwrap();
+        let dataset = tiny_dataset(dir.path(), 3);
+        let estimators = [tiny_estimator(&dataset, GpKind::Spgp)];
         let whole = evaluate_dataset(
             &dataset,
             &estimators,
@@ -309,30 +321,11 @@ mod tests {
     fn gp_kf_and_gp_icp_read_the_spgp_het_estimator_when_spgp_is_listed_first() {
         let dir = tempfile::tempdir().unwrap();
         // The tiny scene for a second: long enough for GP-KF's track to report.
-        let tiny =
-            include_str!("../../../scenarios/tiny.toml").replace("sweeps = 3", "sweeps = 10");
-        let scenario = dir.path().join("longer.toml");
-        std::fs::write(&scenario, tiny).unwrap();
-        let options = GenerateOptions {
-            out: dir.path().join("data"),
-            seed: 5,
-            shard: Shard::ALL,
-            overwrite: false,
-            realism: None,
-        };
-        generate_dataset(&[ScenarioSource::File(scenario)], &options, &|_| {}).unwrap();
-        let dataset = Dataset::open(&dir.path().join("data")).unwrap();
-        let trained = |gp| {
-            let params = EstimatorParams {
-                gp,
-                samples: 40,
-                pseudo_inputs: 5,
-                max_iters: 10,
-                ..EstimatorParams::default()
-            };
-            MotionEstimator::train(&dataset, &params).unwrap()
-        };
-        let (spgp, het) = (trained(GpKind::Spgp), trained(GpKind::SpgpHet));
+        let dataset = tiny_dataset(dir.path(), 10);
+        let (spgp, het) = (
+            tiny_estimator(&dataset, GpKind::Spgp),
+            tiny_estimator(&dataset, GpKind::SpgpHet),
+        );
         let trackers = |estimators: &[MotionEstimator]| {
             let whole = evaluate_dataset(
                 &dataset,
