@@ -9,7 +9,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::Material;
-use super::clearance::Clearance;
+use super::clearance::{Clearance, ItemExtent};
 use super::piece::Piece;
 use super::street_furniture::SideBuilder;
 use crate::seed::sub_seed;
@@ -61,6 +61,11 @@ impl SideBuilder<'_> {
             };
             let end = (s + rng.random_range(4.0..12.0)).min(to);
             let across = self.side * (w + band + SETBACK_M + thickness / 2.0);
+            let wall_sample = ItemExtent {
+                half_along_m: SAMPLE_M / 2.0,
+                half_across_m: thickness / 2.0,
+                yaw_rad: self.street.yaw_rad(),
+            };
             let shade = rng.random_range(0.0..1.0);
             // Maximal runs of free samples between s and end (checked before any is occupied,
             // so a run does not block itself).
@@ -68,8 +73,8 @@ impl SideBuilder<'_> {
                 .map(|k| {
                     let t = s + k as f64 * SAMPLE_M;
                     let p = self.street.point_at(t, across);
-                    let free = off_streets(p)
-                        && clearance.is_free(p, SAMPLE_M / 2.0, thickness / 2.0, 0.3);
+                    let free =
+                        off_streets(p) && clearance.is_free(p, SAMPLE_M / 2.0, wall_sample, 0.3);
                     (t, p, free)
                 })
                 .collect();

@@ -173,7 +173,8 @@ impl SideBuilder<'_> {
                 }
                 let p = self.street.point_at(s, self.side * across);
                 let radius = item.radius_m();
-                if !clearance.is_free(p, radius, item.lateral_m(), 0.3) {
+                let body = item.body(self.street.yaw_rad());
+                if !clearance.is_free(p, radius, body, 0.3) {
                     continue;
                 }
                 let base = f64::from(self.field.height_at(p[0] as f32, p[1] as f32));

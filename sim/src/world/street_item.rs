@@ -8,6 +8,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::Material;
 use super::body_shapes::parked_car_parts;
+use super::clearance::ItemExtent;
 use super::piece::{Piece, PieceShape};
 use crate::scenario::VehicleBody;
 
@@ -168,12 +169,40 @@ impl Item {
         }
     }
 
-    /// Half width across a driver's corridor, metres (a parked car lies along the street).
-    pub(super) fn lateral_m(self) -> f64 {
+    /// What must keep off a road user's corridor, for an item along a street of yaw `yaw_rad`:
+    /// a parked car, a bench or a cabinet with its length along the street and its width across;
+    /// a tree with its trunk (its crown overhangs the corridor); anything else with its radius.
+    pub(super) fn body(self, yaw_rad: f64) -> ItemExtent {
+        let along = |half_across_m| ItemExtent {
+            half_along_m: self.radius_m(),
+            half_across_m,
+            yaw_rad,
+        };
         match self {
-            Self::ParkedCar => 1.0,
-            Self::Tree | Self::Bench | Self::Cabinet => 0.3,
-            other => other.radius_m(),
+            Self::ParkedCar => along(1.0),
+            Self::Bench | Self::Cabinet => along(0.3),
+            Self::Tree => ItemExtent::disc(0.3),
+            other => ItemExtent::disc(other.radius_m()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_items_lie_along_the_street_and_a_tree_keeps_only_its_trunk_off_a_corridor() {
+        let yaw = 0.4;
+        for item in [Item::ParkedCar, Item::Bench, Item::Cabinet] {
+            let body = item.body(yaw);
+            assert_eq!((body.half_along_m, body.yaw_rad), (item.radius_m(), yaw));
+            assert!(body.half_across_m < body.half_along_m, "{item:?}");
+        }
+        assert_eq!(Item::Tree.body(yaw), ItemExtent::disc(0.3));
+        assert_eq!(
+            Item::Bush.body(yaw),
+            ItemExtent::disc(Item::Bush.radius_m())
+        );
     }
 }

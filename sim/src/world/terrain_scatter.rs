@@ -7,7 +7,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::Material;
-use super::clearance::Clearance;
+use super::clearance::{Clearance, ItemExtent};
 use super::ground_field::{GroundField, GroundMaterial};
 use super::piece::{Piece, PieceShape};
 
@@ -40,7 +40,7 @@ pub(crate) fn scatter(
             }
             let p = [f64::from(x), f64::from(y)];
             let radius = if tree { 0.8 } else { 1.0 };
-            if !clearance.is_free(p, radius, radius, 0.5) {
+            if !clearance.is_free(p, radius, ItemExtent::disc(radius), 0.5) {
                 continue;
             }
             clearance.occupy(p, radius);
