@@ -8,6 +8,8 @@
 //! `cargo run --release -p patchflow-learn --example moving_check -- BENCH_OUT` (`SEED`,
 //! `MAX_ROWS`, `MAX_SCANS` override the training parameters; `BELIEF=γ` smooths the
 //! probabilities along the clusters' tracks, `TARGET=1` prints the target's per scan).
+//! `SEEDS=s1,…` adds one classifier per further draw and averages their probabilities (bagging),
+//! decided at the mean of their thresholds.
 //! `MEMORIES=γ1,γ2,… SPLIT=train|situations [THRESHOLDS=t1,…]` instead scores every memory (and
 //! threshold) in one pass over the split: how `BELIEF_MEMORY` was chosen on the training tracks.
 
@@ -51,11 +53,27 @@ fn main() -> Result<(), Failure> {
         "fitted on {rows} clusters ({moving_rows} moving); threshold {:.2}",
         classifier.threshold()
     );
+    // SEEDS=s1,s2,… also fits one classifier per further draw and averages every classifier's
+    // probability per cluster (bagging over draws), deciding at the mean of their thresholds.
+    let mut bag = vec![classifier];
+    for seed in std::env::var("SEEDS").unwrap_or_default().split(',') {
+        if let Ok(seed) = seed.trim().parse::<u64>() {
+            let draw = MovingParams {
+                seed,
+                ..moving_params
+            };
+            let member = MovingClassifier::train(&train, &params, &draw)?;
+            println!("draw {seed}: threshold {:.2}", member.threshold());
+            bag.push(member);
+        }
+    }
+    let threshold = bag.iter().map(MovingClassifier::threshold).sum::<f64>() / bag.len() as f64;
+    let classifier = &bag[0];
     if let Ok(list) = std::env::var("MEMORIES") {
         let memories: Vec<f64> = list.split(',').filter_map(|v| v.parse().ok()).collect();
         let split = std::env::var("SPLIT").unwrap_or_else(|_| "situations".into());
         return sweep_memories(
-            &classifier,
+            classifier,
             &root.join("data").join(split),
             &params,
             &memories,
@@ -77,7 +95,16 @@ fn main() -> Result<(), Failure> {
         while let Some((_, sweep)) = stream.read_next()? {
             let features = stream.features_of(&sweep)?.remove(0);
             let change = ChangeEvidence::of_stream(&stream).ok_or("no slice")?;
-            let probabilities = classifier.cluster_probabilities(&features, &change)?;
+            let mut probabilities = classifier.cluster_probabilities(&features, &change)?;
+            for member in &bag[1..] {
+                let more = member.cluster_probabilities(&features, &change)?;
+                for (p, q) in probabilities.iter_mut().zip(more) {
+                    *p = p.zip(q).map(|(p, q)| p + q);
+                }
+            }
+            for p in probabilities.iter_mut().flatten() {
+                *p /= bag.len() as f64;
+            }
             let probabilities = belief.update_features(&features, &probabilities, sweep.stamp_secs);
             if std::env::var("TARGET").is_ok()
                 && let Some(target) = sweep.target()
@@ -103,7 +130,7 @@ fn main() -> Result<(), Failure> {
                 let moving = members.iter().filter(|&&i| truly(i)).count() as u64;
                 let total = members.len() as u64;
                 moving_total += moving;
-                let decided = p.is_some_and(|p| p > classifier.threshold());
+                let decided = p.is_some_and(|p| p > threshold);
                 if decided {
                     (tp, fp) = (tp + moving, fp + total - moving);
                 } else {
@@ -126,10 +153,10 @@ fn main() -> Result<(), Failure> {
         let fp: u64 = scored.iter().filter(|s| s.0 > t).map(|s| s.2).sum();
         (tp, fp)
     };
-    let (tp, fp) = at(classifier.threshold());
+    let (tp, fp) = at(threshold);
     println!(
         "all situations at {:.2}: precision {:.3} recall {:.3} IoU {:.3}",
-        classifier.threshold(),
+        threshold,
         tp as f64 / (tp + fp).max(1) as f64,
         tp as f64 / moving_total.max(1) as f64,
         tp as f64 / (moving_total + fp).max(1) as f64
@@ -142,7 +169,7 @@ fn main() -> Result<(), Failure> {
         );
     }
     let mut by_class: BTreeMap<u16, u64> = BTreeMap::new();
-    for s in scored.iter().filter(|s| s.0 > classifier.threshold()) {
+    for s in scored.iter().filter(|s| s.0 > threshold) {
         *by_class.entry(s.3).or_default() += s.2;
     }
     println!("static points called moving, by SemanticKITTI class: {by_class:?}");
