@@ -47,7 +47,8 @@ fn main() -> Result<(), Failure> {
         max_rows: env("MAX_ROWS", defaults.max_rows),
         max_scans: env("MAX_SCANS", defaults.max_scans),
     };
-    let classifier = MovingClassifier::train(&train, &params, &moving_params)?;
+    let labelled = MovingClassifier::labelled_clusters(&train, &params, &moving_params)?;
+    let classifier = MovingClassifier::fit(labelled.clone(), &moving_params)?;
     let (rows, moving_rows) = classifier.training_rows();
     println!(
         "fitted on {rows} clusters ({moving_rows} moving); threshold {:.2}",
@@ -56,13 +57,19 @@ fn main() -> Result<(), Failure> {
     // SEEDS=s1,s2,… also fits one classifier per further draw and averages every classifier's
     // probability per cluster (bagging over draws), deciding at the mean of their thresholds.
     let mut bag = vec![classifier];
-    for seed in std::env::var("SEEDS").unwrap_or_default().split(',') {
+    let seeds = std::env::var("SEEDS").unwrap_or_default();
+    if !seeds.is_empty() && std::env::var("MEMORIES").is_ok() {
+        return Err(
+            "SEEDS and MEMORIES do not combine: the memory sweep reads one classifier".into(),
+        );
+    }
+    for seed in seeds.split(',') {
         if let Ok(seed) = seed.trim().parse::<u64>() {
             let draw = MovingParams {
                 seed,
                 ..moving_params
             };
-            let member = MovingClassifier::train(&train, &params, &draw)?;
+            let member = MovingClassifier::fit(labelled.clone(), &draw)?;
             println!("draw {seed}: threshold {:.2}", member.threshold());
             bag.push(member);
         }

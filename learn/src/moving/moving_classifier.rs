@@ -139,6 +139,17 @@ impl MovingClassifier {
         features: &FeatureParams,
         params: &MovingParams,
     ) -> Result<Self> {
+        Self::fit(Self::labelled_clusters(dataset, features, params)?, params)
+    }
+
+    /// The labelled clusters [`Self::train`] fits on: those of at most `params.max_scans` scans
+    /// evenly spaced over every sequence of `dataset`, read with the maps of `features`. Fitting
+    /// them with [`Self::fit`] under several seeds compares draws without reading the maps again.
+    pub fn labelled_clusters(
+        dataset: &Dataset,
+        features: &FeatureParams,
+        params: &MovingParams,
+    ) -> Result<Vec<MovingRow>> {
         // The classifier reads the maps, never a patch: no patch maps are built for it.
         let valid = features.without_patch_maps().check()?;
         let mut scans = Vec::new();
@@ -158,7 +169,7 @@ impl MovingClassifier {
             .par_iter()
             .map(|(name, ks)| sequence_rows(&dataset.sequence(name)?, ks, &valid))
             .collect::<Result<Vec<_>>>()?;
-        Self::fit(per_sequence.into_iter().flatten().collect(), params)
+        Ok(per_sequence.into_iter().flatten().collect())
     }
 
     /// Fits the classifier to labelled clusters: at most `params.max_rows / 2` moving ones and as
