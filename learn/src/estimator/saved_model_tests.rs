@@ -4,12 +4,18 @@
 use super::tests::{estimate_for, quick_estimator, small_params, write_dataset};
 use super::*;
 
+/// The quick estimator, saved as `model.json` in `dir`.
+fn saved_quick_estimator(dir: &std::path::Path) -> (MotionEstimator, std::path::PathBuf) {
+    let estimator = quick_estimator(dir);
+    let path = dir.join("model.json");
+    estimator.save(&path).unwrap();
+    (estimator, path)
+}
+
 #[test]
 fn a_saved_model_loads_and_predicts_identically() {
     let dir = tempfile::tempdir().unwrap();
-    let estimator = quick_estimator(dir.path());
-    let path = dir.path().join("model.json");
-    estimator.save(&path).unwrap();
+    let (estimator, path) = saved_quick_estimator(dir.path());
     let loaded = MotionEstimator::load(&path).unwrap();
     assert_eq!(loaded.feature_params(), estimator.feature_params());
     assert_eq!(
@@ -65,9 +71,7 @@ fn a_model_file_of_another_version_is_refused_naming_the_file() {
 #[test]
 fn a_model_file_without_a_patch_cell_reads_its_patches_from_the_maps_themselves() {
     let dir = tempfile::tempdir().unwrap();
-    let estimator = quick_estimator(dir.path());
-    let path = dir.path().join("model.json");
-    estimator.save(&path).unwrap();
+    let (_, path) = saved_quick_estimator(dir.path());
     // A file written before the patches had maps of their own.
     let mut json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
