@@ -1,15 +1,14 @@
 //! How well the moving/static classifier segments the situations' scans (issue 27): trains it on
-//! the training tracks of a `bench --keep-data` folder (as `bench` does, seed 7), then scores per
+//! the training tracks of a `bench --keep-data` folder (as `bench` does: seed 7, the default
+//! estimator's maps), then scores per
 //! point on every situation, as LiDAR-MOS does (every sliced point of every scan; a point is
 //! predicted moving when its cluster is an object hypothesis decided moving): the moving class's
 //! precision, recall and IoU at the classifier's own threshold, the IoU at other thresholds, and
 //! the static points called moving by their SemanticKITTI class.
 //!
 //! `cargo run --release -p patchflow-learn --example moving_check -- BENCH_OUT` (`SEED`,
-//! `MAX_ROWS`, `MAX_SCANS` override the training parameters; `BELIEF=γ` smooths the
+//! `MAX_ROWS`, `MAX_SCANS`, `DRAWS` override the training parameters; `BELIEF=γ` smooths the
 //! probabilities along the clusters' tracks, `TARGET=1` prints the target's per scan).
-//! `SEEDS=s1,…` adds one classifier per further draw and averages their probabilities (bagging),
-//! decided at the mean of their thresholds.
 //! `MEMORIES=γ1,γ2,… SPLIT=train|situations [THRESHOLDS=t1,…]` instead scores every memory (and
 //! threshold) in one pass over the split: how `BELIEF_MEMORY` was chosen on the training tracks.
 
@@ -18,8 +17,8 @@ use std::path::PathBuf;
 
 use patchflow_dataset::Dataset;
 use patchflow_learn::{
-    ChangeEvidence, FeatureParams, MOVING_SPEED_MPS, MovingBelief, MovingClassifier, MovingParams,
-    ScanStream,
+    ChangeEvidence, EstimatorParams, FeatureParams, MOVING_SPEED_MPS, MovingBelief,
+    MovingClassifier, MovingParams, ScanStream,
 };
 
 type Failure = Box<dyn std::error::Error>;
@@ -33,7 +32,8 @@ fn main() -> Result<(), Failure> {
             .nth(1)
             .ok_or("usage: moving_check BENCH_OUT")?,
     );
-    let params = FeatureParams::default();
+    // The maps `bench` trains and runs the classifier on: the default estimator's.
+    let params = EstimatorParams::default().features;
     let train = Dataset::open(&root.join("data/train"))?;
     let env = |name: &str, default: usize| {
         std::env::var(name)
@@ -46,36 +46,17 @@ fn main() -> Result<(), Failure> {
         seed: env("SEED", 7) as u64,
         max_rows: env("MAX_ROWS", defaults.max_rows),
         max_scans: env("MAX_SCANS", defaults.max_scans),
+        draws: env("DRAWS", defaults.draws),
     };
     let labelled = MovingClassifier::labelled_clusters(&train, &params, &moving_params)?;
-    let classifier = MovingClassifier::fit(labelled.clone(), &moving_params)?;
-    let (rows, moving_rows) = classifier.training_rows();
+    let classifier = &MovingClassifier::fit(labelled, &moving_params)?;
     println!(
-        "fitted on {rows} clusters ({moving_rows} moving); threshold {:.2}",
+        "fitted {} draws of (clusters, moving) {:?}; threshold {:.2}",
+        moving_params.draws,
+        classifier.training_rows(),
         classifier.threshold()
     );
-    // SEEDS=s1,s2,… also fits one classifier per further draw and averages every classifier's
-    // probability per cluster (bagging over draws), deciding at the mean of their thresholds.
-    let mut bag = vec![classifier];
-    let seeds = std::env::var("SEEDS").unwrap_or_default();
-    if !seeds.is_empty() && std::env::var("MEMORIES").is_ok() {
-        return Err(
-            "SEEDS and MEMORIES do not combine: the memory sweep reads one classifier".into(),
-        );
-    }
-    for seed in seeds.split(',') {
-        if let Ok(seed) = seed.trim().parse::<u64>() {
-            let draw = MovingParams {
-                seed,
-                ..moving_params
-            };
-            let member = MovingClassifier::fit(labelled.clone(), &draw)?;
-            println!("draw {seed}: threshold {:.2}", member.threshold());
-            bag.push(member);
-        }
-    }
-    let threshold = bag.iter().map(MovingClassifier::threshold).sum::<f64>() / bag.len() as f64;
-    let classifier = &bag[0];
+    let threshold = classifier.threshold();
     if let Ok(list) = std::env::var("MEMORIES") {
         let memories: Vec<f64> = list.split(',').filter_map(|v| v.parse().ok()).collect();
         let split = std::env::var("SPLIT").unwrap_or_else(|_| "situations".into());
@@ -102,16 +83,7 @@ fn main() -> Result<(), Failure> {
         while let Some((_, sweep)) = stream.read_next()? {
             let features = stream.features_of(&sweep)?.remove(0);
             let change = ChangeEvidence::of_stream(&stream).ok_or("no slice")?;
-            let mut probabilities = classifier.cluster_probabilities(&features, &change)?;
-            for member in &bag[1..] {
-                let more = member.cluster_probabilities(&features, &change)?;
-                for (p, q) in probabilities.iter_mut().zip(more) {
-                    *p = p.zip(q).map(|(p, q)| p + q);
-                }
-            }
-            for p in probabilities.iter_mut().flatten() {
-                *p /= bag.len() as f64;
-            }
+            let probabilities = classifier.cluster_probabilities(&features, &change)?;
             let probabilities = belief.update_features(&features, &probabilities, sweep.stamp_secs);
             if std::env::var("TARGET").is_ok()
                 && let Some(target) = sweep.target()

@@ -10,7 +10,8 @@
 //! | `cluster_inputs.rs` | the classifier's inputs per cluster and the training label |
 //! | `decision_threshold.rs` | the threshold that maximises the moving IoU on the training mix |
 //! | `moving_belief.rs` | the per-scan probabilities smoothed along the clusters' own tracks |
-//! | `moving_classifier.rs` | training and the per-scan decision |
+//! | `moving_classifier.rs` | training the bag and the per-scan decision |
+//! | `moving_draw.rs` | one GP of the bag, fitted to one seeded draw of clusters |
 //! | `moving_file.rs` | the model file |
 
 mod change_evidence;
@@ -18,6 +19,7 @@ mod cluster_inputs;
 mod decision_threshold;
 mod moving_belief;
 mod moving_classifier;
+mod moving_draw;
 mod moving_file;
 
 pub use change_evidence::{CHANGE_BASELINE_SCANS, ChangeEvidence};

@@ -24,7 +24,7 @@ fn scene(speed_mps: f64, at: [f64; 2]) -> (SweepFeatures, ChangeEvidence, Sweep)
     (f, change, curr)
 }
 
-fn trained() -> MovingClassifier {
+fn training_rows() -> Vec<MovingRow> {
     let mut rows = Vec::new();
     for (k, speed) in [0.0, 4.0, 8.0, 12.0].iter().enumerate() {
         for r in [10.0, 15.0, 20.0] {
@@ -34,7 +34,11 @@ fn trained() -> MovingClassifier {
             }
         }
     }
-    MovingClassifier::fit(rows, &MovingParams::default()).unwrap()
+    rows
+}
+
+fn trained() -> MovingClassifier {
+    MovingClassifier::fit(training_rows(), &MovingParams::default()).unwrap()
 }
 
 #[test]
@@ -124,10 +128,94 @@ fn a_file_of_another_format_or_version_is_refused_with_its_path() {
     let classifier = trained();
     classifier.save(&path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    std::fs::write(&path, text.replace("\"version\":2", "\"version\":1")).unwrap();
+    std::fs::write(&path, text.replace("\"version\":3", "\"version\":1")).unwrap();
     let err = MovingClassifier::load(&path).unwrap_err().to_string();
     assert!(
         err.contains("version 1") && err.contains("retrain"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_bag_reads_the_mean_of_its_draws_probabilities() {
+    let params = MovingParams {
+        max_rows: 16,
+        ..MovingParams::default()
+    };
+    let bag = MovingClassifier::fit(training_rows(), &params).unwrap();
+    assert_eq!(bag.training_rows().len(), 3);
+    let (f, change, _) = scene(6.0, [12.0, 3.0]);
+    let mut mean = vec![0.0; f.clusters().len()];
+    for k in 0..3 {
+        let one = MovingParams {
+            draws: 1,
+            seed: params.seed + k,
+            ..params
+        };
+        let draw = MovingClassifier::fit(training_rows(), &one).unwrap();
+        for (m, p) in mean
+            .iter_mut()
+            .zip(draw.cluster_probabilities(&f, &change).unwrap())
+        {
+            *m += p.unwrap_or(0.0) / 3.0;
+        }
+    }
+    let probabilities = bag.cluster_probabilities(&f, &change).unwrap();
+    for c in f.object_hypotheses() {
+        let p = probabilities[c].unwrap();
+        assert!(
+            (p - mean[c]).abs() < 1e-12,
+            "cluster {c}: {p} against {}",
+            mean[c]
+        );
+    }
+}
+
+#[test]
+fn a_version_2_file_reads_as_a_bag_of_one() {
+    let one = MovingClassifier::fit(
+        training_rows(),
+        &MovingParams {
+            draws: 1,
+            ..MovingParams::default()
+        },
+    )
+    .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(MOVING_FILE_NAME);
+    one.save(&path).unwrap();
+    // Version 2 kept the one GP's fields beside the threshold.
+    let mut value: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    let draw = value["draws"][0].clone();
+    let file = value.as_object_mut().unwrap();
+    file.remove("draws");
+    for key in ["rows", "moving_rows", "squashing", "gp"] {
+        file.insert(key.into(), draw[key].clone());
+    }
+    file.insert("version".into(), serde_json::json!(2));
+    std::fs::write(&path, serde_json::to_vec(&value).unwrap()).unwrap();
+    let loaded = MovingClassifier::load(&path).unwrap();
+    let (f, change, _) = scene(6.0, [12.0, 3.0]);
+    assert_eq!(
+        loaded.cluster_probabilities(&f, &change).unwrap(),
+        one.cluster_probabilities(&f, &change).unwrap()
+    );
+    assert_eq!(loaded.threshold(), one.threshold());
+}
+
+#[test]
+fn a_file_with_an_empty_bag_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(MOVING_FILE_NAME);
+    trained().save(&path).unwrap();
+    let mut value: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    value["draws"] = serde_json::json!([]);
+    std::fs::write(&path, serde_json::to_vec(&value).unwrap()).unwrap();
+    let err = MovingClassifier::load(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("moving.json") && err.contains("draws"),
         "{err}"
     );
 }
