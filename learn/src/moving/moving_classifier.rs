@@ -183,9 +183,11 @@ impl MovingClassifier {
         let seeds: Vec<u64> = (0..params.draws.max(1) as u64)
             .map(|k| params.seed.wrapping_add(k))
             .collect();
+        let inputs: Vec<[f64; MOVING_INPUTS]> = rows.iter().map(|r| r.inputs).collect();
+        let moving: Vec<bool> = rows.iter().map(|r| r.moving).collect();
         let fitted = seeds
             .par_iter()
-            .map(|&seed| MovingDraw::fit(&rows, params.max_rows, seed))
+            .map(|&seed| MovingDraw::fit(&inputs, &moving, params.max_rows, seed))
             .collect::<Result<Vec<_>>>()?;
         let bag = fitted.len() as f64;
         let scored: Vec<ScoredCluster> = rows

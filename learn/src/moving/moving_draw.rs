@@ -14,7 +14,6 @@ use rand::seq::SliceRandom;
 use rand_chacha::ChaCha8Rng;
 
 use super::cluster_inputs::MOVING_INPUTS;
-use super::moving_classifier::MovingRow;
 use crate::{GpKind, GpParams, LearnError, Result};
 
 /// A GP fitted to one balanced draw of training clusters, with its squashing into probabilities.
@@ -29,19 +28,25 @@ pub(super) struct MovingDraw {
 }
 
 impl MovingDraw {
-    /// Fits the GP to at most `max_rows / 2` moving clusters of `rows` and as many static ones,
-    /// drawn uniformly with `seed`; also returns every row's held-out probability of moving:
-    /// leave-one-out (GPML eq. 5.12) for the fitted rows, a prediction for the rest.
-    pub(super) fn fit(rows: &[MovingRow], max_rows: usize, seed: u64) -> Result<(Self, Vec<f64>)> {
-        let mut order: Vec<usize> = (0..rows.len()).collect();
+    /// Fits the GP to at most `max_rows / 2` moving clusters (one row of `inputs` each, `moving`
+    /// its label) and as many static ones, drawn uniformly with `seed`; also returns every
+    /// cluster's held-out probability of moving: leave-one-out (GPML eq. 5.12) for the fitted
+    /// ones, a prediction for the rest.
+    pub(super) fn fit(
+        inputs: &[[f64; MOVING_INPUTS]],
+        moving: &[bool],
+        max_rows: usize,
+        seed: u64,
+    ) -> Result<(Self, Vec<f64>)> {
+        let mut order: Vec<usize> = (0..inputs.len()).collect();
         order.shuffle(&mut ChaCha8Rng::seed_from_u64(seed));
-        let (moving, still): (Vec<usize>, Vec<usize>) =
-            order.into_iter().partition(|&i| rows[i].moving);
+        let labels = moving;
+        let (moving, still): (Vec<usize>, Vec<usize>) = order.into_iter().partition(|&i| labels[i]);
         let n = moving.len().min(still.len()).min(max_rows.max(2) / 2);
         if n == 0 {
             return Err(LearnError::degenerate_data(format!(
                 "{} clusters, {} of them moving: the moving classifier needs both classes",
-                rows.len(),
+                inputs.len(),
                 moving.len()
             )));
         }
@@ -51,21 +56,19 @@ impl MovingDraw {
             .chain(still.iter().take(n))
             .copied()
             .collect();
-        let x = DMatrix::from_fn(fitted.len(), MOVING_INPUTS, |i, d| {
-            rows[fitted[i]].inputs[d]
-        });
-        let labels: Vec<bool> = fitted.iter().map(|&i| rows[i].moving).collect();
-        let pls = PlsParams::new(GpParams::new(GpKind::Full).seed(seed)).fit(&x, &labels)?;
+        let x = DMatrix::from_fn(fitted.len(), MOVING_INPUTS, |i, d| inputs[fitted[i]][d]);
+        let fitted_labels: Vec<bool> = fitted.iter().map(|&i| labels[i]).collect();
+        let pls = PlsParams::new(GpParams::new(GpKind::Full).seed(seed)).fit(&x, &fitted_labels)?;
         let squashing = pls.squashing();
-        let mut probability = vec![f64::NAN; rows.len()];
+        let mut probability = vec![f64::NAN; inputs.len()];
         for (k, &i) in fitted.iter().enumerate() {
             probability[i] = squashing.probability(pls.loo().mean[k], pls.loo().var_latent[k]);
         }
-        let rest: Vec<usize> = (0..rows.len())
+        let rest: Vec<usize> = (0..inputs.len())
             .filter(|i| probability[*i].is_nan())
             .collect();
         if !rest.is_empty() {
-            let x = DMatrix::from_fn(rest.len(), MOVING_INPUTS, |i, d| rows[rest[i]].inputs[d]);
+            let x = DMatrix::from_fn(rest.len(), MOVING_INPUTS, |i, d| inputs[rest[i]][d]);
             let p = pls.predict(&x)?;
             for (k, &i) in rest.iter().enumerate() {
                 probability[i] = p.probability[k];

@@ -24,7 +24,8 @@
 //! no evidence yet and the GP's reading, taken as white, is likeliest, so the filter's estimate
 //! is the GP's motion from the first scan (the mixture would give a speed between the GP's and
 //! rest there; docs/results.md). GP-KF reports it once the mixture's heading is known to within
-//! [`MAX_REPORTED_HEADING_STD_DEG`] ([`GpTrustFilter::heading_settled`]). The filter learns per
+//! [`MAX_REPORTED_HEADING_STD_DEG`] and a learned reading has been fused
+//! ([`GpTrustFilter::heading_settled`]). The filter learns per
 //! track how far the GP can be trusted from what the centroids and the GP's own consistency say;
 //! it never reads the truth.
 
@@ -87,8 +88,14 @@ impl GpTrustFilter {
     /// chance that its reading tells nothing) is at most [`MAX_REPORTED_HEADING_STD_DEG`]. A track
     /// started on one GP reading does not qualify however tight the GP says it is: the GP's
     /// stated variance is not calibrated on one scan (docs/results.md), and the persistent error
-    /// its noise model adds (20°) is wider than the bar.
+    /// its noise model adds (20°) is wider than the bar. Nor does a track that has fused no
+    /// learned reading (GP or moving classifier) however many centroids settle it: its heading is
+    /// `KF-AUTO`'s, read off a centroid that moves as the visible part of an object grows (an
+    /// oncoming truck's, read 173° off before its first GP reading, docs/estimator.md "Stop 44").
     pub fn heading_settled(&self) -> bool {
+        if self.velocity_updates() == 0 {
+            return false;
+        }
         let estimate = MotionEstimate::from_velocity_with_covariance(
             self.combined.velocity(),
             self.combined.velocity_covariance(),

@@ -243,6 +243,25 @@ fn a_track_without_gp_readings_does_not_report_on_two_centroids() {
     assert!(!filter.heading_settled());
 }
 
+#[test]
+fn a_track_without_learned_readings_does_not_report_however_many_centroids_agree() {
+    // Twenty centroids on a straight line at 8 m/s settle a centroid filter's heading, but no GP
+    // or classifier reading was fused: that is KF-AUTO's estimate, not GP-KF's.
+    let z = centroids(20, 8);
+    let mut filter = GpTrustFilter::start(z[0], KalmanParams::default()).unwrap();
+    for zk in &z[1..] {
+        TrackFilter::predict(&mut filter, DT);
+        TrackFilter::update(&mut filter, *zk).unwrap();
+    }
+    assert!(filter.estimate().is_some());
+    assert!(!filter.heading_settled());
+    // One GP reading that agrees, and the settled centroids let it report.
+    let noise = GpVelocityNoise::default();
+    let reading = VelocityMeasurement::from_heading_speed(0.0, 0.01, 8.0, 0.25, &noise);
+    filter.update_velocity(&reading).unwrap();
+    assert!(filter.heading_settled());
+}
+
 /// Heading error (degrees) of GP-KF's filter after a car at 7 m/s turns 90° left in 1.3 s (about
 /// 8 m/s² sideways), the GP reading its heading to within ±2° every scan.
 fn heading_error_after_a_turn() -> f64 {

@@ -4,10 +4,10 @@
 //! - `GP-KF`: the `KF-AUTO` tracker (its own association over all clusters) whose filters also
 //!   measure the GP's merged heading and speed as a velocity with its covariance (thesis 3.1.4,
 //!   [`VelocityMeasurement`]); a track is started from the first scan's GP reading and reports
-//!   once its heading's standard deviation (the IMM mixture's) is within 12.5°, half the 25° bar
-//!   a heading is held to ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of
-//!   hits (a cluster the moving classifier calls moving gets the track's motion from the first
-//!   scan).
+//!   once it has fused a learned reading and its heading's standard deviation (the IMM
+//!   mixture's) is within 12.5°, half the 25° bar a heading is held to
+//!   ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of hits (a cluster the
+//!   moving classifier calls moving gets the track's motion from the first scan).
 //! - `GP-ICP`: `ICP-AUTO`'s nearest-centroid association, ICP started from the GP's motion over
 //!   the interval as well as from the centroid alignment; the alignment that pairs more points
 //!   (beyond 5 %), else the one with the smaller residual, wins. Point-to-point ICP stops in the
