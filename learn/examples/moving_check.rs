@@ -1,10 +1,10 @@
 //! How well the moving/static classifier segments the situations' scans (issue 27): trains it on
 //! the training tracks of a `bench --keep-data` folder (as `bench` does: seed 7, the default
-//! estimator's maps), then scores per
-//! point on every situation, as LiDAR-MOS does (every sliced point of every scan; a point is
-//! predicted moving when its cluster is an object hypothesis decided moving): the moving class's
-//! precision, recall and IoU at the classifier's own threshold, the IoU at other thresholds, and
-//! the static points called moving by their SemanticKITTI class.
+//! estimator's maps), then scores per point on every situation, as LiDAR-MOS does (every sliced
+//! point of every scan; a point is predicted moving when its cluster is an object hypothesis
+//! decided moving): the moving class's precision, recall and IoU at the classifier's own
+//! threshold, the IoU at other thresholds, and the static points called moving by their
+//! SemanticKITTI class.
 //!
 //! `cargo run --release -p patchflow-learn --example moving_check -- BENCH_OUT` (`SEED`,
 //! `MAX_ROWS`, `MAX_SCANS`, `DRAWS` override the training parameters; `BELIEF=γ` smooths the

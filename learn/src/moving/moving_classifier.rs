@@ -33,8 +33,8 @@ pub struct MovingParams {
     pub max_scans: usize,
     /// Most clusters each draw's GP is fitted on.
     pub max_rows: usize,
-    /// Draws in the bag: GPs fitted on draws seeded `seed`, `seed + 1`, …, their probabilities
-    /// averaged.
+    /// Draws in the bag (at least one): GPs fitted on draws seeded `seed`, `seed + 1`, …, their
+    /// probabilities averaged.
     pub draws: usize,
     /// Seed of the first draw and its GP's initialisation.
     pub seed: u64,
@@ -45,7 +45,7 @@ impl Default for MovingParams {
         Self {
             max_scans: 500,
             // Three draws of 800 read the five situations at 0.67-0.77 moving IoU where single
-            // draws read 0.49-0.68, and three of 400 at 0.59-0.62 (docs/estimator.md, "Stop 44").
+            // draws read 0.44-0.68, and three of 400 at 0.59-0.62 (docs/estimator.md, "Stop 44").
             max_rows: 800,
             draws: 3,
             seed: 7,

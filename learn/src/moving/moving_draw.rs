@@ -28,19 +28,18 @@ pub(super) struct MovingDraw {
 }
 
 impl MovingDraw {
-    /// Fits the GP to at most `max_rows / 2` moving clusters (one row of `inputs` each, `moving`
-    /// its label) and as many static ones, drawn uniformly with `seed`; also returns every
+    /// Fits the GP to at most `max_rows / 2` moving clusters (one row of `inputs` each, `labels`
+    /// whether it moves) and as many static ones, drawn uniformly with `seed`; also returns every
     /// cluster's held-out probability of moving: leave-one-out (GPML eq. 5.12) for the fitted
     /// ones, a prediction for the rest.
     pub(super) fn fit(
         inputs: &[[f64; MOVING_INPUTS]],
-        moving: &[bool],
+        labels: &[bool],
         max_rows: usize,
         seed: u64,
     ) -> Result<(Self, Vec<f64>)> {
         let mut order: Vec<usize> = (0..inputs.len()).collect();
         order.shuffle(&mut ChaCha8Rng::seed_from_u64(seed));
-        let labels = moving;
         let (moving, still): (Vec<usize>, Vec<usize>) = order.into_iter().partition(|&i| labels[i]);
         let n = moving.len().min(still.len()).min(max_rows.max(2) / 2);
         if n == 0 {
