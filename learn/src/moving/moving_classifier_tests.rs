@@ -41,6 +41,21 @@ fn trained() -> MovingClassifier {
     MovingClassifier::fit(training_rows(), &MovingParams::default()).unwrap()
 }
 
+/// `classifier` saved as `moving.json` in a fresh folder, its JSON then changed by `edit`.
+fn saved_and_edited(
+    classifier: &MovingClassifier,
+    edit: impl FnOnce(&mut serde_json::Value),
+) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(MOVING_FILE_NAME);
+    classifier.save(&path).unwrap();
+    let mut value: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    edit(&mut value);
+    std::fs::write(&path, serde_json::to_vec(&value).unwrap()).unwrap();
+    (dir, path)
+}
+
 #[test]
 fn a_moving_car_is_decided_moving_and_a_parked_car_static() {
     let classifier = trained();
@@ -181,20 +196,16 @@ fn a_version_2_file_reads_as_a_bag_of_one() {
         },
     )
     .unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(MOVING_FILE_NAME);
-    one.save(&path).unwrap();
     // Version 2 kept the one GP's fields beside the threshold.
-    let mut value: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    let draw = value["draws"][0].clone();
-    let file = value.as_object_mut().unwrap();
-    file.remove("draws");
-    for key in ["rows", "moving_rows", "squashing", "gp"] {
-        file.insert(key.into(), draw[key].clone());
-    }
-    file.insert("version".into(), serde_json::json!(2));
-    std::fs::write(&path, serde_json::to_vec(&value).unwrap()).unwrap();
+    let (_dir, path) = saved_and_edited(&one, |value| {
+        let draw = value["draws"][0].clone();
+        let file = value.as_object_mut().unwrap();
+        file.remove("draws");
+        for key in ["rows", "moving_rows", "squashing", "gp"] {
+            file.insert(key.into(), draw[key].clone());
+        }
+        file.insert("version".into(), serde_json::json!(2));
+    });
     let loaded = MovingClassifier::load(&path).unwrap();
     let (f, change, _) = scene(6.0, [12.0, 3.0]);
     assert_eq!(
@@ -206,13 +217,9 @@ fn a_version_2_file_reads_as_a_bag_of_one() {
 
 #[test]
 fn a_file_with_an_empty_bag_is_refused() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(MOVING_FILE_NAME);
-    trained().save(&path).unwrap();
-    let mut value: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    value["draws"] = serde_json::json!([]);
-    std::fs::write(&path, serde_json::to_vec(&value).unwrap()).unwrap();
+    let (_dir, path) = saved_and_edited(&trained(), |value| {
+        value["draws"] = serde_json::json!([]);
+    });
     let err = MovingClassifier::load(&path).unwrap_err().to_string();
     assert!(
         err.contains("moving.json") && err.contains("draws"),
@@ -222,13 +229,9 @@ fn a_file_with_an_empty_bag_is_refused() {
 
 #[test]
 fn a_threshold_outside_its_range_is_refused() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(MOVING_FILE_NAME);
-    trained().save(&path).unwrap();
-    let mut value: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
-    value["threshold"] = serde_json::json!(1.5);
-    std::fs::write(&path, serde_json::to_vec(&value).unwrap()).unwrap();
+    let (_dir, path) = saved_and_edited(&trained(), |value| {
+        value["threshold"] = serde_json::json!(1.5);
+    });
     let err = MovingClassifier::load(&path).unwrap_err().to_string();
     assert!(err.contains("threshold"), "{err}");
 }
