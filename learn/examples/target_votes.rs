@@ -4,8 +4,10 @@
 //! the world heading it votes for (merge.rs's vote), the speed its patch shows along the merged
 //! ALL heading and along the true heading, and what its heading patch holds (mean and largest
 //! |difference|, the thesis' importance weight of Eq. 3.1; the share of cells at the map prior
-//! in the previous and in this sweep). Per scan: the cluster's make-up and the merged ALL / BEST
-//! estimates against the truth. A model trained with map patches (the default) is required.
+//! in the previous and in this sweep). Per scan: the cluster's make-up, the merged ALL / BEST
+//! estimates against the truth, and the share of the cluster's surroundings the previous sweep
+//! left unobserved (`SweepFeatures::unobserved_before_share`; above `MAX_UNOBSERVED_BEFORE` the
+//! cluster gets no estimate). A model trained with map patches (the default) is required.
 //!
 //! On stdout: ALL and BEST RMSE as `evaluate` scores them for the target, and the votes' accuracy
 //! per quartile of motion evidence (each scan's points ranked by the mean |difference| of their
@@ -132,7 +134,7 @@ fn main() -> Result<(), Failure> {
     let mut scans = String::from(
         "scan,range_m,true_deg,true_mps,cluster_points,target_points,other_actor_points,\
          static_points,length_m,all_deg,all_err_deg,all_mps,best_deg,best_err_deg,best_mps,\
-         best_votes,target_total,target_clusters\n",
+         best_votes,target_total,target_clusters,unobserved_before_share\n",
     );
     let (mut all, mut best, mut quartiles) =
         (Score::default(), Score::default(), Quartiles::default());
@@ -163,7 +165,7 @@ fn main() -> Result<(), Failure> {
             .into_iter()
             .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)));
         let Some((cluster, _)) = cluster else {
-            writeln!(scans, "{truth},0,0,0,0,0,,,,,,,,0,0")?;
+            writeln!(scans, "{truth},0,0,0,0,0,,,,,,,,0,0,")?;
             continue;
         };
         let members = features.clusters().members(cluster);
@@ -267,7 +269,7 @@ fn main() -> Result<(), Failure> {
         };
         writeln!(
             scans,
-            "{truth},{},{},{},{},{:.2},{},{},{},{target_total},{target_clusters}",
+            "{truth},{},{},{},{},{:.2},{},{},{},{target_total},{target_clusters},{:.3}",
             members.len(),
             owners[0],
             owners[1],
@@ -276,6 +278,7 @@ fn main() -> Result<(), Failure> {
             merged(estimate.all),
             merged(estimate.best),
             estimate.best.map_or(0, |b| b.heading_votes),
+            features.unobserved_before_share(&xy),
         )?;
     }
     let out = PathBuf::from(out);

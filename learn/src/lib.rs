@@ -74,9 +74,9 @@ pub use features::{Alignment, SampleSet, TrainingSample, importance_sample};
 
 // ── The motion estimator (thesis 3.1, Algorithm 3.1) ────────────────────────────────────────
 pub use estimator::{
-    ClusterEstimate, ClusterMotion, Gaussian, MergeRule, MergedHeading, MotionEstimator,
-    NoiseModel, PointMotion, PredictionTiming, Projection, Regressor, ScanEstimate, ScanMotion,
-    TrainingRecord, kmeans, rows_to_matrix,
+    ClusterEstimate, ClusterMotion, Gaussian, MAX_UNOBSERVED_BEFORE, MergeRule, MergedHeading,
+    MotionEstimator, NoiseModel, PointMotion, PredictionTiming, Projection, Regressor,
+    ScanEstimate, ScanMotion, TrainingRecord, kmeans, rows_to_matrix,
 };
 
 // ── Moving or static, learned (issue 27) ──────────────────────────────────────────────────

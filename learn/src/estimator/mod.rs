@@ -23,3 +23,4 @@ pub use motion_estimator::{MotionEstimator, TrainingRecord};
 pub use params::{BELOW_BELT_SLICE_M, EstimatorParams, EstimatorValidParams, WIDE_PATCH_CELL_M};
 pub use projection::Projection;
 pub use regressor::{NoiseModel, Regressor};
+pub use scan_motion::MAX_UNOBSERVED_BEFORE;

@@ -312,3 +312,43 @@ fn a_cluster_of_fewer_than_the_minimum_points_gets_no_estimate() {
         .unwrap();
     assert!(enough.all.is_some() && enough.best.is_some());
 }
+
+#[test]
+fn a_car_that_has_just_come_into_view_gets_no_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let estimator = quick_estimator(dir.path());
+    let wall = SceneBox::wall([-10.0, 0.0], 0.0, [0.4, 20.0, 2.5]);
+    let lidar = SyntheticLidar::with_resolution(64, 1800);
+    let seen = SyntheticScene {
+        boxes: vec![SceneBox::car(1, [6.0, 2.5], 0.3, 6.0), wall.clone()],
+    };
+    // In the previous sweep a wall 2 m ahead hid the car (a truck that has since driven off);
+    // then the same car seen in both sweeps.
+    let hidden = SyntheticScene {
+        boxes: vec![
+            SceneBox::car(1, [6.0, 2.5], 0.3, 6.0),
+            wall.clone(),
+            SceneBox::wall([2.0, 1.5], 0.0, [0.4, 14.0, 2.5]),
+        ],
+    };
+    let current = seen.advanced(0.1).scan(&lidar, [0.0, 0.0], 0.0, 1);
+    for (previous, expect_estimate) in [(&hidden, false), (&seen, true)] {
+        let scan = estimator
+            .estimate_scan(&previous.scan(&lidar, [0.0, 0.0], 0.0, 0), &current)
+            .unwrap();
+        let car = (0..scan.features.clusters().len())
+            .find(|&c| {
+                let first = scan.features.clusters().members(c)[0];
+                scan.features.points()[first].x_m > 0.0
+            })
+            .unwrap();
+        let members = scan.features.clusters().members(car);
+        let alone = estimator.estimate_cluster(&scan.features, members).unwrap();
+        assert_eq!(alone.all.is_some(), expect_estimate, "alone");
+        assert_eq!(
+            scan.motion.clusters[car].is_some(),
+            expect_estimate,
+            "in the scan"
+        );
+    }
+}

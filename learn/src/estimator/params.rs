@@ -7,8 +7,8 @@ use crate::{FeatureKind, FeatureParams, FeatureValidParams, GpKind, LearnError, 
 /// [`Self::thesis`] is the thesis' protocol (3.1, 4.3): SPGP-HET on 242-value map patches, prior
 /// 0.5, 1,600 importance-sampled samples, 100 free pseudo-inputs, GPs with a zero mean function.
 /// `Default` deviates from it in these fields only (docs/estimator.md has the measurements; the
-/// run-time side — ground estimate under the slice, 10-point minimum of an object hypothesis,
-/// merge eqs. 3.35-3.37 — is the same for both):
+/// run-time side — ground estimate under the slice, 10-point minimum of an object hypothesis, no
+/// estimate for one that has just come into view, merge eqs. 3.35-3.37 — is the same for both):
 ///
 /// | field | thesis | default |
 /// |---|---|---|

@@ -36,6 +36,7 @@ mod synthetic_scene;
 mod synthetic_world;
 mod top_n;
 mod training_sample;
+mod unobserved_before;
 mod valid_params;
 
 pub(crate) use cell_samples::CellSamples;

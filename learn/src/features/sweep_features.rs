@@ -258,7 +258,7 @@ impl SweepFeatures {
 
     /// The maps the patches sample: their own on cells of [`FeatureParams::patch_cell_m`], or
     /// the maps themselves.
-    fn patch_source(&self) -> &MapPair {
+    pub(super) fn patch_source(&self) -> &MapPair {
         self.patch_maps.as_ref().unwrap_or(&self.maps)
     }
 
