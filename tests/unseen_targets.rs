@@ -42,8 +42,9 @@ const TRAINING: [(&str, f64); 2] = [("train04", 12.0), ("train08", 11.0)];
 /// the car from the left read backwards (47.18°). The two checks of stop 44, a truck crossing
 /// from the right and a car overtaking at 12 m/s: 36.71°/1.053 (coverage 0.95; 41.88°/1.059 at
 /// 1.00 before a hypothesis that has just come into view went without an estimate, stop 45) and
-/// 10.79°/4.536 m/s (coverage 1.00), plus the same margins. The cyclist, the crossing truck and the overtaking car's
-/// speed are outside the 25° and 1.5 m/s bar, as at `bench`'s sizes (docs/estimator.md).
+/// 10.79°/4.536 m/s (coverage 1.00), plus the same margins. The cyclist, the crossing truck and
+/// the overtaking car's speed are outside the 25° and 1.5 m/s bar, as at `bench`'s sizes
+/// (docs/estimator.md).
 const BOUNDS: [(f64, f64); 6] = [
     (22.5, 1.01),
     (24.5, 1.99),

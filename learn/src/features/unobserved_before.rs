@@ -55,7 +55,7 @@ mod tests {
     }
 
     /// The features of `current` after `previous`, scanned from the origin, and the positions
-    /// of the car's points (the cluster nearest the car at x = 6).
+    /// of the sliced points ahead of the sensor (x > 0: the car's in `current`).
     fn car_positions(
         previous: &SyntheticScene,
         current: &SyntheticScene,
@@ -104,7 +104,7 @@ mod tests {
         };
         let (features, car) = car_positions(&scene, &scene.advanced(0.1));
         let share = features.unobserved_before_share(&car);
-        // What lies behind the car's visible faces is hidden in both sweeps: about half.
+        // What lies behind the car's visible faces is hidden in both sweeps: about a third.
         assert!(share < 0.6, "share {share}");
     }
 
