@@ -18,6 +18,11 @@ use crate::{MotionEstimator, Result, SweepFeatures};
 /// scans of ten points or more the share is at most 0.77; on those three scans it is 1.
 pub const MAX_UNOBSERVED_BEFORE: f64 = 0.9;
 
+/// Whether the object at `positions_xy` has just come into view ([`MAX_UNOBSERVED_BEFORE`]).
+fn has_just_come_into_view(features: &SweepFeatures, positions_xy: &[[f64; 2]]) -> bool {
+    features.unobserved_before_share(positions_xy) > MAX_UNOBSERVED_BEFORE
+}
+
 impl MotionEstimator {
     /// Thesis Algorithm 3.1 on one scan given the previous one. To process a sequence in order,
     /// cutting each sweep once, run a [`ScanStream`](crate::ScanStream) and call
@@ -63,9 +68,7 @@ impl MotionEstimator {
                     features.patch_cell_samples(features.clusters().members(c)),
                 )
             })
-            .filter(|(_, s)| {
-                features.unobserved_before_share(&s.positions) <= MAX_UNOBSERVED_BEFORE
-            })
+            .filter(|(_, s)| !has_just_come_into_view(features, &s.positions))
             .unzip();
         let positions: Vec<&[[f64; 2]]> = samples.iter().map(|s| &s.positions[..]).collect();
         let hypotheses_secs = start.elapsed().as_secs_f64();
@@ -114,7 +117,7 @@ impl MotionEstimator {
             .iter()
             .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
             .collect();
-        if features.unobserved_before_share(&positions) > MAX_UNOBSERVED_BEFORE {
+        if has_just_come_into_view(features, &positions) {
             return Ok(ClusterEstimate::default());
         }
         let predicted = self.predict_clusters(features, &[&positions])?;

@@ -20,7 +20,8 @@ impl SweepFeatures {
     /// `positions_xy` (a heading patch's reach, axis-aligned), whose previous value is the map
     /// prior: cells no sliced beam of the previous sweep reached, and cells outside the window.
     /// 0 for no positions. (An observed cell whose hits and misses balance to exactly the prior
-    /// counts as unobserved; the share is a coarse measure.)
+    /// counts as unobserved; the share is a coarse measure. `ChangeEvidence` tells the two apart
+    /// exactly with the maps at a second prior, which the estimator's features do not build.)
     pub fn unobserved_before_share(&self, positions_xy: &[[f64; 2]]) -> f64 {
         if positions_xy.is_empty() {
             return 0.0;
