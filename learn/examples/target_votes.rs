@@ -7,7 +7,9 @@
 //! in the previous and in this sweep). Per scan: the cluster's make-up, the merged ALL / BEST
 //! estimates against the truth, and the share of the cluster's surroundings the previous sweep
 //! left unobserved (`SweepFeatures::unobserved_before_share`; above `MAX_UNOBSERVED_BEFORE` the
-//! cluster gets no estimate). A model trained with map patches (the default) is required.
+//! cluster gets no estimate) and how many of the cluster's two ends a nearer return hides
+//! (`RangeProfile::hidden_ends`; 2: seen through a gap, docs/estimator.md "Stop 46"). A model
+//! trained with map patches (the default) is required.
 //!
 //! On stdout: ALL and BEST RMSE as `evaluate` scores them for the target, and the votes' accuracy
 //! per quartile of motion evidence (each scan's points ranked by the mean |difference| of their
@@ -23,7 +25,8 @@ use std::path::PathBuf;
 
 use patchflow_dataset::{Dataset, wrap_angle_rad};
 use patchflow_learn::{
-    ClusterMotion, GpPrediction, MotionEstimator, PATCH_LEN, ScanStream, SweepFeatures,
+    ClusterMotion, GpPrediction, MotionEstimator, PATCH_LEN, RangeProfile, ScanStream,
+    SweepFeatures,
 };
 
 type Failure = Box<dyn std::error::Error>;
@@ -134,7 +137,7 @@ fn main() -> Result<(), Failure> {
     let mut scans = String::from(
         "scan,range_m,true_deg,true_mps,cluster_points,target_points,other_actor_points,\
          static_points,length_m,all_deg,all_err_deg,all_mps,best_deg,best_err_deg,best_mps,\
-         best_votes,target_total,target_clusters,unobserved_before_share\n",
+         best_votes,target_total,target_clusters,unobserved_before_share,hidden_ends\n",
     );
     let (mut all, mut best, mut quartiles) =
         (Score::default(), Score::default(), Quartiles::default());
@@ -269,7 +272,7 @@ fn main() -> Result<(), Failure> {
         };
         writeln!(
             scans,
-            "{truth},{},{},{},{},{:.2},{},{},{},{target_total},{target_clusters},{:.3}",
+            "{truth},{},{},{},{},{:.2},{},{},{},{target_total},{target_clusters},{:.3},{}",
             members.len(),
             owners[0],
             owners[1],
@@ -279,6 +282,7 @@ fn main() -> Result<(), Failure> {
             merged(estimate.best),
             estimate.best.map_or(0, |b| b.heading_votes),
             features.unobserved_before_share(&xy),
+            RangeProfile::of(&features).hidden_ends(&xy),
         )?;
     }
     let out = PathBuf::from(out);
