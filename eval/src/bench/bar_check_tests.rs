@@ -1,6 +1,7 @@
 //! Tests of the bar check: what kind of miss each pattern of errors is read as.
 
 use super::*;
+use crate::bench::bar_markdown::bar_markdown;
 use crate::methods::estimate::MotionEstimate;
 use crate::scene::truth_at_scan::TruthAtScan;
 
@@ -80,6 +81,24 @@ fn scans_right_after_the_target_was_hidden_are_counted_with_their_error() {
     let row = only_row(&s);
     assert_eq!(row.after_hidden_scans, 1);
     assert!((row.after_hidden_share - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn scans_that_saw_the_target_through_a_gap_are_counted_with_their_error() {
+    let mut s = situation(|k| (if k >= 16 { 180.0 } else { 90.0 }, 8.0));
+    for k in 14..20 {
+        s.truth[k].target_hidden_ends = Some(2);
+    }
+    s.truth[13].target_hidden_ends = Some(1); // one end hidden: seen past an object, not through a gap
+    let row = only_row(&s);
+    assert_eq!(row.through_gap_scans, 6);
+    assert!((row.through_gap_share - 1.0).abs() < 1e-12);
+    let md = bar_markdown(&[row], "urban");
+    assert!(md.contains("| 6, 100 % |"), "{md}");
+    assert!(
+        md.contains("100 % of it on the 6 scans that saw the target through a gap"),
+        "{md}"
+    );
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //! the GP estimator against the README's bar beside the scores.
 
 mod bar_check;
+mod bar_markdown;
 mod notes;
 mod run;
 mod run_files;

@@ -10,7 +10,8 @@ use std::path::Path;
 
 use patchflow_sim::Realism;
 
-use crate::bench::bar_check::{bar_entry, bar_markdown, bar_rows, ideal_scores};
+use crate::bench::bar_check::{bar_entry, bar_rows, ideal_scores};
+use crate::bench::bar_markdown::bar_markdown;
 use crate::bench::run_files::run_entries;
 use crate::bench::seed_spread::SeedSpread;
 use crate::error::EvalError;

@@ -126,6 +126,7 @@ mod tests {
             velocity_xy_mps: [speed_mps * h.cos(), speed_mps * h.sin()],
             range_m: None,
             target_points: None,
+            target_hidden_ends: None,
         }
     }
 

@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use patchflow_dataset::Sweep;
-use patchflow_learn::{FeaturedSweep, SweepFeatures};
+use patchflow_learn::{FeaturedSweep, RangeProfile, SweepFeatures};
 
 use crate::error::EvalError;
 use crate::methods::observation::{ActorCluster, ClusterObservation, ScanObservation};
@@ -64,11 +64,18 @@ pub(crate) fn target_at(
         reason: format!("sweep {} has no object marked target", scan.index),
     })?;
     let [sx, sy] = features.sensor_xy();
-    let points =
-        target_cluster(features, &scan.sweep).map_or(0, |c| features.clusters().members(c).len());
+    let members = target_cluster(features, &scan.sweep).map(|c| features.clusters().members(c));
+    let hidden_ends = members.map(|m| {
+        let xy: Vec<[f64; 2]> = m
+            .iter()
+            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
+            .collect();
+        RangeProfile::of(features).hidden_ends(&xy)
+    });
     Ok(TruthAtScan {
         range_m: Some((target.centre_m[0] - sx).hypot(target.centre_m[1] - sy)),
-        target_points: Some(points),
+        target_points: Some(members.map_or(0, <[usize]>::len)),
+        target_hidden_ends: hidden_ends,
         ..TruthAtScan::from_velocity(scan.index, [target.velocity_mps[0], target.velocity_mps[1]])
     })
 }

@@ -20,6 +20,11 @@ pub struct TruthAtScan {
     /// Sliced points in the target's cluster (what ICP and the GP estimators see), when known.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub target_points: Option<usize>,
+    /// How many ends of the target's cluster (smallest and largest bearing) a nearer return hides,
+    /// when known: 2 is a target seen through a gap, a car crossing behind parked cars, whose
+    /// motion along itself no difference map shows (`patchflow_learn::RangeProfile`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target_hidden_ends: Option<usize>,
 }
 
 impl TruthAtScan {
@@ -33,6 +38,7 @@ impl TruthAtScan {
             velocity_xy_mps,
             range_m: None,
             target_points: None,
+            target_hidden_ends: None,
         }
     }
 }
