@@ -15,7 +15,9 @@ use crate::{MotionEstimator, Result, SweepFeatures};
 /// and its difference map shows that, not its motion: a car emerging from behind a building
 /// looks like one driving away from the sensor, and the GPs read it so with a stated deviation
 /// of 5-8° while 140-163° off (docs/estimator.md, "Stop 45"). On the five situations' target
-/// scans of ten points or more the share is at most 0.77; on those three scans it is 1.
+/// scans of ten points or more the share is at most 0.77 with the default's patch maps (the
+/// thesis preset's 0.10 m maps reach it on one target scan in each of situations 4 and 5,
+/// docs/estimator.md "Stop 46"); on those three scans it is 1.
 pub const MAX_UNOBSERVED_BEFORE: f64 = 0.9;
 
 /// Whether the object at `positions_xy` has just come into view ([`MAX_UNOBSERVED_BEFORE`]).
