@@ -107,21 +107,27 @@ fn reading(r: &BarRow) -> String {
                 100.0 * r.worst_tenth_share
             )
         };
-        if r.after_hidden_share >= 0.2 {
-            let _ = write!(
-                heading,
-                ", {:.0} % of it on the {} scans right after the target was hidden",
-                100.0 * r.after_hidden_share,
-                r.after_hidden_scans
-            );
-        }
-        if r.through_gap_share >= 0.2 {
-            let _ = write!(
-                heading,
-                ", {:.0} % of it on the {} scans that saw the target through a gap",
-                100.0 * r.through_gap_share,
-                r.through_gap_scans
-            );
+        // The kinds of scan whose motion cannot show, named when they carry a fifth of the error.
+        let unreadable = [
+            (
+                r.after_hidden_share,
+                r.after_hidden_scans,
+                "right after the target was hidden",
+            ),
+            (
+                r.through_gap_share,
+                r.through_gap_scans,
+                "that saw the target through a gap",
+            ),
+        ];
+        for (share, scans, which) in unreadable {
+            if share >= 0.2 {
+                let _ = write!(
+                    heading,
+                    ", {:.0} % of it on the {scans} scans {which}",
+                    100.0 * share
+                );
+            }
         }
         if let Some((bin, share)) = &r.worst_range {
             let _ = write!(heading, ", {:.0} % of it at {bin}", 100.0 * share);
