@@ -6,8 +6,7 @@
 //! zeroed, and every band of [`BAND_ROWS`] rows remembers which columns it touched: the map pass
 //! skips the rest and the clean-up zeroes only those cells.
 
-use std::sync::Mutex;
-
+use crate::features::buffer_pool::BufferPool;
 use crate::features::grid::GridWindow;
 use crate::features::line::add_misses;
 use crate::features::slice::SlicedBeam;
@@ -17,9 +16,7 @@ pub(crate) const BAND_ROWS: usize = 16;
 
 /// Clean (all zero) count buffers, reused between sweeps so a map costs no page faults and no
 /// full-grid zeroing.
-static POOL: Mutex<Vec<Vec<f32>>> = Mutex::new(Vec::new());
-/// Buffers kept in the pool at most (two per sweep in flight is plenty).
-const POOL_CAP: usize = 8;
+static POOL: BufferPool<f32> = BufferPool::new();
 
 /// One sweep's counts on a window, row-major (`row · cols + col`).
 #[derive(Debug)]
@@ -133,23 +130,14 @@ impl Drop for BeamCounts {
                 self.misses[r * cols + lo..=r * cols + hi].fill(0.0);
             }
         }
-        if let Ok(mut pool) = POOL.lock() {
-            for buffer in [&mut self.hits, &mut self.misses] {
-                if pool.len() < POOL_CAP {
-                    pool.push(std::mem::take(buffer));
-                }
-            }
-        }
+        POOL.give(std::mem::take(&mut self.hits));
+        POOL.give(std::mem::take(&mut self.misses));
     }
 }
 
 /// A zeroed buffer of `len` cells: a pooled one of that length, or a new one.
 fn clean_buffer(len: usize) -> Vec<f32> {
-    let pooled = POOL.lock().ok().and_then(|mut pool| {
-        let k = pool.iter().position(|b| b.len() == len)?;
-        Some(pool.swap_remove(k))
-    });
-    pooled.unwrap_or_else(|| vec![0.0; len])
+    POOL.take(len).unwrap_or_else(|| vec![0.0; len])
 }
 
 /// `v.floor()` as an integer for finite `v` (saturating far outside the window), without the

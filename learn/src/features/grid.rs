@@ -1,7 +1,7 @@
 //! World-aligned grid windows and the maps stored on them (thesis 2.1: the data association
 //! between maps is given by cell positions, so every map lives on one global lattice).
 
-use std::sync::Mutex;
+use crate::features::buffer_pool::BufferPool;
 
 /// A rectangular window onto the global lattice of square cells of side `cell_m`.
 ///
@@ -89,20 +89,14 @@ pub struct GridMap {
 }
 
 /// Storage of dropped maps.
-static RECYCLED: Mutex<Vec<Vec<f64>>> = Mutex::new(Vec::new());
-/// Buffers kept at most: the maps of a few sweep pairs in flight.
-const RECYCLED_CAP: usize = 8;
+static RECYCLED: BufferPool<f64> = BufferPool::new();
 /// Buffers below this length are not worth pooling.
 const RECYCLED_MIN_LEN: usize = 1 << 14;
 
 /// A buffer of `len` values for a map whose every cell the caller will overwrite: recycled
 /// storage of a dropped map if one fits (its old values still in it), or a new zeroed one.
 pub(crate) fn recycled_values(len: usize) -> Vec<f64> {
-    let recycled = RECYCLED.lock().ok().and_then(|mut pool| {
-        let k = pool.iter().position(|b| b.len() == len)?;
-        Some(pool.swap_remove(k))
-    });
-    recycled.unwrap_or_else(|| vec![0.0; len])
+    RECYCLED.take(len).unwrap_or_else(|| vec![0.0; len])
 }
 
 impl Drop for GridMap {
@@ -110,11 +104,7 @@ impl Drop for GridMap {
         if self.values.len() < RECYCLED_MIN_LEN {
             return;
         }
-        if let Ok(mut pool) = RECYCLED.lock()
-            && pool.len() < RECYCLED_CAP
-        {
-            pool.push(std::mem::take(&mut self.values));
-        }
+        RECYCLED.give(std::mem::take(&mut self.values));
     }
 }
 

@@ -3,6 +3,7 @@
 //! sampled training samples of thesis 3.1.1-3.1.2.
 
 mod beam_counts;
+mod buffer_pool;
 mod cell_samples;
 mod cluster;
 mod cluster_shape;
