@@ -32,7 +32,8 @@
 use nalgebra::{Matrix2, Matrix6, Vector6};
 
 use crate::error::EvalError;
-use crate::methods::baselines::kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
+use crate::methods::baselines::innovation::{CentroidGate, Innovation};
+use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
 use crate::methods::baselines::track_filter::TrackFilter;
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
 use crate::methods::estimate::MotionEstimate;
@@ -216,6 +217,10 @@ impl TrackFilter for GpTrustFilter {
 
     fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
         self.combined.innovation(centroid_xy)
+    }
+
+    fn centroid_gate(&self) -> Result<CentroidGate, EvalError> {
+        self.combined.centroid_gate()
     }
 
     fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {

@@ -23,6 +23,7 @@
 use nalgebra::{Matrix2, Matrix2x6, Matrix6, Matrix6x2, Vector2, Vector6};
 
 use crate::error::EvalError;
+use crate::methods::baselines::innovation::{CentroidGate, Innovation};
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
 use crate::methods::estimate::MotionEstimate;
 
@@ -65,46 +66,6 @@ impl KalmanParams {
             "KalmanParams.initial_velocity_std_mps",
             self.initial_velocity_std_mps,
         )
-    }
-}
-
-/// The innovation of a measurement against the predicted state: `y = z − Hx`, `S = HPHᵀ + R`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Innovation {
-    /// Residual: metres for a centroid, m/s for a velocity.
-    pub residual_m: Vector2<f64>,
-    /// Its covariance, m² (or (m/s)²).
-    pub covariance: Matrix2<f64>,
-    /// Squared Mahalanobis distance `yᵀ S⁻¹ y` (χ² with 2 dof under the model).
-    pub mahalanobis_sq: f64,
-}
-
-impl Innovation {
-    /// The innovation of `residual` under `covariance` and `S⁻¹`, which the update's gain reuses;
-    /// a singular `S` is an error naming `noise`, the parameter that sets it.
-    fn with_inverse(
-        residual_m: Vector2<f64>,
-        covariance: Matrix2<f64>,
-        noise: &'static str,
-    ) -> Result<(Self, Matrix2<f64>), EvalError> {
-        let inverse = covariance
-            .try_inverse()
-            .ok_or_else(|| EvalError::BadParameter {
-                name: noise,
-                reason: "innovation covariance is singular".into(),
-            })?;
-        let innovation = Self {
-            residual_m,
-            covariance,
-            mahalanobis_sq: residual_m.dot(&(inverse * residual_m)),
-        };
-        Ok((innovation, inverse))
-    }
-
-    /// `ln N(y; 0, S)`: how likely the filter found the measurement.
-    pub fn log_likelihood(&self) -> f64 {
-        let det = self.covariance.determinant().max(f64::MIN_POSITIVE);
-        -0.5 * (self.mahalanobis_sq + det.ln()) - (2.0 * std::f64::consts::PI).ln()
     }
 }
 
@@ -203,17 +164,13 @@ impl ConstantVelocityKalman {
 
     /// The innovation of a centroid measurement against the current (predicted) state.
     pub fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
-        Ok(self.centroid_innovation(centroid_xy)?.0)
+        Ok(self.centroid_gate()?.innovation(centroid_xy))
     }
 
-    /// [`Self::innovation`] and its `S⁻¹`.
-    fn centroid_innovation(
-        &self,
-        centroid_xy: [f64; 2],
-    ) -> Result<(Innovation, Matrix2<f64>), EvalError> {
-        let z = Vector2::new(centroid_xy[0], centroid_xy[1]);
-        Innovation::with_inverse(
-            z - H * self.state,
+    /// The predicted centroid `Hx` and `S = HPHᵀ + R` with its inverse, for any centroid.
+    pub fn centroid_gate(&self) -> Result<CentroidGate, EvalError> {
+        CentroidGate::new(
+            H * self.state,
             H * self.covariance * H.transpose() + self.measurement_covariance(),
             "KalmanParams.centroid_noise_std_m",
         )
@@ -221,8 +178,9 @@ impl ConstantVelocityKalman {
 
     /// Sensor model (eq. 3.45): correct the state with a centroid measurement.
     pub fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
-        let (innovation, s_inv) = self.centroid_innovation(centroid_xy)?;
-        let gain: Matrix6x2<f64> = self.covariance * H.transpose() * s_inv;
+        let gate = self.centroid_gate()?;
+        let innovation = gate.innovation(centroid_xy);
+        let gain: Matrix6x2<f64> = self.covariance * H.transpose() * gate.inverse();
         self.state += gain * innovation.residual_m;
         let i_kh = Matrix6::identity() - gain * H;
         self.covariance = i_kh * self.covariance * i_kh.transpose()

@@ -4,7 +4,8 @@
 //! multiple model over how far the GP can be trusted ([`crate::methods::baselines::gp_trust_filter::GpTrustFilter`]).
 
 use crate::error::EvalError;
-use crate::methods::baselines::kalman::{ConstantVelocityKalman, Innovation, KalmanParams};
+use crate::methods::baselines::innovation::{CentroidGate, Innovation};
+use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
 use crate::methods::estimate::MotionEstimate;
 
@@ -14,8 +15,10 @@ pub trait TrackFilter: Clone + std::fmt::Debug {
     fn start(first_centroid_xy: [f64; 2], params: KalmanParams) -> Result<Self, EvalError>;
     /// Propagates the filter by `dt_secs`.
     fn predict(&mut self, dt_secs: f64);
-    /// The innovation of a centroid against the predicted state (the gate reads it).
+    /// The innovation of a centroid against the predicted state.
     fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError>;
+    /// The predicted state's gate for any centroid (the association reads it for every cluster).
+    fn centroid_gate(&self) -> Result<CentroidGate, EvalError>;
     /// Corrects the filter with a centroid.
     fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError>;
     /// `ln p(reading | this track)`: how likely the track, as predicted, finds a measured
@@ -40,6 +43,10 @@ impl TrackFilter for ConstantVelocityKalman {
 
     fn innovation(&self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
         ConstantVelocityKalman::innovation(self, centroid_xy)
+    }
+
+    fn centroid_gate(&self) -> Result<CentroidGate, EvalError> {
+        ConstantVelocityKalman::centroid_gate(self)
     }
 
     fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {

@@ -163,8 +163,12 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
             .collect::<Result<Vec<_>, EvalError>>()?;
         let mut candidates = Vec::new();
         for (ti, track) in self.tracks.iter().enumerate() {
+            if centroids_xy.is_empty() {
+                break; // no cluster to gate, no gate to build
+            }
+            let gate = track.filter.centroid_gate()?;
             for (ci, c) in centroids_xy.iter().enumerate() {
-                let d2 = track.filter.innovation(*c)?.mahalanobis_sq;
+                let d2 = gate.mahalanobis_sq(*c);
                 if d2 <= self.params.gate_chi2 {
                     let rank = usize::from(track.status == TrackStatus::Tentative);
                     // A cluster with a measured velocity (GP-KF) adds the velocity's evidence
