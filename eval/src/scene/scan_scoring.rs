@@ -8,6 +8,7 @@
 use std::collections::BTreeMap;
 
 use patchflow_dataset::Sweep;
+use rayon::prelude::*;
 
 use crate::methods::baselines::baseline_step::{BaselineScan, ClusterFlow};
 use crate::methods::estimate::MotionEstimate;
@@ -53,34 +54,43 @@ impl MethodFlow {
 /// Mean end-point error per method and actor on one scan: (sum, points).
 type ActorErrors = BTreeMap<Method, BTreeMap<u16, (f64, usize)>>;
 
-/// Adds every scored point of a scan to each method's tally; returns the errors per actor.
+/// Adds every scored point of a scan to each method's tally; returns the errors per actor. The
+/// methods are scored side by side, each over the points in order, so each tally and sum is the
+/// one a loop over the methods would give.
 pub(crate) fn score_points(
     points: &ScenePoints,
     cluster_of: &[usize],
     flows: &BTreeMap<Method, MethodFlow>,
     tallies: &mut BTreeMap<Method, SceneFlowTally>,
 ) -> ActorErrors {
-    let mut errors = ActorErrors::new();
-    for (&method, flow) in flows {
-        let tally = tallies.entry(method).or_default();
-        let per_actor = errors.entry(method).or_default();
-        for (i, &cluster) in cluster_of.iter().enumerate().take(points.len()) {
-            let velocity = flow.velocity(i, cluster, points.xy[i]);
-            let predicted = points.displacement_of(velocity);
-            tally.add(
-                predicted,
-                points.truth_m[i],
-                points.class[i],
-                points.dt_secs,
-            );
-            if points.actor[i] != 0 {
-                let entry = per_actor.entry(points.actor[i]).or_insert((0.0, 0));
-                entry.0 += end_point_error(predicted, points.truth_m[i]);
-                entry.1 += 1;
-            }
-        }
+    for &method in flows.keys() {
+        tallies.entry(method).or_default();
     }
-    errors
+    let jobs: Vec<(Method, &MethodFlow, &mut SceneFlowTally)> = tallies
+        .iter_mut()
+        .filter_map(|(method, tally)| Some((*method, flows.get(method)?, tally)))
+        .collect();
+    jobs.into_par_iter()
+        .map(|(method, flow, tally)| {
+            let mut per_actor = BTreeMap::new();
+            for (i, &cluster) in cluster_of.iter().enumerate().take(points.len()) {
+                let velocity = flow.velocity(i, cluster, points.xy[i]);
+                let predicted = points.displacement_of(velocity);
+                tally.add(
+                    predicted,
+                    points.truth_m[i],
+                    points.class[i],
+                    points.dt_secs,
+                );
+                if points.actor[i] != 0 {
+                    let entry = per_actor.entry(points.actor[i]).or_insert((0.0, 0));
+                    entry.0 += end_point_error(predicted, points.truth_m[i]);
+                    entry.1 += 1;
+                }
+            }
+            (method, per_actor)
+        })
+        .collect()
 }
 
 /// Every actor of the sweep with enough scored points, with each method's estimate for it.

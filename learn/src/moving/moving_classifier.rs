@@ -220,14 +220,21 @@ impl MovingClassifier {
         if hypotheses.is_empty() {
             return Ok(out);
         }
+        // Every hypothesis' inputs, then every draw's probabilities, side by side; the mean adds
+        // the draws in their order.
         let inputs: Vec<[f64; MOVING_INPUTS]> = hypotheses
-            .iter()
+            .par_iter()
             .map(|&c| cluster_inputs(features, change, c))
             .collect();
         let x = DMatrix::from_fn(inputs.len(), MOVING_INPUTS, |i, d| inputs[i][d]);
+        let per_draw: Vec<Vec<f64>> = self
+            .draws
+            .par_iter()
+            .map(|draw| draw.probabilities(&x))
+            .collect::<Result<_>>()?;
         let mut mean = vec![0.0; hypotheses.len()];
-        for draw in &self.draws {
-            for (m, p) in mean.iter_mut().zip(draw.probabilities(&x)?) {
+        for probabilities in per_draw {
+            for (m, p) in mean.iter_mut().zip(probabilities) {
                 *m += p / self.draws.len() as f64;
             }
         }
