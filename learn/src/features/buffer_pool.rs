@@ -12,7 +12,7 @@ use std::sync::Mutex;
 
 /// Buffers kept per length at most: more than the sweep pairs in flight ever hold.
 const PER_LENGTH: usize = 16;
-/// Bytes kept in all at most, whatever the lengths.
+/// Bytes one pool keeps at most, whatever the lengths.
 const MAX_BYTES: usize = 192 << 20;
 
 /// A pool of buffers of element type `T`, handed out by exact length.

@@ -162,10 +162,13 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
             })
             .collect::<Result<Vec<_>, EvalError>>()?;
         let mut candidates = Vec::new();
-        for (ti, track) in self.tracks.iter().enumerate() {
-            if centroids_xy.is_empty() {
-                break; // no cluster to gate, no gate to build
-            }
+        // Each track's gate once per scan (none when there is no cluster to gate).
+        let gated = if centroids_xy.is_empty() {
+            &[][..]
+        } else {
+            &self.tracks[..]
+        };
+        for (ti, track) in gated.iter().enumerate() {
             let gate = track.filter.centroid_gate()?;
             for (ci, c) in centroids_xy.iter().enumerate() {
                 let d2 = gate.mahalanobis_sq(*c);
