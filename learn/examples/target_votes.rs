@@ -175,10 +175,7 @@ fn main() -> Result<(), Failure> {
         let estimate = estimator.estimate_cluster(&features, members)?;
         all.add(estimate.all, true_heading, true_speed);
         best.add(estimate.best, true_heading, true_speed);
-        let xy: Vec<[f64; 2]> = members
-            .iter()
-            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-            .collect();
+        let xy = features.positions_xy(members);
         let heading_rows: Vec<([f64; 2], f64)> =
             xy.iter().map(|&p| (p, features.bearing_at(p))).collect();
         let hx = patch_rows(&features, &heading_rows);

@@ -24,13 +24,7 @@ impl ClusterObservation {
             .clusters()
             .iter()
             .enumerate()
-            .map(|(id, members)| {
-                let points = members
-                    .iter()
-                    .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-                    .collect();
-                Self::from_points(id, points)
-            })
+            .map(|(id, members)| Self::from_points(id, features.positions_xy(members)))
             .collect()
     }
 

@@ -65,13 +65,8 @@ pub(crate) fn target_at(
     })?;
     let [sx, sy] = features.sensor_xy();
     let members = target_cluster(features, &scan.sweep).map(|c| features.clusters().members(c));
-    let hidden_ends = members.map(|m| {
-        let xy: Vec<[f64; 2]> = m
-            .iter()
-            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-            .collect();
-        RangeProfile::of(features).hidden_ends(&xy)
-    });
+    let hidden_ends =
+        members.map(|m| RangeProfile::of(features).hidden_ends(&features.positions_xy(m)));
     Ok(TruthAtScan {
         range_m: Some((target.centre_m[0] - sx).hypot(target.centre_m[1] - sy)),
         target_points: Some(members.map_or(0, <[usize]>::len)),

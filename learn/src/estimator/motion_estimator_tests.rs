@@ -236,10 +236,7 @@ fn batched_predictions_equal_one_gp_call_per_cluster_and_step_bit_for_bit() {
         let members = features.clusters().members(c);
         let wall = features.points()[members[0]].y_m < -10.0;
         // Every point, as for the thesis' hand-labelled target (several blocks for the close car).
-        let points: Vec<[f64; 2]> = members
-            .iter()
-            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-            .collect();
+        let points = features.positions_xy(members);
         let whole = estimator.estimate_cluster(features, members).unwrap();
         assert_eq!(whole, reference_estimate(&estimator, features, &points));
         // One sample per occupied cell in the whole-scan step; walls are no hypotheses.

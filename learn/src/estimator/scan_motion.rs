@@ -115,10 +115,7 @@ impl MotionEstimator {
         if members.len() < MIN_OBJECT_POINTS {
             return Ok(ClusterEstimate::default());
         }
-        let positions: Vec<[f64; 2]> = members
-            .iter()
-            .map(|&i| [features.points()[i].x_m, features.points()[i].y_m])
-            .collect();
+        let positions = features.positions_xy(members);
         if has_just_come_into_view(features, &positions) {
             return Ok(ClusterEstimate::default());
         }

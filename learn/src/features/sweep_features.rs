@@ -272,6 +272,14 @@ impl SweepFeatures {
         Patch::extract_into(self.patch_source(), xy, axis_rad, values);
     }
 
+    /// The world positions (x, y) of points `members`, in their order.
+    pub fn positions_xy(&self, members: &[usize]) -> Vec<[f64; 2]> {
+        members
+            .iter()
+            .map(|&i| [self.points[i].x_m, self.points[i].y_m])
+            .collect()
+    }
+
     /// The members of a cluster grouped by map cell, one sample at the mean of each cell's points
     /// (see `CellSamples`).
     pub fn cell_samples(&self, members: &[usize]) -> CellSamples {
