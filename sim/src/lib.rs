@@ -23,6 +23,7 @@ mod provenance;
 #[cfg(test)]
 mod resume_tests;
 mod scenario;
+mod scenario_source;
 mod scene;
 mod seed;
 mod sequence_queue;

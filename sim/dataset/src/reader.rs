@@ -340,3 +340,7 @@ fn read_estimated_poses(dir: &Path, sweeps: usize) -> Result<Option<Vec<Pose>>> 
 #[cfg(test)]
 #[path = "reader_tests.rs"]
 pub(crate) mod tests;
+
+#[cfg(test)]
+#[path = "reader_estimate_tests.rs"]
+mod estimate_tests;
