@@ -17,7 +17,9 @@
 //! bottom edge to CM centimetres above the ground (`top85`), `cell<CM>` sets the cell of the maps
 //! the patches sample to CM centimetres (`cell10`: the thesis' 1.1 m patches on the maps
 //! themselves; `cell20`, the default: 2.2 m patches on maps of their own) and `maps<CM>` the
-//! cell of the maps themselves (the clusters' cells), each its own draw.
+//! cell of the maps themselves (the clusters' cells), each its own draw; `jitter<DEG>` sets the
+//! training speed patches' heading error (`FeatureParams::speed_jitter_deg`; `jitter0` aligns them
+//! to the true heading, the default is 25°).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -63,6 +65,9 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
                 p.features.cell_m = other[4..].parse::<f64>()? / 100.0;
             }
             other if other.starts_with("pls") => p.projection_dims = other[3..].parse()?,
+            other if other.starts_with("jitter") => {
+                p.features.speed_jitter_deg = other[6..].parse()?;
+            }
             other if other.starts_with('x') => factor = other[1..].parse()?,
             other if other.starts_with('m') => p.pseudo_inputs = other[1..].parse()?,
             other => return Err(format!("unknown variant part '{other}'").into()),
