@@ -12,7 +12,7 @@ use crate::memory_budget::{check_memory, memory_budget};
 use crate::output_folder::{check_manifest_is_ours, check_sequence_folder};
 use crate::provenance::{Provenance, provenance};
 use crate::scenario::{Realism, Scenario, WorkEstimate};
-pub use crate::scenario_source::ScenarioSource;
+use crate::scenario_source::ScenarioSource;
 use crate::sequence_queue::{generate_each, sequences_at_once};
 pub use crate::shard::Shard;
 use crate::simulation::Simulation;

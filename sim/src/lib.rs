@@ -32,9 +32,7 @@ mod simulation;
 mod world;
 
 pub use error::{Result, SimError};
-pub use generate::{
-    GenerateOptions, Progress, ScenarioSource, Shard, generate_dataset, generate_sequence,
-};
+pub use generate::{GenerateOptions, Progress, Shard, generate_dataset, generate_sequence};
 pub use kitti_names::write_kitti_names;
 pub use lidar::{Lidar, Scan, elevations_deg, sensor_info};
 pub use memory_budget::{MemoryBudget, memory_budget};
@@ -49,6 +47,7 @@ pub use scenario::{
     SensorConfig, SensorKind, SensorKnobs, StructureConfig, StructureKind, TrafficConfig,
     VehicleBody, VehicleMesh, WorkEstimate, WorldConfig, WorldKnobs,
 };
+pub use scenario_source::ScenarioSource;
 pub use scene::{QueryTree, Scene, SceneActor};
 pub use seed::sweep_key;
 pub use simulation::Simulation;
