@@ -65,8 +65,8 @@ pub use features::{FeatureParams, FeatureValidParams, GaborParams, GroundMode};
 // ── One sweep's features (thesis Chapter 2) ─────────────────────────────────────────────────
 pub use features::{
     ClusterShape, Clusters, FeatureKind, FeatureTiming, FeaturedSweep, GaborBank, GridMap,
-    GridWindow, GroundGrid, HeightSlice, MIN_OBJECT_POINTS, PATCH_LEN, Patch, RangeProfile,
-    ScanStream, SlicedPoint, SweepFeatures, synthetic, write_png,
+    GridWindow, GroundGrid, HeightSlice, MIN_OBJECT_POINTS, ObjectEnd, PATCH_LEN, Patch,
+    RangeProfile, ScanStream, SlicedPoint, SweepFeatures, synthetic, write_png,
 };
 
 // ── Training samples (thesis 3.1.1-3.1.2) ───────────────────────────────────────────────────

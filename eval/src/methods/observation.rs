@@ -4,6 +4,7 @@
 
 use std::collections::BTreeMap;
 
+use patchflow_learn::{ObjectEnd, RangeProfile};
 use serde::{Deserialize, Serialize};
 
 /// One cluster of height-sliced lidar points (thesis 2.2.1) in the world frame, projected to the ground plane.
@@ -15,16 +16,28 @@ pub struct ClusterObservation {
     pub points_xy_world: Vec<[f64; 2]>,
     /// Centre of mass of `points_xy_world`, world frame, metres.
     pub centroid_xy: [f64; 2],
+    /// The cluster's points of smallest and of largest bearing seen from the sensor, each with
+    /// whether a nearer return hides what lies beyond it (`RangeProfile::ends`); `None` where the
+    /// scan's range profile was not at hand (a cluster built from points alone).
+    #[serde(skip)]
+    pub ends: Option<[ObjectEnd; 2]>,
 }
 
 impl ClusterObservation {
     /// Every cluster of a scan's features, with its points in the world frame's ground plane.
     pub(crate) fn all_of(features: &patchflow_learn::SweepFeatures) -> Vec<Self> {
+        let profile = RangeProfile::of(features);
         features
             .clusters()
             .iter()
             .enumerate()
-            .map(|(id, members)| Self::from_points(id, features.positions_xy(members)))
+            .map(|(id, members)| {
+                let points = features.positions_xy(members);
+                Self {
+                    ends: profile.ends(&points),
+                    ..Self::from_points(id, points)
+                }
+            })
             .collect()
     }
 
@@ -35,6 +48,7 @@ impl ClusterObservation {
             id,
             points_xy_world,
             centroid_xy,
+            ends: None,
         }
     }
 }

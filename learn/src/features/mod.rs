@@ -53,7 +53,7 @@ pub use ground_grid::GroundGrid;
 pub use importance_sampling::importance_sample;
 pub use params::{FeatureParams, GaborParams, GroundMode};
 pub use patch::{PATCH_LEN, Patch};
-pub use range_profile::RangeProfile;
+pub use range_profile::{ObjectEnd, RangeProfile};
 pub use render::write_png;
 pub use sample_set::SampleSet;
 pub use scan_stream::{FeaturedSweep, ScanStream};

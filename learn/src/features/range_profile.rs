@@ -18,6 +18,16 @@ const BINS_BEYOND_END: usize = 4;
 /// A return this much nearer than an object's end hides what lies beyond that end, metres.
 const NEARER_BY_M: f64 = 0.5;
 
+/// One end of an object seen from the sensor: its point of smallest or of largest bearing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObjectEnd {
+    /// The end point, world frame, metres.
+    pub xy: [f64; 2],
+    /// Whether a nearer return within 1° beyond it hides what lies further on: the object may go
+    /// on behind it, so the point need not be the object's own end.
+    pub hidden: bool,
+}
+
 /// The smallest range of the sliced returns per bearing bin, seen from the sensor.
 #[derive(Debug, Clone)]
 pub struct RangeProfile {
@@ -46,9 +56,15 @@ impl RangeProfile {
     /// within 1° beyond its smallest and its largest bearing, a return lies at least 0.5 m nearer
     /// than the object's point at that end. 0 for no positions.
     pub fn hidden_ends(&self, positions_xy: &[[f64; 2]]) -> usize {
-        let Some(&first) = positions_xy.first() else {
-            return 0;
-        };
+        self.ends(positions_xy)
+            .map_or(0, |ends| ends.iter().filter(|end| end.hidden).count())
+    }
+
+    /// The object's two ends seen from the sensor, its points of smallest and of largest bearing
+    /// (in that order), each with whether a nearer return hides what lies beyond it (as
+    /// [`Self::hidden_ends`] counts). `None` for no positions.
+    pub fn ends(&self, positions_xy: &[[f64; 2]]) -> Option<[ObjectEnd; 2]> {
+        let &first = positions_xy.first()?;
         let polar = |[x, y]: [f64; 2]| {
             let (dx, dy) = (x - self.sensor_xy[0], y - self.sensor_xy[1]);
             (dy.atan2(dx), dx.hypot(dy))
@@ -57,28 +73,29 @@ impl RangeProfile {
         let reference_rad = polar(first).0;
         let relative = |xy: [f64; 2]| {
             let (bearing, range) = polar(xy);
-            (wrap_angle_rad(bearing - reference_rad), range)
+            (wrap_angle_rad(bearing - reference_rad), range, xy)
         };
         let (mut low, mut high) = (relative(first), relative(first));
         for &xy in &positions_xy[1..] {
-            let (bearing, range) = relative(xy);
-            if bearing < low.0 {
-                low = (bearing, range);
+            let point = relative(xy);
+            if point.0 < low.0 {
+                low = point;
             }
-            if bearing > high.0 {
-                high = (bearing, range);
+            if point.0 > high.0 {
+                high = point;
             }
         }
-        let hidden = |(bearing, range): (f64, f64), step: f64| {
-            (1..=BINS_BEYOND_END).any(|k| {
+        let end = |(bearing, range, xy): (f64, f64, [f64; 2]), step: f64| ObjectEnd {
+            xy,
+            hidden: (1..=BINS_BEYOND_END).any(|k| {
                 let bin = bin_of(
                     reference_rad + bearing + step * k as f64 * BIN_RAD,
                     self.bins(),
                 );
                 self.nearest_m[bin] < range - NEARER_BY_M
-            })
+            }),
         };
-        usize::from(hidden(low, -1.0)) + usize::from(hidden(high, 1.0))
+        Some([end(low, -1.0), end(high, 1.0)])
     }
 
     fn bins(&self) -> usize {
@@ -94,7 +111,7 @@ fn bin_of(bearing_rad: f64, bins: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::RangeProfile;
+    use super::{ObjectEnd, RangeProfile};
     use crate::synthetic::{SceneBox, SyntheticLidar, SyntheticScene};
     use crate::{EstimatorParams, SweepFeatures};
 
@@ -102,6 +119,14 @@ mod tests {
     /// behind the sensor so both sweeps have points, and the given boxes 15 m ahead (parked cars
     /// seen end-on, 1.8 m wide). Returns how many ends of the car a nearer return hides.
     fn hidden_ends_of_the_car_behind(parked_y_m: &[f64]) -> usize {
+        ends_of_the_car_behind(parked_y_m)
+            .iter()
+            .filter(|end| end.hidden)
+            .count()
+    }
+
+    /// [`hidden_ends_of_the_car_behind`]'s car's two ends (smallest bearing first).
+    fn ends_of_the_car_behind(parked_y_m: &[f64]) -> [ObjectEnd; 2] {
         let mut boxes = vec![
             SceneBox::wall([-10.0, 0.0], 0.0, [0.4, 20.0, 2.5]),
             SceneBox::car(1, [20.0, 0.0], std::f64::consts::FRAC_PI_2, 6.0),
@@ -123,7 +148,7 @@ mod tests {
             .map(|p| [p.x_m, p.y_m])
             .collect();
         assert!(car.len() >= 10, "{} car points", car.len());
-        RangeProfile::of(&features).hidden_ends(&car)
+        RangeProfile::of(&features).ends(&car).unwrap()
     }
 
     #[test]
@@ -134,6 +159,14 @@ mod tests {
     #[test]
     fn a_car_seen_past_one_parked_car_has_one_hidden_end() {
         assert_eq!(hidden_ends_of_the_car_behind(&[-1.6]), 1);
+    }
+
+    #[test]
+    fn the_end_a_parked_car_hides_is_the_one_on_its_side() {
+        // The parked car stands at y = −1.6 m, on the side of the smaller bearings.
+        let [low, high] = ends_of_the_car_behind(&[-1.6]);
+        assert!(low.hidden && !high.hidden, "{low:?} {high:?}");
+        assert!(low.xy[1] < high.xy[1], "{low:?} {high:?}");
     }
 
     #[test]

@@ -267,6 +267,17 @@ impl TrackFilter for GpTrustFilter {
     fn velocity_updates(&self) -> usize {
         self.modes[TRUSTED].velocity_updates()
     }
+
+    fn position(&self) -> [f64; 2] {
+        self.combined.position()
+    }
+
+    fn shift_position(&mut self, delta_xy: [f64; 2]) {
+        for mode in &mut self.modes {
+            mode.shift_position(delta_xy);
+        }
+        self.combined.shift_position(delta_xy);
+    }
 }
 
 #[cfg(test)]

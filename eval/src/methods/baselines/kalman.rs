@@ -267,6 +267,13 @@ impl ConstantVelocityKalman {
         prior
     }
 
+    /// Moves the estimated position by `delta_xy`, velocity and covariance unchanged (the track
+    /// measures another point of its object from now on, `reference_point`).
+    pub fn shift_position(&mut self, delta_xy: [f64; 2]) {
+        self.state[0] += delta_xy[0];
+        self.state[1] += delta_xy[1];
+    }
+
     /// Filtered position, metres.
     pub fn position(&self) -> [f64; 2] {
         [self.state[0], self.state[1]]

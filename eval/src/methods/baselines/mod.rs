@@ -12,6 +12,7 @@ pub(crate) mod gp_trust_filter;
 pub(crate) mod icp;
 pub(crate) mod innovation;
 pub(crate) mod kalman;
+pub(crate) mod reference_point;
 pub(crate) mod rigid_fit;
 pub(crate) mod rigid_motion;
 pub(crate) mod track_filter;

@@ -30,6 +30,11 @@ pub trait TrackFilter: Clone + std::fmt::Debug {
     fn estimate(&self) -> Option<MotionEstimate>;
     /// Velocity measurements taken in so far.
     fn velocity_updates(&self) -> usize;
+    /// The estimated position of the point the track measures, world frame, metres.
+    fn position(&self) -> [f64; 2];
+    /// Moves the estimated position by `delta_xy` and nothing else: the track measures another
+    /// point of its object from now on (`reference_point`), which is not motion.
+    fn shift_position(&mut self, delta_xy: [f64; 2]);
 }
 
 impl TrackFilter for ConstantVelocityKalman {
@@ -67,5 +72,13 @@ impl TrackFilter for ConstantVelocityKalman {
 
     fn velocity_updates(&self) -> usize {
         ConstantVelocityKalman::velocity_updates(self)
+    }
+
+    fn position(&self) -> [f64; 2] {
+        ConstantVelocityKalman::position(self)
+    }
+
+    fn shift_position(&mut self, delta_xy: [f64; 2]) {
+        ConstantVelocityKalman::shift_position(self, delta_xy);
     }
 }

@@ -1,18 +1,22 @@
 //! Multi-target tracker over all clusters, for the `KF-AUTO` baseline: one constant-velocity Kalman
 //! filter per track on the cluster centroid, nearest-neighbour association with a χ² gate.
+//! `GP-KF` runs the same tracker with the clusters' ends ([`MultiTargetTracker::step_anchored`]):
+//! while one end of a moving object is hidden, its track measures the visible end instead of the
+//! centroid (`reference_point`); `KF-AUTO` stays the thesis' centroid filter.
 //!
 //! Each scan:
 //! 1. predict every track to the scan's time stamp;
 //! 2. gate: a (track, cluster) pair is a candidate when the squared Mahalanobis distance of the
-//!    centroid innovation `yᵀS⁻¹y` is at most `gate_chi2` (9.21 = χ²₂ at 99 %);
+//!    centroid innovation `yᵀS⁻¹y` (the anchored point's, for an anchored track) is at most
+//!    `gate_chi2` (9.21 = χ²₂ at 99 %);
 //! 3. associate greedily, one-to-one: confirmed tracks before tentative ones, then the smallest
 //!    distance first (ties broken by track id, then cluster index, so the result is deterministic);
 //!    a cluster that comes with a measured velocity (`GP-KF`) subtracts 2 ln of how much likelier
 //!    this track finds that velocity than a new track would (when it is likelier), so a track
 //!    keeps the object moving its way, and a cluster without a reading competes on the same
 //!    footing (its ratio is 1);
-//! 4. update the associated tracks; a tentative track becomes confirmed after `confirm_hits`
-//!    consecutive hits;
+//! 4. update the associated tracks, then set each one's reference for the next scan (an anchor
+//!    or the centroid); a tentative track becomes confirmed after `confirm_hits` consecutive hits;
 //! 5. track end: a tentative track is deleted at its first miss, a confirmed one after more than
 //!    `max_misses` consecutive misses (it coasts on its prediction meanwhile);
 //! 6. track start: every unassociated cluster starts a tentative track.
@@ -20,8 +24,13 @@
 //! Life-cycle after Deep SORT (reference/baselines.md §2.2). The tracker never looks at the target
 //! id: the benchmark only reads out the confirmed track that took the target cluster.
 
+use patchflow_learn::ObjectEnd;
+
 use crate::error::EvalError;
 use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
+use crate::methods::baselines::reference_point::{
+    Anchor, MIN_ANCHOR_SPEED_MPS, measured_point, next_reference,
+};
 use crate::methods::baselines::track_filter::TrackFilter;
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
 
@@ -71,6 +80,9 @@ pub struct Track<F = ConstantVelocityKalman> {
     pub consecutive_hits: usize,
     /// Consecutive scans without.
     pub consecutive_misses: usize,
+    /// The visible end the track measures while an end of its object is hidden; `None`: the
+    /// centroid (`reference_point`).
+    pub anchor: Option<Anchor>,
 }
 
 /// The tracker state.
@@ -139,7 +151,23 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         centroids_xy: &[[f64; 2]],
         velocities: &[Option<VelocityMeasurement>],
     ) -> Result<Vec<Option<usize>>, EvalError> {
+        self.step_anchored(scan, stamp_secs, centroids_xy, &[], velocities)
+    }
+
+    /// [`Self::step_measured`] where cluster `c` may also come with its two ends
+    /// (`ends[c]`, `RangeProfile::ends`): while one end of an object is hidden its track measures
+    /// the visible end instead of the centroid (`reference_point`). A shorter slice means the rest
+    /// have none.
+    pub fn step_anchored(
+        &mut self,
+        scan: usize,
+        stamp_secs: f64,
+        centroids_xy: &[[f64; 2]],
+        ends: &[Option<[ObjectEnd; 2]>],
+        velocities: &[Option<VelocityMeasurement>],
+    ) -> Result<Vec<Option<usize>>, EvalError> {
         let velocity_of = |c: usize| velocities.get(c).copied().flatten();
+        let ends_of = |c: usize| ends.get(c).and_then(Option::as_ref);
         // 1. Predict.
         if let Some(last) = self.last_stamp_secs {
             let dt = stamp_secs - last;
@@ -171,7 +199,8 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         for (ti, track) in gated.iter().enumerate() {
             let gate = track.filter.centroid_gate()?;
             for (ci, c) in centroids_xy.iter().enumerate() {
-                let d2 = gate.mahalanobis_sq(*c);
+                let d2 =
+                    gate.mahalanobis_sq(measured_point(track.anchor.as_ref(), *c, ends_of(ci)));
                 if d2 <= self.params.gate_chi2 {
                     let rank = usize::from(track.status == TrackStatus::Tentative);
                     // A cluster with a measured velocity (GP-KF) adds the velocity's evidence
@@ -212,7 +241,22 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         for (track, cluster) in self.tracks.iter_mut().zip(&track_cluster) {
             match cluster {
                 Some(ci) => {
-                    track.filter.update(centroids_xy[*ci])?;
+                    let (centroid, ends) = (centroids_xy[*ci], ends_of(*ci));
+                    track
+                        .filter
+                        .update(measured_point(track.anchor.as_ref(), centroid, ends))?;
+                    let reference = track.filter.position();
+                    // Only a confirmed track that sees its object move takes an anchor
+                    // (`reference_point`).
+                    let moving = track.status == TrackStatus::Confirmed
+                        && track
+                            .filter
+                            .estimate()
+                            .is_some_and(|e| e.speed_mps >= MIN_ANCHOR_SPEED_MPS);
+                    let ends = ends.filter(|_| moving || track.anchor.is_some());
+                    let (anchor, shift) = next_reference(track.anchor, centroid, ends, reference);
+                    track.filter.shift_position(shift);
+                    track.anchor = anchor;
                     if let Some(v) = velocity_of(*ci) {
                         track.filter.update_velocity(&v)?;
                     }
@@ -242,6 +286,7 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
                     status: TrackStatus::Tentative,
                     consecutive_hits: 1,
                     consecutive_misses: 0,
+                    anchor: None,
                 };
                 if self.params.confirm_hits <= 1 {
                     track.status = TrackStatus::Confirmed;
@@ -259,125 +304,5 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use rand::{RngExt, SeedableRng};
-    use rand_chacha::ChaCha8Rng;
-
-    const DT: f64 = 0.1;
-
-    fn tracker() -> MultiTargetTracker {
-        MultiTargetTracker::new(TrackerParams::default()).unwrap()
-    }
-
-    #[test]
-    fn one_track_id_survives_a_crossing_of_two_targets_at_different_speeds() {
-        // A drives +x at 10 m/s along y = 0; B drives +y at 3 m/s along x = 0.5; their paths
-        // cross near (0.5, 0) with the cars about a metre apart at the closest point.
-        let mut rng = ChaCha8Rng::seed_from_u64(21);
-        let mut t = tracker();
-        let (mut ids_a, mut ids_b) = (Vec::new(), Vec::new());
-        for k in 0..40 {
-            let time = k as f64 * DT;
-            let mut noise = || rng.random_range(-0.1..0.1);
-            let a = [-15.0 + 10.0 * time + noise(), noise()];
-            let b = [0.5 + noise(), -5.5 + 3.0 * time + noise()];
-            // Alternate the cluster order so list position carries no information.
-            let (centroids, ia, ib) = if k % 2 == 0 {
-                (vec![a, b], 0, 1)
-            } else {
-                (vec![b, a], 1, 0)
-            };
-            let assigned = t.step(k, time, &centroids).unwrap();
-            ids_a.push(assigned[ia].unwrap());
-            ids_b.push(assigned[ib].unwrap());
-        }
-        assert!(ids_a.iter().all(|id| *id == ids_a[0]), "{ids_a:?}");
-        assert!(ids_b.iter().all(|id| *id == ids_b[0]), "{ids_b:?}");
-        assert_ne!(ids_a[0], ids_b[0]);
-        let vel_a = t.track(ids_a[0]).unwrap().filter.velocity();
-        assert!((vel_a[0] - 10.0).abs() < 1.0, "{vel_a:?}");
-    }
-
-    #[test]
-    fn a_far_clutter_cluster_is_gated_out_of_a_confirmed_track() {
-        let mut t = tracker();
-        let mut target_id = None;
-        for k in 0..10 {
-            let target = [5.0 * k as f64 * DT, 0.0];
-            let assigned = t.step(k, k as f64 * DT, &[target]).unwrap();
-            target_id = assigned[0];
-        }
-        // The target vanishes for one scan while clutter appears 8 m ahead of it.
-        let clutter = t.step(10, 1.0, &[[13.0, 0.0]]).unwrap();
-        assert_ne!(clutter[0], target_id);
-        let after = t.step(11, 1.1, &[[5.5, 0.0]]).unwrap();
-        assert_eq!(after[0], target_id);
-        // The clutter's tentative track died at its first miss.
-        assert_eq!(t.tracks().len(), 1);
-    }
-
-    #[test]
-    fn tracks_are_confirmed_after_three_hits_and_ended_after_more_than_three_misses() {
-        let mut t = tracker();
-        let mut statuses = Vec::new();
-        for k in 0..4 {
-            let assigned = t.step(k, k as f64 * DT, &[[k as f64 * 0.4, 1.0]]).unwrap();
-            statuses.push(t.track(assigned[0].unwrap()).unwrap().status);
-        }
-        assert_eq!(
-            statuses,
-            [
-                TrackStatus::Tentative,
-                TrackStatus::Tentative,
-                TrackStatus::Confirmed,
-                TrackStatus::Confirmed
-            ]
-        );
-        for k in 4..7 {
-            t.step(k, k as f64 * DT, &[]).unwrap();
-            assert_eq!(t.tracks().len(), 1, "coasting at scan {k}");
-        }
-        t.step(7, 0.7, &[]).unwrap();
-        assert!(t.tracks().is_empty());
-    }
-
-    #[test]
-    fn a_measured_velocity_keeps_a_cluster_with_the_track_moving_its_way() {
-        use crate::methods::baselines::velocity_measurement::{
-            GpVelocityNoise, VelocityMeasurement,
-        };
-        let noise = GpVelocityNoise::default();
-        let moving = VelocityMeasurement::from_heading_speed(0.0, 0.0, 8.0, 0.0, &noise);
-        let at_rest = VelocityMeasurement::at_rest(&noise);
-        // A drives +x at 8 m/s; B stands 0.5 m beyond where A will be at scan 10. At scan 10, B
-        // is hidden and A's cluster lies 0.3 m ahead of A's prediction, 0.2 m short of B's.
-        let run = |velocity_at_10: Option<VelocityMeasurement>| {
-            let mut t = tracker();
-            let (mut a, mut b) = (None, None);
-            for k in 0..10 {
-                let time = k as f64 * DT;
-                let centroids = [[8.0 * time, 0.0], [8.5, 0.0]];
-                let assigned = t
-                    .step_measured(k, time, &centroids, &[Some(moving), Some(at_rest)])
-                    .unwrap();
-                (a, b) = (assigned[0], assigned[1]);
-            }
-            let taken = t
-                .step_measured(10, 1.0, &[[8.3, 0.0]], &[velocity_at_10])
-                .unwrap();
-            (taken[0], a, b)
-        };
-        let (taken, a, b) = run(None);
-        assert_eq!(taken, b, "by position alone the nearer track takes it");
-        let (taken, a_again, _) = run(Some(moving));
-        assert_eq!((taken, a_again), (a, a), "its velocity gives it back to A");
-    }
-
-    #[test]
-    fn a_time_stamp_that_does_not_increase_is_an_error() {
-        let mut t = tracker();
-        t.step(0, 1.0, &[[0.0, 0.0]]).unwrap();
-        assert!(t.step(1, 1.0, &[[0.0, 0.0]]).is_err());
-    }
-}
+#[path = "tracker_tests.rs"]
+mod tests;

@@ -120,9 +120,14 @@ impl LearnedTrackers {
             })
             .collect();
         let centroids: Vec<[f64; 2]> = scan.clusters.iter().map(|c| c.centroid_xy).collect();
-        let tracks =
-            self.tracker
-                .step_measured(scan.scan, scan.stamp_secs, &centroids, &velocities)?;
+        let ends: Vec<_> = scan.clusters.iter().map(|c| c.ends).collect();
+        let tracks = self.tracker.step_anchored(
+            scan.scan,
+            scan.stamp_secs,
+            &centroids,
+            &ends,
+            &velocities,
+        )?;
         Ok(tracks
             .iter()
             .enumerate()
