@@ -6,13 +6,12 @@
 //! hidden end stays at the parked car's edge, so its centroid moves at about half its speed; a
 //! centroid filter reads it slow for as long as the emergence lasts and long after (the unseen
 //! crossing truck: 4.4-6.6 m/s for 7, docs/estimator.md "Stop 49"). Lidar trackers measure a
-//! point fixed on the object instead, a visible corner or end of its box (Himmelsbach, Luettel
-//! and Wuensche 2012, "Tracking and classification of arbitrary objects with bottom-up/top-down
-//! detection"; Zhang et al. 2017, "Efficient L-shape fitting for vehicle detection using laser
-//! scanners"). Here, when one end of a cluster is hidden (`RangeProfile::ends`) the track takes
-//! the other end, with the offset the centroid had from it in that scan, as its reference; when
-//! the whole object shows again, the track's state moves by the offset between the two
-//! references measured in that scan, so the change of reference never reads as motion.
+//! point fixed on the object instead, a visible corner or end of a box fitted to it (e.g. the
+//! L-shape fit of Zhang et al. 2017, "Efficient L-shape fitting for vehicle detection using
+//! laser scanners"). Here, when one end of a cluster is hidden (`RangeProfile::ends`) the track
+//! measures the other end plus the offset of its own position from that end in that scan; when
+//! the whole object shows again, the track's state moves by the offset between the two points
+//! measured in that scan, so the change of reference never reads as motion.
 
 use patchflow_learn::ObjectEnd;
 
