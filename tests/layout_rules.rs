@@ -17,6 +17,8 @@ fn workspace_root() -> PathBuf {
 }
 
 /// Every file under `dir` whose name ends in `extension`, skipping build output and hidden folders.
+/// Build output is any folder Cargo tagged as a cache (`CACHEDIR.TAG`, which it writes into every
+/// target directory, whatever `CARGO_TARGET_DIR` names it), and `target`.
 fn files_under(dir: &Path, extension: &str) -> Vec<PathBuf> {
     let mut found = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
@@ -26,7 +28,8 @@ fn files_under(dir: &Path, extension: &str) -> Vec<PathBuf> {
             let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
             let name = name.unwrap_or_default();
             if path.is_dir() {
-                if !name.starts_with('.') && name != "target" {
+                let build_output = name == "target" || path.join("CACHEDIR.TAG").is_file();
+                if !name.starts_with('.') && !build_output {
                     stack.push(path);
                 }
             } else if name.ends_with(extension) {
