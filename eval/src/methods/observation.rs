@@ -24,9 +24,12 @@ pub struct ClusterObservation {
 }
 
 impl ClusterObservation {
-    /// Every cluster of a scan's features, with its points in the world frame's ground plane.
-    pub(crate) fn all_of(features: &patchflow_learn::SweepFeatures) -> Vec<Self> {
-        let profile = RangeProfile::of(features);
+    /// Every cluster of a scan's features, with its points in the world frame's ground plane and
+    /// its ends read off `profile` (the scan's, `RangeProfile::of(features)`).
+    pub(crate) fn all_of(
+        features: &patchflow_learn::SweepFeatures,
+        profile: &RangeProfile,
+    ) -> Vec<Self> {
         features
             .clusters()
             .iter()

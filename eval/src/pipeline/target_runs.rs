@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 use patchflow_dataset::{Dataset, SequenceReader};
 use patchflow_learn::{
     ChangeEvidence, ClusterEstimate, FeatureParams, FeaturedSweep, MergeRule, MotionEstimator,
-    MovingBelief, MovingClassifier, ScanStream,
+    MovingBelief, MovingClassifier, RangeProfile, ScanStream,
 };
 use rayon::prelude::*;
 
@@ -130,11 +130,13 @@ fn evaluate_target(
             sweep,
             features,
         };
-        truth.push(target_at(&scan, &scan.features[0], &name)?);
+        // One range profile per scan serves the target's truth and the baselines' clusters.
+        let profile = RangeProfile::of(&scan.features[0]);
+        truth.push(target_at(&scan, &scan.features[0], &profile, &name)?);
         if baselines.is_some() {
             // What the baselines see (the first estimator's clusters, as the whole evaluation);
             // the oracle association kept for the target alone, which only its estimates read.
-            let mut observation = observe(&scan, &scan.features[0]);
+            let mut observation = observe(&scan, &scan.features[0], &profile);
             let target = observation.target_actor;
             observation.actors.retain(|&actor, _| Some(actor) == target);
             let change = moving.and_then(|_| ChangeEvidence::of_stream(&stream));

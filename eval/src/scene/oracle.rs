@@ -11,9 +11,14 @@ use crate::error::EvalError;
 use crate::methods::observation::{ActorCluster, ClusterObservation, ScanObservation};
 use crate::scene::truth_at_scan::TruthAtScan;
 
-/// The clusters of a scan and, from the labels, which cluster holds most of each actor's points.
-pub(crate) fn observe(scan: &FeaturedSweep, features: &SweepFeatures) -> ScanObservation {
-    let clusters = ClusterObservation::all_of(features);
+/// The clusters of a scan and, from the labels, which cluster holds most of each actor's points;
+/// `profile` is the scan's range profile (`RangeProfile::of(features)`).
+pub(crate) fn observe(
+    scan: &FeaturedSweep,
+    features: &SweepFeatures,
+    profile: &RangeProfile,
+) -> ScanObservation {
+    let clusters = ClusterObservation::all_of(features, profile);
     let mut counts: BTreeMap<(u16, usize), usize> = BTreeMap::new();
     for (i, p) in features.points().iter().enumerate() {
         let actor = scan.sweep.labels[p.index].instance();
@@ -57,6 +62,7 @@ pub(crate) fn target_cluster(features: &SweepFeatures, sweep: &Sweep) -> Option<
 pub(crate) fn target_at(
     scan: &FeaturedSweep,
     features: &SweepFeatures,
+    profile: &RangeProfile,
     situation: &str,
 ) -> Result<TruthAtScan, EvalError> {
     let target = scan.sweep.target().ok_or_else(|| EvalError::BadResult {
@@ -65,8 +71,7 @@ pub(crate) fn target_at(
     })?;
     let [sx, sy] = features.sensor_xy();
     let members = target_cluster(features, &scan.sweep).map(|c| features.clusters().members(c));
-    let hidden_ends =
-        members.map(|m| RangeProfile::of(features).hidden_ends(&features.positions_xy(m)));
+    let hidden_ends = members.map(|m| profile.hidden_ends(&features.positions_xy(m)));
     Ok(TruthAtScan {
         range_m: Some((target.centre_m[0] - sx).hypot(target.centre_m[1] - sy)),
         target_points: Some(members.map_or(0, <[usize]>::len)),

@@ -8,7 +8,7 @@ use std::time::Instant;
 use patchflow_dataset::SequenceReader;
 use patchflow_learn::{
     ChangeEvidence, ClusterEstimate, FeatureParams, FeaturedSweep, MotionEstimator, MovingBelief,
-    MovingClassifier, ScanStream,
+    MovingClassifier, RangeProfile, ScanStream,
 };
 
 use crate::error::EvalError;
@@ -253,11 +253,13 @@ fn evaluate_scan(
         .zip(cpu.zip(process_cpu_secs()))
         .map(|(l, (a, b))| l + b - a);
     // The oracle association (thesis 4.4): every actor's cluster.
-    let observation = observe(scan, features);
+    // One range profile per scan serves the oracle's clusters and the target's truth.
+    let profile = RangeProfile::of(features);
+    let observation = observe(scan, features, &profile);
     let hypotheses = hypothesis_flags(features);
     // Thesis 4.4's protocol for the target: its cluster, predicted at every one of its points.
     let target = match situation {
-        Some(situation) => Some(target_at(scan, features, situation)?),
+        Some(situation) => Some(target_at(scan, features, &profile, situation)?),
         None => None,
     };
     let start = Instant::now();

@@ -5,7 +5,8 @@
 //! (and the Criterion bench of the whole learned scan).
 
 use patchflow_learn::{
-    ChangeEvidence, MotionEstimator, MovingBelief, MovingClassifier, ScanMotion, SweepFeatures,
+    ChangeEvidence, MotionEstimator, MovingBelief, MovingClassifier, RangeProfile, ScanMotion,
+    SweepFeatures,
 };
 
 use crate::error::EvalError;
@@ -83,7 +84,7 @@ impl<'a> LearnedPerception<'a> {
             scan: self.scans,
             stamp_secs,
             sensor_xy_world: features.sensor_xy(),
-            clusters: ClusterObservation::all_of(features),
+            clusters: ClusterObservation::all_of(features, &RangeProfile::of(features)),
             actors: Default::default(),
             target_actor: None,
         };
