@@ -25,7 +25,8 @@
 //! is the GP's motion from the first scan (the mixture would give a speed between the GP's and
 //! rest there; docs/results.md). GP-KF reports it once the mixture's heading is known to within
 //! [`MAX_REPORTED_HEADING_STD_DEG`] and a learned reading has been fused
-//! ([`GpTrustFilter::heading_settled`]). The filter learns per
+//! ([`GpTrustFilter::heading_settled`]), and before that wherever the estimate it reports states
+//! its heading that tightly ([`GpTrustFilter::reported_heading_known`]). The filter learns per
 //! track how far the GP can be trusted from what the centroids and the GP's own consistency say;
 //! it never reads the truth.
 
@@ -104,6 +105,20 @@ impl GpTrustFilter {
         estimate
             .heading_var
             .is_some_and(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians())
+    }
+
+    /// Whether the estimate the track reports (its likeliest mode's) states its heading to within
+    /// [`MAX_REPORTED_HEADING_STD_DEG`], once a learned reading has been fused. A track started
+    /// on one GP reading reports it by this rule where the GP states it that tightly, as the
+    /// estimator reports it: GP-KF then covers the scans the estimator covers (docs/estimator.md,
+    /// "Stop 50"), while a first reading the GP itself states loosely, or a mode thrown by a
+    /// centroid jump, waits for [`Self::heading_settled`].
+    pub fn reported_heading_known(&self) -> bool {
+        self.velocity_updates() > 0
+            && self
+                .estimate()
+                .and_then(|e| e.heading_var)
+                .is_some_and(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians())
     }
 
     /// Mode probabilities given this scan's measurements.

@@ -218,6 +218,19 @@ fn a_track_started_on_one_gp_reading_does_not_report_however_tight_the_gp_says_i
 }
 
 #[test]
+fn a_track_started_on_one_gp_reading_knows_its_heading_as_tightly_as_the_gp_states_it() {
+    let noise = GpVelocityNoise::default();
+    for (heading_std_deg, known) in [(5.0_f64, true), (20.0, false)] {
+        let mut filter = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
+        assert!(!filter.reported_heading_known(), "no learned reading yet");
+        let var = heading_std_deg.to_radians().powi(2);
+        let reading = VelocityMeasurement::from_heading_speed(0.0, var, 8.0, 0.25, &noise);
+        filter.update_velocity(&reading).unwrap();
+        assert_eq!(filter.reported_heading_known(), known, "{heading_std_deg}°");
+    }
+}
+
+#[test]
 fn a_track_whose_gp_and_centroids_agree_reports_within_five_scans() {
     let noise = GpVelocityNoise::default();
     let z = centroids(5, 4);
