@@ -204,8 +204,8 @@ impl LearnedTrackers {
 /// crossing behind a row of parked cars), whose visible stub's ends are the gap's edges. A side
 /// sliding along itself between them changes no cell of the difference map, so the GP's reading
 /// of such a scan says nothing of the motion: over the five situations and the six unseen checks
-/// those scans were read 46-96° off (docs/estimator.md, "Stop 46"). A track carries the object
-/// through them; a reading of that one scan does not.
+/// those scans were read 46-96° off (docs/estimator.md, "Stop 46"). A settled track carries the
+/// object through them; an unsettled one, which that reading has just moved, waits.
 fn seen_through_gap(cluster: &ClusterObservation) -> bool {
     cluster
         .ends

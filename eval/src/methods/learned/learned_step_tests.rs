@@ -105,7 +105,7 @@ fn scan_with_ends(k: usize, hidden: bool) -> ScanObservation {
 }
 
 #[test]
-fn a_car_seen_through_a_gap_gets_no_reading_of_that_scan_before_its_track_settles() {
+fn a_car_seen_through_a_gap_is_not_reported_before_its_track_settles() {
     for hidden in [true, false] {
         let mut trackers =
             LearnedTrackers::new(&BaselineParams::default(), GpVelocityNoise::default()).unwrap();
