@@ -59,6 +59,15 @@ pub const MAX_REPORTED_HEADING_STD_DEG: f64 = 12.5;
 /// acceleration) would hold the velocity to the straight line the car has left.
 pub const MANOEUVRE_ACCEL_NOISE_STD_MPS2: f64 = 5.0;
 
+/// Whether `estimate` states its heading to within [`MAX_REPORTED_HEADING_STD_DEG`]: the one
+/// test behind both of GP-KF's report rules ([`GpTrustFilter::heading_settled`] on the mixture,
+/// [`GpTrustFilter::reported_heading_known`] on the reported mode).
+fn heading_within_report_bar(estimate: &MotionEstimate) -> bool {
+    estimate
+        .heading_var
+        .is_some_and(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians())
+}
+
 /// Three constant-velocity filters, GP white, trusted and unreliable, and their probabilities.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GpTrustFilter {
@@ -98,13 +107,10 @@ impl GpTrustFilter {
         if self.velocity_updates() == 0 {
             return false;
         }
-        let estimate = MotionEstimate::from_velocity_with_covariance(
+        heading_within_report_bar(&MotionEstimate::from_velocity_with_covariance(
             self.combined.velocity(),
             self.combined.velocity_covariance(),
-        );
-        estimate
-            .heading_var
-            .is_some_and(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians())
+        ))
     }
 
     /// Whether the estimate the track reports (its likeliest mode's) states its heading to within
@@ -117,8 +123,7 @@ impl GpTrustFilter {
         self.velocity_updates() > 0
             && self
                 .estimate()
-                .and_then(|e| e.heading_var)
-                .is_some_and(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians())
+                .is_some_and(|e| heading_within_report_bar(&e))
     }
 
     /// Mode probabilities given this scan's measurements.
