@@ -1,6 +1,7 @@
 //! The default estimator and GP-KF on its readings on targets no training track has (issue 24,
 //! "unseen shapes and traffic"): a truck, a van turning across the ego car's path, a cyclist, a
-//! car crossing from the left, a truck crossing from the right and a car overtaking at 12 m/s,
+//! car crossing from the left, a truck crossing from the right, a car overtaking at 12 m/s, a van
+//! crossing at 10 m/s, a car turning right out of a side street and the car ahead braking hard,
 //! from the `scenarios/unseen_*.toml` checks that `bench` and `train` never read.
 //! At tiny sizes (two training tracks' last sweeps, 400 samples, 20 pseudo-inputs) the model is
 //! far from `bench`'s, so the bounds are the errors measured when the test was written plus a
@@ -20,13 +21,16 @@ use patchflow_sim::{GenerateOptions, ScenarioSource, Shard};
 
 /// `(scenario, first kept sweep's time in seconds)`: 20 sweeps from there, where the target is
 /// in view and moving.
-const UNSEEN: [(&str, f64); 6] = [
+const UNSEEN: [(&str, f64); 9] = [
     ("unseen_truck", 4.0),
     ("unseen_van_turn", 4.5),
     ("unseen_cyclist", 5.0),
     ("unseen_crossing_left", 4.5),
     ("unseen_truck_crossing", 4.5),
     ("unseen_overtake", 3.0),
+    ("unseen_van_crossing", 4.5),
+    ("unseen_right_turn", 5.5),
+    ("unseen_lead_brakes", 4.0),
 ];
 
 /// The training tracks of the tiny model (two of the default's nine: traffic from all four
@@ -44,33 +48,43 @@ const TRAINING: [(&str, f64); 2] = [("train04", 12.0), ("train08", 11.0)];
 /// 1.00 before a hypothesis that has just come into view went without an estimate, stop 45) and
 /// 10.79°/4.536 m/s (coverage 1.00), plus the same margins. The cyclist, the crossing truck and
 /// the overtaking car's speed are outside the 25° and 1.5 m/s bar, as at `bench`'s sizes
-/// (docs/estimator.md).
-const BOUNDS: [(f64, f64); 6] = [
+/// (docs/estimator.md). The three checks of stop 51, a van crossing from the left at 10 m/s, a car
+/// turning right out of a side street and the car ahead braking hard: 27.49°/3.529, 65.51°/0.527
+/// and 9.59°/2.747 m/s (coverage 0.95, 0.84, 1.00), plus the same margins.
+const BOUNDS: [(f64, f64); 9] = [
     (22.5, 1.01),
     (24.5, 1.99),
     (61.5, 1.60),
     (37.5, 2.32),
     (51.7, 1.55),
     (25.8, 5.04),
+    (42.5, 4.03),
+    (80.6, 1.03),
+    (24.6, 3.25),
 ];
 
 /// GP-KF's bounds on the same model (the learned tracker, no moving decision, as in the
-/// per-target tables), in [`UNSEEN`]'s order: measured 2026-12-05 (stop 50, a track reporting
-/// from its first learned reading wherever the estimate it reports states its heading within
-/// 12.5°) at 7.12°/0.468, 8.15°/0.994, 21.07°/1.203, 7.60°/1.181, 4.62°/0.911 and 5.88°/2.780
-/// m/s (coverage 0.47, 1.00, 0.89, 1.00, 0.74, 1.00), plus 15° and 0.5 m/s. Reporting settled
-/// tracks only (stop 49): 6.46°/0.455, 8.55°/0.928, 16.29°/1.124, 8.00°/1.216, 3.21°/0.945 and
-/// 3.76°/2.492 (coverage 0.42, 0.89, 0.79, 0.89, 0.68, 0.89); on centroids alone (stop 44) the
-/// crossing truck read 1.46°/2.795 m/s: it comes out from behind a parked car, its centroid at
-/// half its speed. At `bench`'s sizes GP-KF reads all six within the 25° and 1.5 m/s bar
-/// (docs/estimator.md, "Stop 50").
-const GP_KF_BOUNDS: [(f64, f64); 6] = [
+/// per-target tables), in [`UNSEEN`]'s order: measured 2026-12-05 (stop 51, an unsettled track
+/// reporting its likeliest mode only where the mixture knows the heading within the 25° bar) at
+/// 7.12°/0.468, 8.36°/0.964, 21.07°/1.203, 7.78°/1.194, 4.62°/0.911, 4.75°/2.644, 15.29°/1.971,
+/// 22.16°/0.804 and 3.98°/2.517 m/s (coverage 0.47, 0.95, 0.89, 0.95, 0.74, 0.95, 0.89, 0.47,
+/// 0.95), plus 15° and 0.5 m/s. Reporting from a track's first GP reading (stop 50): 7.12°/0.468,
+/// 8.15°/0.994, 21.07°/1.203, 7.60°/1.181, 4.62°/0.911 and 5.88°/2.780 for the first six;
+/// reporting settled tracks only (stop 49): 6.46°/0.455, 8.55°/0.928, 16.29°/1.124,
+/// 8.00°/1.216, 3.21°/0.945 and 3.76°/2.492; on centroids alone (stop 44) the crossing truck
+/// read 1.46°/2.795 m/s: it comes out from behind a parked car, its centroid at half its speed.
+/// At `bench`'s sizes GP-KF reads every check but the fast van's speed within the 25° and 1.5
+/// m/s bar on the world of `--seed 7`, not on every world draw (docs/estimator.md, "Stop 51").
+const GP_KF_BOUNDS: [(f64, f64); 9] = [
     (22.1, 0.97),
-    (23.2, 1.49),
+    (23.4, 1.47),
     (36.1, 1.70),
-    (22.6, 1.68),
+    (22.8, 1.70),
     (19.6, 1.41),
-    (20.9, 3.28),
+    (19.8, 3.15),
+    (30.3, 2.48),
+    (37.2, 1.31),
+    (19.0, 3.02),
 ];
 
 /// `name.toml` from `scenarios/` with 20 sweeps from `start_secs`, written into `dir`.

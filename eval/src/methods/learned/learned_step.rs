@@ -143,9 +143,10 @@ impl LearnedTrackers {
                 // A track reports once its own heading uncertainty supports it. Before that, a
                 // cluster the classifier calls moving still gets the track's motion: the decision
                 // is that it moves, and no estimate would be scored as standing still. Without a
-                // decision, a track reports from its first learned reading on (SPEC §6: started
-                // from the first scan) wherever the estimate it reports states its heading to
-                // within the same 12.5°, but not on a scan that sees the object through a gap.
+                // decision, a track (started from the first scan, SPEC §6) reports before it
+                // settles wherever the estimate it reports states its heading to within the same
+                // 12.5° and the mixture to within the 25° bar (from its second consistent learned
+                // reading), but not on a scan that sees the object through a gap.
                 let moving = of(c).moving == Some(true);
                 (moving
                     || track.filter.heading_settled()

@@ -70,23 +70,20 @@ fn run(scans: usize, classifier: bool) -> Vec<BTreeMap<Method, Vec<Option<Cluste
 }
 
 #[test]
-fn gp_kf_reports_its_track_from_the_first_gp_reading_and_converges_to_the_velocity() {
+fn gp_kf_reports_its_track_from_the_second_gp_reading_and_converges_to_the_velocity() {
     let steps = run(30, false);
-    // Started on the first scan's GP reading, which alone does not settle the heading: the track
-    // reports that reading (within 0.15 m/s: the filter's velocity prior holds it back a little).
+    // One GP reading leaves the track's modes apart (the mixture wider than the 25° bar): no
+    // report; with the second scan's the mixture is within the bar and the likeliest mode, which
+    // holds the GP's motion, reports (within 0.5 m/s of the GP's reading).
+    assert!(steps[0][&Method::GpKf][0].is_none(), "{:?}", steps[0]);
     let gp = gp_output(false)[0].gp.unwrap().velocity_xy_mps;
-    let first = steps[0][&Method::GpKf][0]
+    let second = steps[1][&Method::GpKf][0]
         .unwrap()
         .estimate()
         .velocity_xy_mps;
     assert!(
-        (first[0] - gp[0]).hypot(first[1] - gp[1]) < 0.15,
-        "{first:?} against {gp:?}"
-    );
-    let first_error = velocity_error(&steps[0][&Method::GpKf][0]);
-    assert!(
-        first_error > 0.5,
-        "the GP's reading is {first_error} m/s off"
+        (second[0] - gp[0]).hypot(second[1] - gp[1]) < 0.5,
+        "{second:?} against {gp:?}"
     );
     // The settled track carries less than the GP's error.
     let last = &steps[29][&Method::GpKf][0];
@@ -109,10 +106,13 @@ fn a_car_seen_through_a_gap_is_not_reported_before_its_track_settles() {
     for hidden in [true, false] {
         let mut trackers =
             LearnedTrackers::new(&BaselineParams::default(), GpVelocityNoise::default()).unwrap();
-        let first = trackers
-            .step_kf(&scan_with_ends(0, hidden), &gp_output(false))
+        trackers
+            .step_kf(&scan_with_ends(0, false), &gp_output(false))
             .unwrap();
-        assert_eq!(first[0].is_none(), hidden, "both ends hidden: {hidden}");
+        let second = trackers
+            .step_kf(&scan_with_ends(1, hidden), &gp_output(false))
+            .unwrap();
+        assert_eq!(second[0].is_none(), hidden, "both ends hidden: {hidden}");
     }
 }
 
@@ -127,8 +127,10 @@ fn a_new_track_whose_gp_reading_is_stated_loosely_waits_for_its_heading_to_settl
             ..gp
         });
     }
-    let first = trackers.step_kf(&scan(0), &learned).unwrap();
-    assert!(first[0].is_none(), "{first:?}");
+    for k in 0..2 {
+        let out = trackers.step_kf(&scan(k), &learned).unwrap();
+        assert!(out[0].is_none(), "scan {k}: {out:?}");
+    }
 }
 
 #[test]
