@@ -27,9 +27,8 @@
 //! [`MAX_REPORTED_HEADING_STD_DEG`] and a learned reading has been fused
 //! ([`GpTrustFilter::heading_settled`]), and before that wherever the estimate it reports states
 //! its heading that tightly and the mixture to within the bar
-//! ([`GpTrustFilter::reported_heading_known`]). The filter learns per
-//! track how far the GP can be trusted from what the centroids and the GP's own consistency say;
-//! it never reads the truth.
+//! ([`GpTrustFilter::reported_heading_known`]). The filter learns per track how far the GP can be
+//! trusted from what the centroids and the GP's own consistency say; it never reads the truth.
 
 use nalgebra::{Matrix2, Matrix6, Vector6};
 
@@ -134,12 +133,11 @@ impl GpTrustFilter {
 
     /// Whether the estimate the track reports (its likeliest mode's) states its heading to within
     /// [`MAX_REPORTED_HEADING_STD_DEG`], once a learned reading has been fused, while the mixture
-    /// knows it to within [`MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG`]. A track started on one GP
-    /// reading reports it by this rule where the GP states it that tightly, as the estimator
-    /// reports it: GP-KF then covers most of the scans the estimator covers (docs/estimator.md,
-    /// "Stop 50"), while a first reading the GP itself states loosely, or a mode thrown by a
-    /// centroid jump (which the other modes do not follow, "Stop 51"), waits for
-    /// [`Self::heading_settled`].
+    /// knows it to within [`MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG`]. By this rule a track reports
+    /// from its second learned reading that agrees with its centroids, where the GP states it
+    /// tightly: GP-KF then covers most of the scans the estimator covers (docs/estimator.md, "Stop
+    /// 50" and "Stop 51"); a track on its first reading, or on readings the GP states loosely,
+    /// waits for [`Self::heading_settled`].
     pub fn reported_heading_known(&self) -> bool {
         self.velocity_updates() > 0
             && heading_std_within(
