@@ -7,9 +7,10 @@
 //!   once it has fused a learned reading and its heading's standard deviation (the IMM
 //!   mixture's) is within 12.5°, half the 25° bar a heading is held to
 //!   ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of hits; before that,
-//!   wherever the estimate it reports states its heading within the same 12.5° and the object
-//!   does not show through a gap (so it covers the scans the estimator covers), and a cluster the
-//!   moving classifier calls moving gets the track's motion from the first scan.
+//!   wherever the estimate it reports states its heading within the same 12.5°, the mixture
+//!   within the 25° bar ([`GpTrustFilter::reported_heading_known`]: from the second learned
+//!   reading that agrees with the centroids) and the object does not show through a gap, and a
+//!   cluster the moving classifier calls moving gets the track's motion from the first scan.
 //! - `GP-ICP`: `ICP-AUTO`'s nearest-centroid association, ICP started from the GP's motion over
 //!   the interval as well as from the centroid alignment; the alignment that pairs more points
 //!   (beyond 5 %), else the one with the smaller residual, wins. Point-to-point ICP stops in the
