@@ -94,7 +94,7 @@ fn main() -> Result<(), Failure> {
                 m.speed_rmse_mps.unwrap_or(f64::NAN),
             );
             println!(
-                "| {} | {method} | {h:.1} | {s:.2} | {:.3} |",
+                "| {} | {method} | {h:.2} | {s:.3} | {:.3} |",
                 situation.name, m.coverage
             );
             rows.push((method, h, s));

@@ -24,7 +24,7 @@
 //! no evidence yet and the GP's reading, taken as white, is likeliest, so the filter's estimate
 //! is the GP's motion from the first scan (the mixture would give a speed between the GP's and
 //! rest there; docs/results.md). GP-KF reports it once the mixture's heading is known to within
-//! [`MAX_REPORTED_HEADING_STD_DEG`] and a learned reading has been fused
+//! [`MAX_REPORTED_HEADING_STD_DEG`] and a learned reading has agreed with the track
 //! ([`GpTrustFilter::heading_settled`]), and before that wherever the estimate it reports states
 //! its heading that tightly and the mixture to within the bar
 //! ([`GpTrustFilter::reported_heading_known`]). The filter learns per track how far the GP can be
@@ -64,6 +64,12 @@ pub const MAX_REPORTED_HEADING_STD_DEG: f64 = 12.5;
 /// draws (docs/estimator.md, "Stop 51").
 pub const MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG: f64 = 25.0;
 
+/// The validation gate of a learned reading against the velocity the track predicts the sensor
+/// to read (χ² with 2 degrees of freedom at 99 %, the tracker's gate for centroids): a reading
+/// beyond it contradicts the track, and does not count towards its report
+/// ([`GpTrustFilter::heading_settled`]).
+pub const READING_GATE_CHI2: f64 = 9.21;
+
 /// The white mode's acceleration noise once the track has GP readings, m/s²: about half a g, the
 /// lateral acceleration of a car turning at a city junction. Where the GP reads an object well,
 /// its reading is what follows a turn, and the centroid filter's 2 m/s² (a car's longitudinal
@@ -99,6 +105,8 @@ pub struct GpTrustFilter {
     /// The moment-matched mixture given the measurements so far, one filter; kept current by
     /// every step, because the gate reads it once per cluster of the scan.
     combined: ConstantVelocityKalman,
+    /// Learned readings that agreed with the track when they came ([`Self::agrees`]).
+    agreeing_readings: usize,
 }
 
 impl GpTrustFilter {
@@ -119,8 +127,15 @@ impl GpTrustFilter {
     /// learned reading (GP or moving classifier) however many centroids settle it: its heading is
     /// `KF-AUTO`'s, read off a centroid that moves as the visible part of an object grows (an
     /// oncoming truck's, read 173° off before its first GP reading, docs/estimator.md "Stop 44").
+    /// Nor, for the same reason, does a track none of whose learned readings agreed with it (fell
+    /// within [`READING_GATE_CHI2`] of the velocity it predicted and stated a heading, if any,
+    /// within [`MAX_REPORTED_HEADING_STD_DEG`]): a track chained through clutter from a single
+    /// return moves as fast as its jumps, with a tight heading, and where it takes an object's
+    /// cluster the GP contradicts it (an oncoming truck at 8 m/s read by such a track at 17 m/s
+    /// and −30° while the GP read it at 95-105°, the truck driving at 180°; docs/estimator.md,
+    /// "Stop 52").
     pub fn heading_settled(&self) -> bool {
-        self.velocity_updates() > 0 && heading_within_report_bar(&self.mixture_estimate())
+        self.agreeing_readings > 0 && heading_within_report_bar(&self.mixture_estimate())
     }
 
     /// The motion of the moment-matched mixture (the IMM's estimate) with its covariance.
@@ -132,14 +147,15 @@ impl GpTrustFilter {
     }
 
     /// Whether the estimate the track reports (its likeliest mode's) states its heading to within
-    /// [`MAX_REPORTED_HEADING_STD_DEG`], once a learned reading has been fused, while the mixture
-    /// knows it to within [`MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG`]. By this rule a track reports
-    /// from its second learned reading that agrees with its centroids, where the GP states it
-    /// tightly: GP-KF then covers most of the scans the estimator covers (docs/estimator.md, "Stop
-    /// 50" and "Stop 51"); a track on its first reading, or on readings the GP states loosely,
-    /// waits for [`Self::heading_settled`].
+    /// [`MAX_REPORTED_HEADING_STD_DEG`], once a learned reading has agreed with the track (as for
+    /// [`Self::heading_settled`]), while the mixture knows it to within
+    /// [`MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG`]. By this rule a track reports from its second
+    /// learned reading that agrees with its centroids, where the GP states it tightly: GP-KF then
+    /// covers most of the scans the estimator covers (docs/estimator.md, "Stop 50" and "Stop
+    /// 51"); a track on its first reading, or on readings the GP states loosely, waits for
+    /// [`Self::heading_settled`].
     pub fn reported_heading_known(&self) -> bool {
-        self.velocity_updates() > 0
+        self.agreeing_readings > 0
             && heading_std_within(
                 &self.mixture_estimate(),
                 MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG,
@@ -147,6 +163,23 @@ impl GpTrustFilter {
             && self
                 .estimate()
                 .is_some_and(|e| heading_within_report_bar(&e))
+    }
+
+    /// Whether a learned reading agrees with the track before it is fused: it falls within the
+    /// validation gate ([`READING_GATE_CHI2`]) of the velocity the mixture predicts the sensor to
+    /// read, and states its heading within [`MAX_REPORTED_HEADING_STD_DEG`] where it states one
+    /// (a reading at rest, the moving classifier's, states none). A loosely stated reading fits
+    /// any track and confirms none.
+    fn agrees(&self, measurement: &VelocityMeasurement) -> Result<bool, EvalError> {
+        let stated = MotionEstimate::from_velocity_with_covariance(
+            measurement.velocity_xy_mps,
+            measurement.covariance,
+        );
+        let tight = stated
+            .heading_var
+            .is_none_or(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians());
+        let innovation = self.combined.velocity_innovation(measurement)?;
+        Ok(tight && innovation.mahalanobis_sq <= READING_GATE_CHI2)
     }
 
     /// Mode probabilities given this scan's measurements.
@@ -208,6 +241,7 @@ impl TrackFilter for GpTrustFilter {
             log_likelihood: [0.0; MODES],
             switch_secs: None,
             unreliable_std_mps: params.initial_velocity_std_mps,
+            agreeing_readings: 0,
         })
     }
 
@@ -291,6 +325,9 @@ impl TrackFilter for GpTrustFilter {
     }
 
     fn update_velocity(&mut self, measurement: &VelocityMeasurement) -> Result<(), EvalError> {
+        if self.agrees(measurement)? {
+            self.agreeing_readings += 1;
+        }
         let readings = self.readings(measurement);
         let modes = self.modes.iter_mut().zip(&readings);
         for ((mode, reading), ll) in modes.zip(&mut self.log_likelihood) {

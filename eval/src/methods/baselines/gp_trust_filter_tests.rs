@@ -287,12 +287,7 @@ fn a_track_without_gp_readings_does_not_report_on_two_centroids() {
 fn a_track_without_learned_readings_does_not_report_however_many_centroids_agree() {
     // Twenty centroids on a straight line at 8 m/s settle a centroid filter's heading, but no GP
     // or classifier reading was fused: that is KF-AUTO's estimate, not GP-KF's.
-    let z = centroids(20, 8);
-    let mut filter = GpTrustFilter::start(z[0], KalmanParams::default()).unwrap();
-    for zk in &z[1..] {
-        TrackFilter::predict(&mut filter, DT);
-        TrackFilter::update(&mut filter, *zk).unwrap();
-    }
+    let mut filter = settled_on_centroids();
     assert!(filter.estimate().is_some());
     assert!(!filter.heading_settled());
     // One GP reading that agrees, and the settled centroids let it report.
@@ -300,6 +295,76 @@ fn a_track_without_learned_readings_does_not_report_however_many_centroids_agree
     let reading = VelocityMeasurement::from_heading_speed(0.0, 0.01, 8.0, 0.25, &noise);
     filter.update_velocity(&reading).unwrap();
     assert!(filter.heading_settled());
+}
+
+/// A track settled by twenty centroids of a car driving +x at 8 m/s, no learned reading fused.
+fn settled_on_centroids() -> GpTrustFilter {
+    let z = centroids(20, 8);
+    let mut filter = GpTrustFilter::start(z[0], KalmanParams::default()).unwrap();
+    for zk in &z[1..] {
+        TrackFilter::predict(&mut filter, DT);
+        TrackFilter::update(&mut filter, *zk).unwrap();
+    }
+    filter
+}
+
+#[test]
+fn a_track_whose_only_learned_reading_contradicts_its_centroids_does_not_report() {
+    // A track chained through clutter moves as its jumps do; the GP reads the object it then
+    // takes 110° away from it, stated to 10°. The mixture follows the centroids (the reading is
+    // taken as unreliable) and knows its heading tightly, but nothing learned supports it.
+    let noise = GpVelocityNoise::default();
+    let mut filter = settled_on_centroids();
+    let contradicting =
+        VelocityMeasurement::from_heading_speed(110f64.to_radians(), 0.01, 7.0, 0.25, &noise);
+    filter.update_velocity(&contradicting).unwrap();
+    let mixture = filter.mixture_estimate();
+    assert!(heading_within_report_bar(&mixture), "{mixture:?}");
+    assert!(!filter.heading_settled());
+    assert!(!filter.reported_heading_known());
+    // A later reading that agrees lets it report.
+    TrackFilter::predict(&mut filter, DT);
+    TrackFilter::update(&mut filter, [20.0 * 0.8, 0.0]).unwrap();
+    let agreeing = VelocityMeasurement::from_heading_speed(0.0, 0.01, 8.0, 0.25, &noise);
+    filter.update_velocity(&agreeing).unwrap();
+    assert!(filter.heading_settled());
+}
+
+#[test]
+fn a_loosely_stated_reading_confirms_no_track() {
+    // A reading stated to 60° fits the track's prediction (it fits any) but says nothing of it.
+    let noise = GpVelocityNoise::default();
+    let mut filter = settled_on_centroids();
+    let var = 60f64.to_radians().powi(2);
+    let loose = VelocityMeasurement::from_heading_speed(0.0, var, 8.0, 0.25, &noise);
+    let innovation = filter.combined.velocity_innovation(&loose).unwrap();
+    assert!(
+        innovation.mahalanobis_sq <= READING_GATE_CHI2,
+        "{innovation:?}"
+    );
+    filter.update_velocity(&loose).unwrap();
+    assert!(!filter.heading_settled());
+}
+
+#[test]
+fn the_classifiers_reading_at_rest_agrees_with_a_standing_track() {
+    // A reading at rest states no heading; the gate alone decides.
+    let noise = GpVelocityNoise::default();
+    let mut filter = GpTrustFilter::start([5.0, 2.0], KalmanParams::default()).unwrap();
+    for _ in 0..5 {
+        TrackFilter::predict(&mut filter, DT);
+        TrackFilter::update(&mut filter, [5.0, 2.0]).unwrap();
+    }
+    assert!(
+        filter
+            .agrees(&VelocityMeasurement::at_rest(&noise))
+            .unwrap()
+    );
+    let fast = VelocityMeasurement::from_heading_speed(0.0, 0.01, 12.0, 0.25, &noise);
+    assert!(
+        !filter.agrees(&fast).unwrap(),
+        "12 m/s against a standing track"
+    );
 }
 
 /// Heading error (degrees) of GP-KF's filter after a car at 7 m/s turns 90° left in 1.3 s (about

@@ -4,8 +4,9 @@
 //! - `GP-KF`: the `KF-AUTO` tracker (its own association over all clusters) whose filters also
 //!   measure the GP's merged heading and speed as a velocity with its covariance (thesis 3.1.4,
 //!   [`VelocityMeasurement`]); a track is started from the first scan's GP reading and reports
-//!   once it has fused a learned reading and its heading's standard deviation (the IMM
-//!   mixture's) is within 12.5°, half the 25° bar a heading is held to
+//!   once a learned reading has agreed with it (within its validation gate, its heading stated
+//!   within 12.5°) and its heading's standard deviation (the IMM mixture's) is within 12.5°, half
+//!   the 25° bar a heading is held to
 //!   ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of hits; before that,
 //!   wherever the estimate it reports states its heading within the same 12.5°, the mixture
 //!   within the 25° bar ([`GpTrustFilter::reported_heading_known`]: from the second learned

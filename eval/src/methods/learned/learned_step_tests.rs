@@ -218,3 +218,54 @@ fn an_alignment_from_the_gp_that_pairs_more_points_wins_over_the_centroid_start(
     let kept = better_alignment(Some(from_gp), Some(from_centroid)).unwrap();
     assert!((kept.estimate.heading_rad - from_gp.estimate.heading_rad).abs() < 1e-12);
 }
+
+#[test]
+fn a_track_chained_through_single_returns_does_not_report_the_object_whose_gp_contradicts_it() {
+    // Clutter: one return per scan, each 1.8 m on at −30° from the last (18 m/s), which a track
+    // follows for six scans; then an object's cluster where that track predicts it, read by the
+    // GP at 100° and 7 m/s, stated to 6° (the oncoming truck of docs/estimator.md "Stop 52").
+    let step_xy = [
+        1.8 * (-30f64).to_radians().cos(),
+        1.8 * (-30f64).to_radians().sin(),
+    ];
+    let at = |k: usize| [10.0 + step_xy[0] * k as f64, 5.0 + step_xy[1] * k as f64];
+    let observation = |k: usize, points: Vec<[f64; 2]>| ScanObservation {
+        scan: k,
+        stamp_secs: k as f64 * DT,
+        sensor_xy_world: [0.0, 0.0],
+        clusters: vec![ClusterObservation::from_points(0, points)],
+        actors: BTreeMap::new(),
+        target_actor: None,
+    };
+    let mut trackers =
+        LearnedTrackers::new(&BaselineParams::default(), GpVelocityNoise::default()).unwrap();
+    for k in 0..6 {
+        let flows = trackers.step_kf(&observation(k, vec![at(k)]), &[]).unwrap();
+        assert!(
+            flows[0].is_none(),
+            "no learned reading, no report: scan {k}"
+        );
+    }
+    let centre = at(6);
+    let object: Vec<[f64; 2]> = (0..30)
+        .map(|i| {
+            let a = i as f64 * 0.7;
+            [centre[0] + 0.4 * a.cos(), centre[1] + 0.4 * a.sin()]
+        })
+        .collect();
+    let contradicting = LearnedCluster {
+        gp: Some(MotionEstimate {
+            heading_var: Some(6f64.to_radians().powi(2)),
+            speed_var: Some(0.25),
+            ..MotionEstimate::from_velocity([
+                7.0 * 100f64.to_radians().cos(),
+                7.0 * 100f64.to_radians().sin(),
+            ])
+        }),
+        moving: None,
+    };
+    let flows = trackers
+        .step_kf(&observation(6, object), &[contradicting])
+        .unwrap();
+    assert!(flows[0].is_none(), "{:?}", flows[0]);
+}
