@@ -165,6 +165,16 @@ impl GpTrustFilter {
                 .is_some_and(|e| heading_within_report_bar(&e))
     }
 
+    /// What the track reports of its object on a scan where the moving classifier has not called
+    /// the object moving: its likeliest mode's estimate where its heading has settled
+    /// ([`Self::heading_settled`]) or, unless the scan sees the object through a gap, where the
+    /// reported heading is known ([`Self::reported_heading_known`]); else nothing.
+    pub fn report(&self, seen_through_gap: bool) -> Option<MotionEstimate> {
+        let reports =
+            self.heading_settled() || (!seen_through_gap && self.reported_heading_known());
+        reports.then(|| self.estimate()).flatten()
+    }
+
     /// Whether a learned reading agrees with the track before it is fused: it falls within the
     /// validation gate ([`READING_GATE_CHI2`]) of the velocity the mixture predicts the sensor to
     /// read, and states its heading within [`MAX_REPORTED_HEADING_STD_DEG`] where it states one

@@ -165,3 +165,27 @@ fn the_classifiers_reading_at_rest_agrees_with_a_standing_track() {
         "12 m/s against a standing track"
     );
 }
+
+#[test]
+fn the_report_is_the_likeliest_mode_where_a_rule_allows_and_a_gap_waits_for_the_settled_rule() {
+    let noise = GpVelocityNoise::default();
+    let var = 5f64.to_radians().powi(2);
+    let reading = VelocityMeasurement::from_heading_speed(0.0, var, 8.0, 0.25, &noise);
+    let mut young = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
+    young.update_velocity(&reading).unwrap();
+    assert_eq!(young.report(false), None, "one reading: neither rule");
+    TrackFilter::predict(&mut young, DT);
+    TrackFilter::update(&mut young, [0.8, 0.0]).unwrap();
+    young.update_velocity(&reading).unwrap();
+    assert!(young.reported_heading_known() && !young.heading_settled());
+    assert_eq!(young.report(false), young.estimate());
+    assert_eq!(
+        young.report(true),
+        None,
+        "seen through a gap before it settles"
+    );
+    let mut settled = settled_on_centroids();
+    settled.update_velocity(&reading).unwrap();
+    assert!(settled.heading_settled());
+    assert_eq!(settled.report(true), settled.estimate());
+}

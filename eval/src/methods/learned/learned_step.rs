@@ -142,21 +142,20 @@ impl LearnedTrackers {
                     return Some(at_rest(heading));
                 }
                 let track = self.tracker.track((*id)?)?;
-                // A track reports once its own heading uncertainty supports it. Before that, a
-                // cluster the classifier calls moving still gets the track's motion: the decision
-                // is that it moves, and no estimate would be scored as standing still. Without a
-                // decision, a track (started from the first scan, SPEC §6) reports before it
-                // settles wherever the estimate it reports states its heading to within the same
-                // 12.5° and the mixture to within the 25° bar (from its second consistent learned
-                // reading), but not on a scan that sees the object through a gap.
-                let moving = of(c).moving == Some(true);
-                (moving
-                    || track.filter.heading_settled()
-                    || (track.filter.reported_heading_known()
-                        && !seen_through_gap(&scan.clusters[c])))
-                .then(|| track.filter.estimate())
-                .flatten()
-                .map(ClusterFlow::Uniform)
+                // A cluster the classifier calls moving gets the track's motion from the first
+                // scan: the decision is that it moves, and no estimate would be scored as
+                // standing still. Without a decision, a track (started from the first scan, SPEC
+                // §6) reports once a learned reading has agreed with it and its heading has
+                // settled, and before it settles wherever the estimate it reports states its
+                // heading within 12.5° and the mixture within the 25° bar (from its second
+                // consistent learned reading), but not on a scan that sees the object through a
+                // gap (`GpTrustFilter::report`).
+                let estimate = if of(c).moving == Some(true) {
+                    track.filter.estimate()
+                } else {
+                    track.filter.report(seen_through_gap(&scan.clusters[c]))
+                };
+                estimate.map(ClusterFlow::Uniform)
             })
             .collect())
     }
