@@ -6,11 +6,11 @@
 //!   [`VelocityMeasurement`]); a track is started from the first scan's GP reading and reports
 //!   once a learned reading has agreed with it (within its validation gate, its heading stated
 //!   within 12.5°) and its heading's standard deviation (the IMM mixture's) is within 12.5°, half
-//!   the 25° bar a heading is held to
-//!   ([`GpTrustFilter::heading_settled`]), in place of `KF-AUTO`'s count of hits; before that,
-//!   wherever the estimate it reports states its heading within the same 12.5°, the mixture
-//!   within the 25° bar ([`GpTrustFilter::reported_heading_known`]: from the second learned
-//!   reading that agrees with the centroids) and the object does not show through a gap, and a
+//!   the 25° bar a heading is held to ([`GpTrustFilter::heading_settled`]), in place of
+//!   `KF-AUTO`'s count of hits; before that, wherever the estimate it reports states its heading
+//!   within the same 12.5°, the mixture within the 25° bar
+//!   ([`GpTrustFilter::reported_heading_known`]: from the second learned reading that agrees with
+//!   the centroids) and the object does not show through a gap ([`GpTrustFilter::report`]); and a
 //!   cluster the moving classifier calls moving gets the track's motion from the first scan.
 //! - `GP-ICP`: `ICP-AUTO`'s nearest-centroid association, ICP started from the GP's motion over
 //!   the interval as well as from the centroid alignment; the alignment that pairs more points
