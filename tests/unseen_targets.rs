@@ -63,20 +63,20 @@ const BOUNDS: [(f64, f64); 9] = [
     (24.6, 3.25),
 ];
 
-/// GP-KF's bounds on the same model (the learned tracker, no moving decision, as in the
-/// per-target tables), in [`UNSEEN`]'s order: measured 2026-12-05 (stop 51, an unsettled track
-/// reporting its likeliest mode only where the mixture knows the heading within the 25° bar) at
-/// 7.12°/0.468, 8.36°/0.964, 21.07°/1.203, 7.78°/1.194, 4.62°/0.911, 4.75°/2.644, 15.29°/1.971,
-/// 22.16°/0.804 and 3.98°/2.517 m/s (coverage 0.47, 0.95, 0.89, 0.95, 0.74, 0.95, 0.89, 0.47,
-/// 0.95), plus 15° and 0.5 m/s. Reporting from a track's first GP reading (stop 50): 7.12°/0.468,
-/// 8.15°/0.994, 21.07°/1.203, 7.60°/1.181, 4.62°/0.911 and 5.88°/2.780 for the first six;
-/// reporting settled tracks only (stop 49): 6.46°/0.455, 8.55°/0.928, 16.29°/1.124,
-/// 8.00°/1.216, 3.21°/0.945 and 3.76°/2.492; on centroids alone (stop 44) the crossing truck
-/// read 1.46°/2.795 m/s: it comes out from behind a parked car, its centroid at half its speed.
-/// Stop 52's rule (a track reports only once a learned reading has agreed with it) leaves these
-/// nine values as they were (re-measured). At `bench`'s sizes GP-KF reads these nine within the 25° and 1.5 m/s bar on
-/// the worlds of `--seed 7`, 8 and 9 with each of the three models but for the fast van's speed
-/// under two of those nine pairs (1.502 and 1.700 m/s; docs/estimator.md, "Stop 52").
+/// GP-KF's bounds on the same model (the learned tracker, no moving decision, as in the per-target
+/// tables), in [`UNSEEN`]'s order: measured 2026-12-05 (stop 51, an unsettled track reporting its
+/// likeliest mode only where the mixture knows the heading within the 25° bar) at 7.12°/0.468,
+/// 8.36°/0.964, 21.07°/1.203, 7.78°/1.194, 4.62°/0.911, 4.75°/2.644, 15.29°/1.971, 22.16°/0.804 and
+/// 3.98°/2.517 m/s (coverage 0.47, 0.95, 0.89, 0.95, 0.74, 0.95, 0.89, 0.47, 0.95), plus 15° and
+/// 0.5 m/s. Reporting from a track's first GP reading (stop 50): 7.12°/0.468, 8.15°/0.994,
+/// 21.07°/1.203, 7.60°/1.181, 4.62°/0.911 and 5.88°/2.780 for the first six; reporting settled
+/// tracks only (stop 49): 6.46°/0.455, 8.55°/0.928, 16.29°/1.124, 8.00°/1.216, 3.21°/0.945 and
+/// 3.76°/2.492; on centroids alone (stop 44) the crossing truck read 1.46°/2.795 m/s: it comes out
+/// from behind a parked car, its centroid at half its speed. Stop 52's rule (a track reports only
+/// once a learned reading has agreed with it) leaves these nine values as they were (re-measured).
+/// At `bench`'s sizes GP-KF reads these nine within the 25° and 1.5 m/s bar on the worlds of
+/// `--seed 7`, 8 and 9 with each of the three models but for the fast van's speed under two of
+/// those nine pairs (1.502 and 1.700 m/s; docs/estimator.md, "Stop 52").
 const GP_KF_BOUNDS: [(f64, f64); 9] = [
     (22.1, 0.97),
     (23.4, 1.47),

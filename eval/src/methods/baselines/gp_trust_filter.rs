@@ -185,9 +185,7 @@ impl GpTrustFilter {
             measurement.velocity_xy_mps,
             measurement.covariance,
         );
-        let tight = stated
-            .heading_var
-            .is_none_or(|var| var.sqrt() <= MAX_REPORTED_HEADING_STD_DEG.to_radians());
+        let tight = stated.heading_var.is_none() || heading_within_report_bar(&stated);
         let innovation = self.combined.velocity_innovation(measurement)?;
         Ok(tight && innovation.mahalanobis_sq <= READING_GATE_CHI2)
     }
