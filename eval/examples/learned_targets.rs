@@ -4,7 +4,8 @@
 //! as the realism study and the further seeds do) and prints each method's heading and speed RMSE
 //! and coverage with the bounds: GP-KF against min(KF-AUTO, SPGP-HET-ALL) + 2° and
 //! KF-AUTO's speed, GP-ICP against ICP-AUTO likewise. `TRACE=situationN` also prints that
-//! situation scan by scan, with the heading standard deviation the GP and GP-KF state.
+//! situation scan by scan, with the heading standard deviation the GP and GP-KF state and
+//! GP-KF's speed standard deviation.
 //!
 //! `cargo run --release -p patchflow-eval --example learned_targets -- BENCH_OUT [MODEL.json]`
 
@@ -50,7 +51,7 @@ fn main() -> Result<(), Failure> {
     for situation in &report.situations {
         if trace.as_deref() == Some(situation.name.as_str()) {
             println!(
-                "scan | true h,s | SPGP h,s,σh | KF-AUTO h,s | GP-KF h,s,σh | ICP-AUTO h,s | GP-ICP h,s"
+                "scan | true h,s | SPGP h,s,σh | KF-AUTO h,s | GP-KF h,s,σh,σs | ICP-AUTO h,s | GP-ICP h,s"
             );
             let show =
                 |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
@@ -66,11 +67,21 @@ fn main() -> Result<(), Failure> {
                     }) => format!(" {:5.1}", var.sqrt().to_degrees()),
                     _ => "     -".to_owned(),
                 };
+            // The speed's standard deviation as the method states it, m/s.
+            let speed_spread =
+                |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
+                    Some(patchflow_eval::MotionEstimate {
+                        speed_var: Some(var),
+                        ..
+                    }) => format!(" {:5.2}", var.sqrt()),
+                    _ => "     -".to_owned(),
+                };
             for (k, t) in situation.truth.iter().enumerate() {
                 let col = |m: Method| show(situation.methods.get(&m).and_then(|v| v.get(k)));
                 let sd = |m: Method| spread(situation.methods.get(&m).and_then(|v| v.get(k)));
+                let ss = |m: Method| speed_spread(situation.methods.get(&m).and_then(|v| v.get(k)));
                 println!(
-                    "{k:3} | {:7.1} {:5.2} | {}{} | {} | {}{} | {} | {}",
+                    "{k:3} | {:7.1} {:5.2} | {}{} | {} | {}{}{} | {} | {}",
                     t.heading_rad.to_degrees(),
                     t.speed_mps,
                     col(Method::SpgpHetAll),
@@ -78,6 +89,7 @@ fn main() -> Result<(), Failure> {
                     col(Method::KfAuto),
                     col(Method::GpKf),
                     sd(Method::GpKf),
+                    ss(Method::GpKf),
                     col(Method::IcpAuto),
                     col(Method::GpIcp)
                 );

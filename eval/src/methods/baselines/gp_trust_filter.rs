@@ -27,7 +27,8 @@
 //! [`MAX_REPORTED_HEADING_STD_DEG`] and a learned reading has agreed with the track
 //! ([`GpTrustFilter::heading_settled`]), and before that wherever the estimate it reports states
 //! its heading that tightly and the mixture to within the bar
-//! ([`GpTrustFilter::reported_heading_known`]). The filter learns per track how far the GP can be
+//! ([`GpTrustFilter::reported_heading_known`]); either way only where the estimate states its
+//! speed within [`MAX_REPORTED_SPEED_STD_MPS`] ([`GpTrustFilter::report`]). The filter learns per track how far the GP can be
 //! trusted from what the centroids and the GP's own consistency say; it never reads the truth.
 
 use nalgebra::{Matrix2, Matrix6, Vector6};
@@ -52,6 +53,15 @@ const UNRELIABLE: usize = 2;
 /// 25° bar a heading estimate is held to (README; the thesis' real-data heading errors all lie
 /// under it, Tables 4.6-4.14), so that the report's ±2σ interval lies inside that bar.
 pub const MAX_REPORTED_HEADING_STD_DEG: f64 = 12.5;
+
+/// The largest speed standard deviation with which a GP-KF track reports its motion, m/s: half
+/// the 1.5 m/s bar a speed estimate is held to, so that the report's ±2σ interval lies inside that
+/// bar, as [`MAX_REPORTED_HEADING_STD_DEG`] holds its heading. A settled track states about 0.6
+/// m/s (the GP's persistent speed error), one on its second learned reading 0.8 (a reading's 1 m/s
+/// floor, twice), so a young track reports from its third. A track that has just taken a cluster
+/// whose centroid jumped can state its heading within 12.5° at 15 m/s and its speed only to 3 m/s:
+/// a van turning out of a side street, read at 14.8 m/s for 6 (docs/estimator.md, "Stop 53").
+pub const MAX_REPORTED_SPEED_STD_MPS: f64 = 0.75;
 
 /// The largest heading standard deviation of the moment-matched mixture with which a track whose
 /// mixture has not settled ([`MAX_REPORTED_HEADING_STD_DEG`]) may report its likeliest mode: the
@@ -81,6 +91,13 @@ pub const MANOEUVRE_ACCEL_NOISE_STD_MPS2: f64 = 5.0;
 /// [`GpTrustFilter::reported_heading_known`] on the reported mode).
 fn heading_within_report_bar(estimate: &MotionEstimate) -> bool {
     heading_std_within(estimate, MAX_REPORTED_HEADING_STD_DEG)
+}
+
+/// Whether `estimate` states its speed to within [`MAX_REPORTED_SPEED_STD_MPS`].
+fn speed_within_report_bar(estimate: &MotionEstimate) -> bool {
+    estimate
+        .speed_var
+        .is_some_and(|var| var.sqrt() <= MAX_REPORTED_SPEED_STD_MPS)
 }
 
 /// Whether `estimate` states its heading's standard deviation to be at most `std_deg`.
@@ -149,10 +166,11 @@ impl GpTrustFilter {
     /// Whether the estimate the track reports (its likeliest mode's) states its heading to within
     /// [`MAX_REPORTED_HEADING_STD_DEG`], once a learned reading has agreed with the track (as for
     /// [`Self::heading_settled`]), while the mixture knows it to within
-    /// [`MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG`]. By this rule a track reports from its second
-    /// learned reading that agrees with its centroids, where the GP states it tightly: GP-KF then
-    /// covers most of the scans the estimator covers (docs/estimator.md, "Stop 50" and "Stop
-    /// 51"); a track on its first reading, or on readings the GP states loosely, waits for
+    /// [`MAX_UNSETTLED_MIXTURE_HEADING_STD_DEG`]. By this rule a track's heading is known from its
+    /// second learned reading that agrees with its centroids, where the GP states it tightly (its
+    /// speed from the third, [`MAX_REPORTED_SPEED_STD_MPS`]): GP-KF then covers most of the scans
+    /// the estimator covers (docs/estimator.md, "Stop 50", "Stop 51" and "Stop 53"); a track on
+    /// its first reading, or on readings the GP states loosely, waits for
     /// [`Self::heading_settled`].
     pub fn reported_heading_known(&self) -> bool {
         self.agreeing_readings > 0
@@ -168,11 +186,15 @@ impl GpTrustFilter {
     /// What the track reports of its object on a scan where the moving classifier has not called
     /// the object moving: its likeliest mode's estimate where its heading has settled
     /// ([`Self::heading_settled`]) or, unless the scan sees the object through a gap, where the
-    /// reported heading is known ([`Self::reported_heading_known`]); else nothing.
+    /// reported heading is known ([`Self::reported_heading_known`]), and where that estimate
+    /// states its speed within [`MAX_REPORTED_SPEED_STD_MPS`]; else nothing.
     pub fn report(&self, seen_through_gap: bool) -> Option<MotionEstimate> {
         let reports =
             self.heading_settled() || (!seen_through_gap && self.reported_heading_known());
-        reports.then(|| self.estimate()).flatten()
+        reports
+            .then(|| self.estimate())
+            .flatten()
+            .filter(speed_within_report_bar)
     }
 
     /// Whether a learned reading agrees with the track before it is fused: it falls within the

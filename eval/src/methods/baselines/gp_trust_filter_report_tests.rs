@@ -168,15 +168,19 @@ fn the_classifiers_reading_at_rest_agrees_with_a_standing_track() {
 
 #[test]
 fn the_report_is_the_likeliest_mode_where_a_rule_allows_and_a_gap_waits_for_the_settled_rule() {
+    // A 6 m/s car read three times by the GP to 5°: the reported mode knows heading and speed
+    // within the report bars, the mixture its heading within 25° but not yet within 12.5°.
     let noise = GpVelocityNoise::default();
     let var = 5f64.to_radians().powi(2);
-    let reading = VelocityMeasurement::from_heading_speed(0.0, var, 8.0, 0.25, &noise);
+    let reading = VelocityMeasurement::from_heading_speed(0.0, var, 6.0, 0.25, &noise);
     let mut young = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
     young.update_velocity(&reading).unwrap();
     assert_eq!(young.report(false), None, "one reading: neither rule");
-    TrackFilter::predict(&mut young, DT);
-    TrackFilter::update(&mut young, [0.8, 0.0]).unwrap();
-    young.update_velocity(&reading).unwrap();
+    for k in 1..3 {
+        TrackFilter::predict(&mut young, DT);
+        TrackFilter::update(&mut young, [0.6 * k as f64, 0.0]).unwrap();
+        young.update_velocity(&reading).unwrap();
+    }
     assert!(young.reported_heading_known() && !young.heading_settled());
     assert_eq!(young.report(false), young.estimate());
     assert_eq!(
@@ -188,4 +192,29 @@ fn the_report_is_the_likeliest_mode_where_a_rule_allows_and_a_gap_waits_for_the_
     settled.update_velocity(&reading).unwrap();
     assert!(settled.heading_settled());
     assert_eq!(settled.report(true), settled.estimate());
+}
+
+#[test]
+fn a_track_that_does_not_know_its_speed_within_half_the_bar_does_not_report() {
+    // An 8 m/s car read twice by the GP to 5° (at the 1 m/s floor of a reading's speed error):
+    // the likeliest mode states its heading to 7.5°, within 12.5°, but its speed to 0.80 m/s, more
+    // than half the 1.5 m/s bar; it reports once it knows the speed that well.
+    let noise = GpVelocityNoise::default();
+    let var = 5f64.to_radians().powi(2);
+    let reading = VelocityMeasurement::from_heading_speed(0.0, var, 8.0, 0.25, &noise);
+    let mut young = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
+    young.update_velocity(&reading).unwrap();
+    TrackFilter::predict(&mut young, DT);
+    TrackFilter::update(&mut young, [0.8, 0.0]).unwrap();
+    young.update_velocity(&reading).unwrap();
+    let e = young.estimate().unwrap();
+    assert!(young.reported_heading_known(), "the heading rule allows it");
+    assert!(
+        e.speed_var.unwrap().sqrt() > MAX_REPORTED_SPEED_STD_MPS,
+        "{e:?}"
+    );
+    assert_eq!(young.report(false), None);
+    let mut settled = settled_on_centroids();
+    settled.update_velocity(&reading).unwrap();
+    assert_eq!(settled.report(false), settled.estimate());
 }

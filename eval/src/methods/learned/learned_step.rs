@@ -10,8 +10,10 @@
 //!   `KF-AUTO`'s count of hits; before that, wherever the estimate it reports states its heading
 //!   within the same 12.5°, the mixture within the 25° bar
 //!   ([`GpTrustFilter::reported_heading_known`]: from the second learned reading that agrees with
-//!   the centroids) and the object does not show through a gap ([`GpTrustFilter::report`]); and a
-//!   cluster the moving classifier calls moving gets the track's motion from the first scan.
+//!   the centroids) and the object does not show through a gap; either way only where that
+//!   estimate states its speed within 0.75 m/s, half the 1.5 m/s bar ([`GpTrustFilter::report`]:
+//!   from a track's third learned reading); and a cluster the moving classifier calls moving gets
+//!   the track's motion from the first scan.
 //! - `GP-ICP`: `ICP-AUTO`'s nearest-centroid association, ICP started from the GP's motion over
 //!   the interval as well as from the centroid alignment; the alignment that pairs more points
 //!   (beyond 5 %), else the one with the smaller residual, wins. Point-to-point ICP stops in the
@@ -149,7 +151,8 @@ impl LearnedTrackers {
                 // settled, and before it settles wherever the estimate it reports states its
                 // heading within 12.5° and the mixture within the 25° bar (from its second
                 // consistent learned reading), but not on a scan that sees the object through a
-                // gap (`GpTrustFilter::report`).
+                // gap; either way only where it states its speed within 0.75 m/s
+                // (`GpTrustFilter::report`).
                 let estimate = if of(c).moving == Some(true) {
                     track.filter.estimate()
                 } else {
