@@ -28,8 +28,9 @@
 //! ([`GpTrustFilter::heading_settled`]), and before that wherever the estimate it reports states
 //! its heading that tightly and the mixture to within the bar
 //! ([`GpTrustFilter::reported_heading_known`]); either way only where the estimate states its
-//! speed within [`MAX_REPORTED_SPEED_STD_MPS`] ([`GpTrustFilter::report`]). The filter learns per track how far the GP can be
-//! trusted from what the centroids and the GP's own consistency say; it never reads the truth.
+//! speed within [`MAX_REPORTED_SPEED_STD_MPS`] ([`GpTrustFilter::report`]). The filter learns per
+//! track how far the GP can be trusted from what the centroids and the GP's own consistency say;
+//! it never reads the truth.
 
 use nalgebra::{Matrix2, Matrix6, Vector6};
 
