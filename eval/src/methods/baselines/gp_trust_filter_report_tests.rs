@@ -166,21 +166,36 @@ fn the_classifiers_reading_at_rest_agrees_with_a_standing_track() {
     );
 }
 
+/// A GP reading of a car driving +x at `speed_mps`, its heading stated to 5°.
+fn reading_at(speed_mps: f64) -> VelocityMeasurement {
+    let var = 5f64.to_radians().powi(2);
+    VelocityMeasurement::from_heading_speed(0.0, var, speed_mps, 0.25, &GpVelocityNoise::default())
+}
+
+/// A track of a car driving +x at `speed_mps`, started on its first centroid, that has fused
+/// `readings` of [`reading_at`] and the centroids of the scans between them.
+fn young_track(speed_mps: f64, readings: usize) -> GpTrustFilter {
+    let reading = reading_at(speed_mps);
+    let mut young = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
+    young.update_velocity(&reading).unwrap();
+    for k in 1..readings {
+        TrackFilter::predict(&mut young, DT);
+        TrackFilter::update(&mut young, [speed_mps * DT * k as f64, 0.0]).unwrap();
+        young.update_velocity(&reading).unwrap();
+    }
+    young
+}
+
 #[test]
 fn the_report_is_the_likeliest_mode_where_a_rule_allows_and_a_gap_waits_for_the_settled_rule() {
     // A 6 m/s car read three times by the GP to 5°: the reported mode knows heading and speed
     // within the report bars, the mixture its heading within 25° but not yet within 12.5°.
-    let noise = GpVelocityNoise::default();
-    let var = 5f64.to_radians().powi(2);
-    let reading = VelocityMeasurement::from_heading_speed(0.0, var, 6.0, 0.25, &noise);
-    let mut young = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
-    young.update_velocity(&reading).unwrap();
-    assert_eq!(young.report(false), None, "one reading: neither rule");
-    for k in 1..3 {
-        TrackFilter::predict(&mut young, DT);
-        TrackFilter::update(&mut young, [0.6 * k as f64, 0.0]).unwrap();
-        young.update_velocity(&reading).unwrap();
-    }
+    assert_eq!(
+        young_track(6.0, 1).report(false),
+        None,
+        "one reading: neither rule"
+    );
+    let young = young_track(6.0, 3);
     assert!(young.reported_heading_known() && !young.heading_settled());
     assert_eq!(young.report(false), young.estimate());
     assert_eq!(
@@ -189,7 +204,7 @@ fn the_report_is_the_likeliest_mode_where_a_rule_allows_and_a_gap_waits_for_the_
         "seen through a gap before it settles"
     );
     let mut settled = settled_on_centroids();
-    settled.update_velocity(&reading).unwrap();
+    settled.update_velocity(&reading_at(6.0)).unwrap();
     assert!(settled.heading_settled());
     assert_eq!(settled.report(true), settled.estimate());
 }
@@ -199,14 +214,7 @@ fn a_track_that_does_not_know_its_speed_within_half_the_bar_does_not_report() {
     // An 8 m/s car read twice by the GP to 5° (at the 1 m/s floor of a reading's speed error):
     // the likeliest mode states its heading to 7.5°, within 12.5°, but its speed to 0.80 m/s, more
     // than half the 1.5 m/s bar; it reports once it knows the speed that well.
-    let noise = GpVelocityNoise::default();
-    let var = 5f64.to_radians().powi(2);
-    let reading = VelocityMeasurement::from_heading_speed(0.0, var, 8.0, 0.25, &noise);
-    let mut young = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
-    young.update_velocity(&reading).unwrap();
-    TrackFilter::predict(&mut young, DT);
-    TrackFilter::update(&mut young, [0.8, 0.0]).unwrap();
-    young.update_velocity(&reading).unwrap();
+    let young = young_track(8.0, 2);
     let e = young.estimate().unwrap();
     assert!(young.reported_heading_known(), "the heading rule allows it");
     assert!(
@@ -215,6 +223,6 @@ fn a_track_that_does_not_know_its_speed_within_half_the_bar_does_not_report() {
     );
     assert_eq!(young.report(false), None);
     let mut settled = settled_on_centroids();
-    settled.update_velocity(&reading).unwrap();
+    settled.update_velocity(&reading_at(8.0)).unwrap();
     assert_eq!(settled.report(false), settled.estimate());
 }
