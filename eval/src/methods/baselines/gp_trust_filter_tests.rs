@@ -100,7 +100,7 @@ fn on_its_first_gp_reading_a_track_reports_the_gps_motion() {
 fn a_mode_nothing_can_switch_into_keeps_its_own_state() {
     let z = centroids(5, 3);
     let mut filter = GpTrustFilter::start(z[0], KalmanParams::default()).unwrap();
-    filter.predicted = [1.0, 0.0, 0.0];
+    filter.predicted = [1.0, 0.0, 0.0, 0.0];
     let before = filter.modes[UNRELIABLE].moments();
     TrackFilter::predict(&mut filter, DT);
     let mut expected = ConstantVelocityKalman::new(z[0], KalmanParams::default()).unwrap();
@@ -243,6 +243,42 @@ fn a_track_whose_gp_reads_a_sharp_turn_well_follows_it() {
     // With the centroid filter's 2 m/s² in every mode it lags 13.2° here (2.5° with 5 m/s²).
     let error = heading_error_after_a_turn();
     assert!(error < 8.0, "{error}°");
+}
+
+/// The true speed and `F`'s speed error (m/s) on every scan where a car pulling away from rest along +x at
+/// 2.5 m/s² (the simulator's default) has reached 3 to 7 m/s; its centroids exact, the GP
+/// reading its speed `gp_lag_mps` slow every scan from the tenth (a track that starts at rest).
+fn speed_errors_pulling_away<F: TrackFilter>(gp_lag_mps: f64) -> Vec<(f64, f64)> {
+    let noise = GpVelocityNoise::default();
+    let accel = 2.5;
+    let mut filter = F::start([0.0, 0.0], KalmanParams::default()).unwrap();
+    let mut errors = Vec::new();
+    for k in 1..=28 {
+        let t = k as f64 * DT;
+        let speed = accel * t;
+        filter.predict(DT);
+        filter.update([accel * t * t / 2.0, 0.0]).unwrap();
+        if k >= 10 {
+            let read = (speed - gp_lag_mps).max(0.0);
+            let reading = VelocityMeasurement::from_heading_speed(0.0, 0.0, read, 0.0, &noise);
+            filter.update_velocity(&reading).unwrap();
+        }
+        if (3.0..=7.0).contains(&speed) {
+            errors.push((speed, filter.estimate().unwrap().speed_mps - speed));
+        }
+    }
+    errors
+}
+
+#[test]
+fn a_track_of_a_car_pulling_away_reads_it_faster_than_its_gp_does() {
+    // With every mode at constant velocity the track lags 1.3-1.6 m/s here, more than the GP.
+    let errors = speed_errors_pulling_away::<GpTrustFilter>(1.0);
+    let from_5_mps = errors.iter().filter(|(speed, _)| *speed >= 5.0);
+    assert!(from_5_mps.clone().count() >= 8, "{errors:?}");
+    assert!(from_5_mps.clone().all(|(_, e)| e.abs() < 1.0), "{errors:?}");
+    let (_, last) = errors[errors.len() - 1];
+    assert!(last.abs() < 0.75, "{errors:?}");
 }
 
 #[path = "gp_trust_filter_report_tests.rs"]

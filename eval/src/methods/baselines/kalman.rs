@@ -19,13 +19,29 @@
 //! covariance and correlation time (Gelb 1974, §4.5). Until a velocity is measured `b` is zero
 //! with zero covariance, so a filter fed centroids only (`KF`, `KF-AUTO`) is the four-state
 //! filter above, value for value.
+//!
+//! `GP-KF` also runs Singer's (1970) fading-acceleration filter among its modes, so the state
+//! ends in the acceleration `(ax, ay)`: [`ConstantVelocityKalman::predict`] sets it to zero, value
+//! and covariance (the constant-velocity model, augmented as an interacting multiple model mixes
+//! it); [`ConstantVelocityKalman::predict_singer`] carries it (`kalman_motion.rs`).
 
-use nalgebra::{Matrix2, Matrix2x6, Matrix6, Matrix6x2, Vector2, Vector6};
+use nalgebra::{ArrayStorage, Matrix2, SMatrix, SVector, Vector2};
 
 use crate::error::EvalError;
 use crate::methods::baselines::innovation::{CentroidGate, Innovation};
 use crate::methods::baselines::velocity_measurement::VelocityMeasurement;
 use crate::methods::estimate::MotionEstimate;
+
+/// Length of the state `(x, y, vx, vy, bx, by, ax, ay)`.
+const STATE: usize = 8;
+/// The state vector.
+pub(crate) type State = SVector<f64, STATE>;
+/// The state's covariance.
+pub(crate) type StateCovariance = SMatrix<f64, STATE, STATE>;
+/// A measurement's gain.
+type Gain = SMatrix<f64, STATE, 2>;
+/// A measurement's model, two rows of the state.
+type MeasurementModel = SMatrix<f64, 2, STATE>;
 
 /// Noise and initialisation of the constant-velocity filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,8 +88,8 @@ impl KalmanParams {
 /// A constant-velocity Kalman filter tracking one centroid.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConstantVelocityKalman {
-    state: Vector6<f64>,
-    covariance: Matrix6<f64>,
+    state: State,
+    covariance: StateCovariance,
     /// The persistent error of the velocity measurements taken so far (their latest covariance
     /// and correlation time), once there was one.
     persistent: Option<(Matrix2<f64>, f64)>,
@@ -82,11 +98,16 @@ pub struct ConstantVelocityKalman {
     velocity_updates: usize,
 }
 
-const H: Matrix2x6<f64> =
-    Matrix2x6::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0);
+/// Column `[1, 0]` or `[0, 1]` of a measurement model: the state entry counts on the x or y axis.
+const X: [f64; 2] = [1.0, 0.0];
+const Y: [f64; 2] = [0.0, 1.0];
+const NONE: [f64; 2] = [0.0, 0.0];
+/// A centroid measurement sees the position (column-major: one `[x, y]` pair per state entry).
+const H: MeasurementModel =
+    MeasurementModel::from_array_storage(ArrayStorage([X, Y, NONE, NONE, NONE, NONE, NONE, NONE]));
 /// A velocity measurement sees the velocity plus the measuring GP's persistent error.
-const H_VELOCITY: Matrix2x6<f64> =
-    Matrix2x6::new(0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0);
+const H_VELOCITY: MeasurementModel =
+    MeasurementModel::from_array_storage(ArrayStorage([NONE, NONE, X, Y, X, Y, NONE, NONE]));
 
 impl ConstantVelocityKalman {
     /// A filter started at the first centroid measurement, at rest, with a wide velocity prior.
@@ -105,61 +126,24 @@ impl ConstantVelocityKalman {
         let pos_var = params.centroid_noise_std_m.powi(2);
         let vel_var = params.initial_velocity_std_mps.powi(2);
         Ok(Self {
-            state: Vector6::new(
+            state: State::from_column_slice(&[
                 first_centroid_xy[0],
                 first_centroid_xy[1],
                 0.0,
                 0.0,
                 0.0,
                 0.0,
-            ),
-            covariance: Matrix6::from_diagonal(&Vector6::new(
-                pos_var, pos_var, vel_var, vel_var, 0.0, 0.0,
-            )),
+                0.0,
+                0.0,
+            ]),
+            covariance: StateCovariance::from_diagonal(&State::from_column_slice(&[
+                pos_var, pos_var, vel_var, vel_var, 0.0, 0.0, 0.0, 0.0,
+            ])),
             persistent: None,
             params,
             updates: 1,
             velocity_updates: 0,
         })
-    }
-
-    /// Motion model (eq. 3.44): propagate state and covariance by `dt_secs`.
-    pub fn predict(&mut self, dt_secs: f64) {
-        self.predict_with_accel_noise(dt_secs, self.params.accel_noise_std_mps2);
-    }
-
-    /// [`Self::predict`] with the acceleration noise `accel_noise_std_mps2` instead of the
-    /// filter's own (`GP-KF`'s white mode, which lets a well-read object turn).
-    pub(crate) fn predict_with_accel_noise(&mut self, dt_secs: f64, accel_noise_std_mps2: f64) {
-        let dt = dt_secs;
-        let mut f = Matrix6::identity();
-        f[(0, 2)] = dt;
-        f[(1, 3)] = dt;
-        // The velocity sensor's persistent error: first-order Gauss-Markov.
-        let decay = self
-            .persistent
-            .map_or(1.0, |(_, persistence_secs)| (-dt / persistence_secs).exp());
-        f[(4, 4)] = decay;
-        f[(5, 5)] = decay;
-        let q_var = accel_noise_std_mps2.powi(2);
-        let (q_pp, q_pv, q_vv) = (
-            dt.powi(4) / 4.0 * q_var,
-            dt.powi(3) / 2.0 * q_var,
-            dt * dt * q_var,
-        );
-        let mut q = Matrix6::zeros();
-        if let Some((stationary, _)) = self.persistent {
-            q.fixed_view_mut::<2, 2>(4, 4)
-                .copy_from(&(stationary * (1.0 - decay * decay)));
-        }
-        for axis in 0..2 {
-            q[(axis, axis)] = q_pp;
-            q[(axis, axis + 2)] = q_pv;
-            q[(axis + 2, axis)] = q_pv;
-            q[(axis + 2, axis + 2)] = q_vv;
-        }
-        self.state = f * self.state;
-        self.covariance = f * self.covariance * f.transpose() + q;
     }
 
     /// The innovation of a centroid measurement against the current (predicted) state.
@@ -180,9 +164,9 @@ impl ConstantVelocityKalman {
     pub fn update(&mut self, centroid_xy: [f64; 2]) -> Result<Innovation, EvalError> {
         let gate = self.centroid_gate()?;
         let innovation = gate.innovation(centroid_xy);
-        let gain: Matrix6x2<f64> = self.covariance * H.transpose() * gate.inverse();
+        let gain: Gain = self.covariance * H.transpose() * gate.inverse();
         self.state += gain * innovation.residual_m;
-        let i_kh = Matrix6::identity() - gain * H;
+        let i_kh = StateCovariance::identity() - gain * H;
         self.covariance = i_kh * self.covariance * i_kh.transpose()
             + gain * self.measurement_covariance() * gain.transpose();
         self.updates += 1;
@@ -229,9 +213,9 @@ impl ConstantVelocityKalman {
         let (innovation, s_inv) = self.velocity_innovation_and_inverse(measurement)?;
         *self = self.with_persistent_error_prior(measurement);
         let h = H_VELOCITY;
-        let gain: Matrix6x2<f64> = self.covariance * h.transpose() * s_inv;
+        let gain: Gain = self.covariance * h.transpose() * s_inv;
         self.state += gain * innovation.residual_m;
-        let i_kh = Matrix6::identity() - gain * h;
+        let i_kh = StateCovariance::identity() - gain * h;
         self.covariance = i_kh * self.covariance * i_kh.transpose()
             + gain * measurement.covariance * gain.transpose();
         self.velocity_updates += 1;
@@ -239,12 +223,12 @@ impl ConstantVelocityKalman {
     }
 
     /// The state and its covariance (for mixing the filters of an interacting multiple model).
-    pub(crate) fn moments(&self) -> (Vector6<f64>, Matrix6<f64>) {
+    pub(crate) fn moments(&self) -> (State, StateCovariance) {
         (self.state, self.covariance)
     }
 
     /// Replaces the state and its covariance (an interacting multiple model's mixed start).
-    pub(crate) fn set_moments(&mut self, state: Vector6<f64>, covariance: Matrix6<f64>) {
+    pub(crate) fn set_moments(&mut self, state: State, covariance: StateCovariance) {
         self.state = state;
         self.covariance = covariance;
     }
@@ -336,6 +320,9 @@ fn positive(name: &'static str, value: f64) -> Result<(), EvalError> {
         })
     }
 }
+
+#[path = "kalman_motion.rs"]
+mod motion;
 
 #[cfg(test)]
 #[path = "kalman_tests.rs"]

@@ -164,3 +164,116 @@ fn a_non_positive_noise_is_an_error() {
     };
     assert!(ConstantVelocityKalman::new([0.0, 0.0], params).is_err());
 }
+
+/// A filter whose state is `(x, y, vx, vy, 0, 0, ax, ay)`, covariance zero.
+fn filter_at(state: [f64; 8]) -> ConstantVelocityKalman {
+    let mut filter = ConstantVelocityKalman::new([0.0, 0.0], KalmanParams::default()).unwrap();
+    filter.set_moments(State::from_column_slice(&state), StateCovariance::zeros());
+    filter
+}
+
+#[test]
+fn the_singer_transition_matches_a_published_example() {
+    // MathWorks' Sensor Fusion and Tracking Toolbox, `singer` (τ = 20 s, Δt = 1 s): the 2-D state
+    // (x, vx, ax, y, vy, ay) = (1, 1, 0, 2, 5, −2) predicts to (2, 1, 0, 6.0165, 3.0492, −1.9025).
+    let mut filter = filter_at([1.0, 2.0, 1.0, 5.0, 0.0, 0.0, 0.0, -2.0]);
+    filter.predict_singer(1.0, 2.5, 20.0);
+    let (state, _) = filter.moments();
+    let expected = [2.0, 6.0165, 1.0, 3.0492, 0.0, 0.0, 0.0, -1.9025];
+    for (i, want) in expected.iter().enumerate() {
+        assert!((state[i] - want).abs() < 5e-5, "entry {i}: {state:?}");
+    }
+}
+
+#[test]
+fn the_singer_process_noise_matches_its_closed_form() {
+    // Singer (1970)'s closed form at α = 1/s, Δt = 0.1 s (integrated symbolically), per unit jerk
+    // spectral density: position, velocity, acceleration (to 17 digits).
+    let closed_form = [
+        [
+            4.731_871_504_893_655e-7,
+            1.170_030_662_731_349e-5,
+            1.508_816_574_131_134e-4,
+        ],
+        [
+            1.170_030_662_731_349e-5,
+            3.094_595_329_282_17e-4,
+            4.527_958_503_031_356e-3,
+        ],
+        [
+            1.508_816_574_131_134e-4,
+            4.527_958_503_031_356e-3,
+            9.063_462_346_100_907e-2,
+        ],
+    ];
+    let q = motion::singer_process_noise(0.1, 1.0);
+    for (i, row) in closed_form.iter().enumerate() {
+        for (j, want) in row.iter().enumerate() {
+            assert!((q[i][j] / want - 1.0).abs() < 1e-12, "({i}, {j}): {q:?}");
+        }
+    }
+}
+
+#[test]
+fn with_a_long_time_constant_the_singer_noise_is_the_wiener_process_acceleration_noise() {
+    // Bar-Shalom, Li and Kirubarajan (2001), eq. 6.2.3-8: Δt⁵/20, Δt⁴/8, Δt³/6, Δt³/3, Δt²/2, Δt.
+    let dt: f64 = 0.1;
+    let wiener = [
+        [dt.powi(5) / 20.0, dt.powi(4) / 8.0, dt.powi(3) / 6.0],
+        [dt.powi(4) / 8.0, dt.powi(3) / 3.0, dt * dt / 2.0],
+        [dt.powi(3) / 6.0, dt * dt / 2.0, dt],
+    ];
+    let q = motion::singer_process_noise(dt, 1e-5);
+    for (i, row) in wiener.iter().enumerate() {
+        for (j, want) in row.iter().enumerate() {
+            assert!((q[i][j] / want - 1.0).abs() < 1e-5, "({i}, {j}): {q:?}");
+        }
+    }
+}
+
+#[test]
+fn held_by_noise_alone_the_singer_acceleration_settles_at_its_stationary_spread() {
+    // ȧ = −a/τ + j with white jerk of density q has the stationary variance q·τ/2.
+    let (jerk, tau) = (2.5, 1.0);
+    let mut filter = filter_at([0.0; 8]);
+    for _ in 0..300 {
+        filter.predict_singer(0.1, jerk, tau);
+    }
+    let (_, covariance) = filter.moments();
+    let stationary = jerk * jerk * tau / 2.0;
+    for axis in [6, 7] {
+        let var = covariance[(axis, axis)];
+        assert!(
+            (var / stationary - 1.0).abs() < 1e-9,
+            "{var} against {stationary}"
+        );
+    }
+    assert_eq!(covariance[(6, 7)], 0.0, "the axes stay independent");
+}
+
+#[test]
+fn a_singer_acceleration_fades_by_e_over_its_time_constant() {
+    let mut filter = filter_at([0.0, 0.0, 3.0, 0.0, 0.0, 0.0, 2.0, 0.0]);
+    for _ in 0..10 {
+        filter.predict_singer(0.1, 2.5, 1.0);
+    }
+    let (state, _) = filter.moments();
+    assert!(
+        (state[6] - 2.0 / std::f64::consts::E).abs() < 1e-12,
+        "{state:?}"
+    );
+    // The speed gained is the acceleration's integral, 2·τ·(1 − 1/e).
+    let gained = 2.0 * (1.0 - 1.0 / std::f64::consts::E);
+    assert!((state[2] - 3.0 - gained).abs() < 1e-12, "{state:?}");
+}
+
+#[test]
+fn the_constant_velocity_prediction_drops_an_acceleration_the_state_carries() {
+    let mut filter = filter_at([0.0, 0.0, 3.0, 0.0, 0.0, 0.0, 2.0, 0.0]);
+    filter.predict(0.1);
+    let (state, covariance) = filter.moments();
+    assert!((state[0] - 0.3).abs() < 1e-12, "{state:?}");
+    assert_eq!(state[2], 3.0);
+    assert_eq!(state.fixed_rows::<2>(6).norm(), 0.0);
+    assert_eq!(covariance.fixed_rows::<2>(6).norm(), 0.0);
+}
