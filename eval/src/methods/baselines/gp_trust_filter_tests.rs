@@ -245,9 +245,10 @@ fn a_track_whose_gp_reads_a_sharp_turn_well_follows_it() {
     assert!(error < 8.0, "{error}°");
 }
 
-/// The true speed and `F`'s speed error (m/s) on every scan where a car pulling away from rest along +x at
-/// 2.5 m/s² (the simulator's default) has reached 3 to 7 m/s; its centroids exact, the GP
-/// reading its speed `gp_lag_mps` slow every scan from the tenth (a track that starts at rest).
+/// The true speed and `F`'s speed error (m/s) on every scan where a car pulling away from rest
+/// along +x at 2.5 m/s² (the simulator's default) has reached 3 to 7 m/s; its centroids exact,
+/// the GP reading its speed `gp_lag_mps` slow every scan from the tenth (a track that starts at
+/// rest).
 fn speed_errors_pulling_away<F: TrackFilter>(gp_lag_mps: f64) -> Vec<(f64, f64)> {
     let noise = GpVelocityNoise::default();
     let accel = 2.5;

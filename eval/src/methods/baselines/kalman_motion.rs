@@ -44,8 +44,9 @@ impl ConstantVelocityKalman {
     /// `jerk_noise_std_mps3 · √(τ/2)`. Exact discretisation per axis: the transition of
     /// [`singer_gain`] and the process noise of [`singer_process_noise`] (Li and Jilkov 2003,
     /// "Survey of maneuvering target tracking, Part I"; as `τ` grows it becomes the
-    /// Wiener-process acceleration model, Bar-Shalom, Li and Kirubarajan 2001, §6.2.3). The same jerk drives both axes: a car speeds up along its heading and a cyclist
-    /// turns, and this mode takes either.
+    /// Wiener-process acceleration model, Bar-Shalom, Li and Kirubarajan 2001, §6.2.3). The
+    /// same jerk drives both axes: a car speeds up along its heading and a cyclist turns, and
+    /// this mode takes either.
     pub(crate) fn predict_singer(
         &mut self,
         dt_secs: f64,
