@@ -114,7 +114,7 @@ impl GpTrustFilter {
     }
 
     /// Mode probabilities given this scan's measurements.
-    pub(super) fn posterior(&self) -> [f64; MODES] {
+    fn posterior(&self) -> [f64; MODES] {
         let top = self.log_likelihood.iter().copied().fold(f64::MIN, f64::max);
         let w: [f64; MODES] =
             std::array::from_fn(|j| self.predicted[j] * (self.log_likelihood[j] - top).exp());
@@ -137,8 +137,9 @@ impl GpTrustFilter {
         (mean, covariance)
     }
 
-    /// The reading as each mode takes it: with white error only, with its own noise model
-    /// (white and persistent), and with the filter's velocity prior.
+    /// The reading as each mode takes it: with white error only (white), with its own noise
+    /// model, white and persistent (trusted and accelerating), and with the filter's velocity
+    /// prior (unreliable).
     fn readings(&self, measurement: &VelocityMeasurement) -> [VelocityMeasurement; MODES] {
         let white = VelocityMeasurement {
             persistent_covariance: Matrix2::zeros(),
@@ -151,7 +152,6 @@ impl GpTrustFilter {
         let mut readings = [*measurement; MODES];
         readings[WHITE] = white;
         readings[UNRELIABLE] = unreliable;
-        readings[ACCELERATING] = *measurement;
         readings
     }
 
