@@ -4,8 +4,8 @@
 //! as the realism study and the further seeds do) and prints each method's heading and speed RMSE
 //! and coverage with the bounds: GP-KF against min(KF-AUTO, SPGP-HET-ALL) + 2° and
 //! KF-AUTO's speed, GP-ICP against ICP-AUTO likewise. `TRACE=situationN` also prints that
-//! situation scan by scan, with the heading standard deviation the GP and GP-KF state and
-//! GP-KF's speed standard deviation.
+//! situation sweep by sweep (numbered as `patchflow show --scan` numbers them), with the heading
+//! standard deviation the GP and GP-KF state and GP-KF's speed standard deviation.
 //!
 //! `cargo run --release -p patchflow-eval --example learned_targets -- BENCH_OUT [MODEL.json]`
 
@@ -50,48 +50,44 @@ fn main() -> Result<(), Failure> {
     let trace = std::env::var("TRACE").ok();
     for situation in &report.situations {
         if trace.as_deref() == Some(situation.name.as_str()) {
+            // Numbered by sweep, as `patchflow show --scan` and `target_votes` number them (the
+            // first sweep has no previous one and no estimate).
             println!(
-                "scan | true h,s | SPGP h,s,σh | KF-AUTO h,s | GP-KF h,s,σh,σs | ICP-AUTO h,s | GP-ICP h,s"
+                "sweep | true h,s | SPGP h,s,σh | KF-AUTO h,s | GP-KF h,s,σh,σs | ICP-AUTO h,s | GP-ICP h,s"
             );
             let show =
                 |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
                     Some(e) => format!("{:7.1} {:5.2}", e.heading_rad.to_degrees(), e.speed_mps),
                     None => "      -     -".to_owned(),
                 };
-            // The heading's standard deviation as the method states it, degrees.
-            let spread =
-                |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
-                    Some(patchflow_eval::MotionEstimate {
-                        heading_var: Some(var),
-                        ..
-                    }) => format!(" {:5.1}", var.sqrt().to_degrees()),
-                    _ => "     -".to_owned(),
-                };
-            // The speed's standard deviation as the method states it, m/s.
-            let speed_spread =
-                |e: Option<&Option<patchflow_eval::MotionEstimate>>| match e.copied().flatten() {
-                    Some(patchflow_eval::MotionEstimate {
-                        speed_var: Some(var),
-                        ..
-                    }) => format!(" {:5.2}", var.sqrt()),
-                    _ => "     -".to_owned(),
-                };
+            // A standard deviation the method states, from its variance: the heading's in degrees
+            // (`degrees`), the speed's in m/s.
+            let spread = |e: Option<&Option<patchflow_eval::MotionEstimate>>, degrees: bool| {
+                let var = e
+                    .copied()
+                    .flatten()
+                    .and_then(|e| if degrees { e.heading_var } else { e.speed_var });
+                match var {
+                    Some(var) if degrees => format!(" {:5.1}", var.sqrt().to_degrees()),
+                    Some(var) => format!(" {:5.2}", var.sqrt()),
+                    None => "     -".to_owned(),
+                }
+            };
             for (k, t) in situation.truth.iter().enumerate() {
-                let col = |m: Method| show(situation.methods.get(&m).and_then(|v| v.get(k)));
-                let sd = |m: Method| spread(situation.methods.get(&m).and_then(|v| v.get(k)));
-                let ss = |m: Method| speed_spread(situation.methods.get(&m).and_then(|v| v.get(k)));
+                let of = |m: Method| situation.methods.get(&m).and_then(|v| v.get(k));
                 println!(
-                    "{k:3} | {:7.1} {:5.2} | {}{} | {} | {}{}{} | {} | {}",
+                    "{:5} | {:7.1} {:5.2} | {}{} | {} | {}{}{} | {} | {}",
+                    k + 1,
                     t.heading_rad.to_degrees(),
                     t.speed_mps,
-                    col(Method::SpgpHetAll),
-                    sd(Method::SpgpHetAll),
-                    col(Method::KfAuto),
-                    col(Method::GpKf),
-                    sd(Method::GpKf),
-                    ss(Method::GpKf),
-                    col(Method::IcpAuto),
-                    col(Method::GpIcp)
+                    show(of(Method::SpgpHetAll)),
+                    spread(of(Method::SpgpHetAll), true),
+                    show(of(Method::KfAuto)),
+                    show(of(Method::GpKf)),
+                    spread(of(Method::GpKf), true),
+                    spread(of(Method::GpKf), false),
+                    show(of(Method::IcpAuto)),
+                    show(of(Method::GpIcp))
                 );
             }
         }
