@@ -211,17 +211,17 @@ impl TrackFilter for GpTrustFilter {
         });
         for (j, (mode, (mean, covariance))) in self.modes.iter_mut().zip(mixed).enumerate() {
             mode.set_moments(mean, covariance);
-            match self.switch_secs {
-                _ if j == ACCELERATING => mode.predict_singer(
+            if j == ACCELERATING {
+                mode.predict_singer(
                     dt_secs,
                     JERK_NOISE_STD_MPS3,
                     ACCELERATION_TIME_CONSTANT_SECS,
-                ),
+                );
+            } else if j == WHITE && self.switch_secs.is_some() {
                 // A track with GP readings: where they are white, they may follow a turn.
-                Some(_) if j == WHITE => {
-                    mode.predict_with_accel_noise(dt_secs, MANOEUVRE_ACCEL_NOISE_STD_MPS2);
-                }
-                _ => mode.predict(dt_secs),
+                mode.predict_with_accel_noise(dt_secs, MANOEUVRE_ACCEL_NOISE_STD_MPS2);
+            } else {
+                mode.predict(dt_secs);
             }
         }
         self.predicted = predicted;

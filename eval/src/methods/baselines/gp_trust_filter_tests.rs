@@ -245,14 +245,14 @@ fn a_track_whose_gp_reads_a_sharp_turn_well_follows_it() {
     assert!(error < 8.0, "{error}°");
 }
 
-/// The true speed and `F`'s speed error (m/s) on every scan where a car pulling away from rest
+/// The true speed and GP-KF's speed error (m/s) on every scan where a car pulling away from rest
 /// along +x at 2.5 m/s² (the simulator's default) has reached 3 to 7 m/s; its centroids exact,
 /// the GP reading its speed `gp_lag_mps` slow every scan from the tenth (a track that starts at
 /// rest).
-fn speed_errors_pulling_away<F: TrackFilter>(gp_lag_mps: f64) -> Vec<(f64, f64)> {
+fn speed_errors_pulling_away(gp_lag_mps: f64) -> Vec<(f64, f64)> {
     let noise = GpVelocityNoise::default();
     let accel = 2.5;
-    let mut filter = F::start([0.0, 0.0], KalmanParams::default()).unwrap();
+    let mut filter = GpTrustFilter::start([0.0, 0.0], KalmanParams::default()).unwrap();
     let mut errors = Vec::new();
     for k in 1..=28 {
         let t = k as f64 * DT;
@@ -274,7 +274,7 @@ fn speed_errors_pulling_away<F: TrackFilter>(gp_lag_mps: f64) -> Vec<(f64, f64)>
 #[test]
 fn a_track_of_a_car_pulling_away_reads_it_faster_than_its_gp_does() {
     // With every mode at constant velocity the track lags 1.3-1.6 m/s here, more than the GP.
-    let errors = speed_errors_pulling_away::<GpTrustFilter>(1.0);
+    let errors = speed_errors_pulling_away(1.0);
     let from_5_mps = errors.iter().filter(|(speed, _)| *speed >= 5.0);
     assert!(from_5_mps.clone().count() >= 8, "{errors:?}");
     assert!(from_5_mps.clone().all(|(_, e)| e.abs() < 1.0), "{errors:?}");
