@@ -162,8 +162,9 @@ fn flow_section(md: &mut String, scores: &ReportScores) {
          is a perfect moving/static segmentation handed to them; they are listed below the \
          ranking, not in it. Every other method associates by itself: `KF-AUTO` and `ICP-AUTO` \
          (thesis 3.2 with their own association), `GP-KF` (KF-AUTO's tracker measuring the GP's \
-         merged heading and speed as a velocity, thesis 3.1.4, and the visible end of a moving \
-         object one of whose ends is hidden in place of its centroid), `GP-ICP` (ICP-AUTO started from \
+         merged heading and speed as a velocity, thesis 3.1.4, and, in place of its centroid, the \
+         visible end of a moving object one of whose ends is hidden, or the centre of a box \
+         aligned with its heading where it shows whole), `GP-ICP` (ICP-AUTO started from \
          the GP's motion), and the `+MOS` read-outs (the GP's ALL estimate where the learned \
          moving classifier says the cluster moves, zero flow where it says static; GP-KF and \
          GP-ICP take the same decision here). In the per-target tables GP-KF and GP-ICP run \

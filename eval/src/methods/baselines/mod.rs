@@ -7,6 +7,7 @@
 pub(crate) mod baseline_method;
 pub(crate) mod baseline_params;
 pub(crate) mod baseline_step;
+pub(crate) mod box_reference;
 pub(crate) mod cluster_association;
 pub(crate) mod gp_trust_filter;
 pub(crate) mod icp;

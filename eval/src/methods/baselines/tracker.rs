@@ -1,13 +1,16 @@
 //! Multi-target tracker over all clusters, for the `KF-AUTO` baseline: one constant-velocity Kalman
 //! filter per track on the cluster centroid, nearest-neighbour association with a χ² gate.
-//! `GP-KF` runs the same tracker with the clusters' ends ([`MultiTargetTracker::step_anchored`]):
-//! while one end of a moving object is hidden, its track measures the visible end instead of the
-//! centroid (`reference_point`); `KF-AUTO` stays the thesis' centroid filter.
+//! `GP-KF` runs the same tracker with the clusters' outlines
+//! ([`MultiTargetTracker::step_anchored`]): while one end of a moving object is hidden, its track
+//! measures the visible end instead of the centroid (`reference_point`), and while the whole
+//! object shows, the centre of a box aligned with the track's heading (`box_reference`); `KF-AUTO`
+//! stays the thesis' centroid filter.
 //!
 //! Each scan:
 //! 1. predict every track to the scan's time stamp;
 //! 2. gate: a (track, cluster) pair is a candidate when the squared Mahalanobis distance of the
-//!    centroid innovation `yᵀS⁻¹y` (the anchored point's, for an anchored track) is at most
+//!    centroid innovation `yᵀS⁻¹y` (the anchored point's or the box's centre, for a track that
+//!    has one) is at most
 //!    `gate_chi2` (9.21 = χ²₂ at 99 %);
 //! 3. associate greedily, one-to-one: confirmed tracks before tentative ones, then the smallest
 //!    distance first (ties broken by track id, then cluster index, so the result is deterministic);
@@ -15,8 +18,9 @@
 //!    this track finds that velocity than a new track would (when it is likelier), so a track
 //!    keeps the object moving its way, and a cluster without a reading competes on the same
 //!    footing (its ratio is 1);
-//! 4. update the associated tracks, then set each one's reference for the next scan (an anchor
-//!    or the centroid); a tentative track becomes confirmed after `confirm_hits` consecutive hits;
+//! 4. update the associated tracks, then set each one's reference for the next scan (an anchor,
+//!    a box or the centroid); a tentative track becomes confirmed after `confirm_hits`
+//!    consecutive hits;
 //! 5. track end: a tentative track is deleted at its first miss, a confirmed one after more than
 //!    `max_misses` consecutive misses (it coasts on its prediction meanwhile);
 //! 6. track start: every unassociated cluster starts a tentative track.
@@ -27,6 +31,7 @@
 use patchflow_learn::ObjectEnd;
 
 use crate::error::EvalError;
+use crate::methods::baselines::box_reference::{BoxReference, measured_centre};
 use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
 use crate::methods::baselines::reference_point::{
     Anchor, MIN_ANCHOR_SPEED_MPS, measured_point, next_reference,
@@ -58,6 +63,16 @@ impl Default for TrackerParams {
     }
 }
 
+/// What a `GP-KF` track sees of a cluster besides its centroid.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ClusterOutline<'a> {
+    /// The cluster's points of smallest and of largest bearing, each with whether a nearer return
+    /// hides what lies beyond it (`RangeProfile::ends`).
+    pub ends: Option<[ObjectEnd; 2]>,
+    /// The cluster's points, world frame, metres.
+    pub points_xy: &'a [[f64; 2]],
+}
+
 /// Whether a track has earned trust yet.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TrackStatus {
@@ -83,6 +98,9 @@ pub struct Track<F = ConstantVelocityKalman> {
     /// The visible end the track measures while an end of its object is hidden; `None`: the
     /// centroid (`reference_point`).
     pub anchor: Option<Anchor>,
+    /// The box whose centre the track measures while its object shows whole and moves
+    /// (`box_reference`); `None`: the centroid.
+    pub reference: Option<BoxReference>,
 }
 
 /// The tracker state.
@@ -151,23 +169,26 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         centroids_xy: &[[f64; 2]],
         velocities: &[Option<VelocityMeasurement>],
     ) -> Result<Vec<Option<usize>>, EvalError> {
-        self.step_anchored(scan, stamp_secs, centroids_xy, &[], velocities)
+        self.step_anchored(scan, stamp_secs, centroids_xy, &[], velocities, [0.0, 0.0])
     }
 
-    /// [`Self::step_measured`] where cluster `c` may also come with its two ends
-    /// (`ends[c]`, `RangeProfile::ends`): while one end of an object is hidden its track measures
-    /// the visible end instead of the centroid (`reference_point`). A shorter slice means the rest
-    /// have none.
+    /// [`Self::step_measured`] where cluster `c` may also come with its outline (`outlines[c]`),
+    /// seen from the sensor at `sensor_xy`: while one end of an object is hidden its track
+    /// measures the visible end instead of the centroid (`reference_point`), and while a moving
+    /// object shows whole, the centre of its box (`box_reference`). A shorter slice means the
+    /// rest have none.
     pub fn step_anchored(
         &mut self,
         scan: usize,
         stamp_secs: f64,
         centroids_xy: &[[f64; 2]],
-        ends: &[Option<[ObjectEnd; 2]>],
+        outlines: &[ClusterOutline<'_>],
         velocities: &[Option<VelocityMeasurement>],
+        sensor_xy: [f64; 2],
     ) -> Result<Vec<Option<usize>>, EvalError> {
         let velocity_of = |c: usize| velocities.get(c).copied().flatten();
-        let ends_of = |c: usize| ends.get(c).and_then(Option::as_ref);
+        let ends_of = |c: usize| outlines.get(c).and_then(|o| o.ends.as_ref());
+        let outline_of = |c: usize| outlines.get(c).map_or(&[][..], |o| o.points_xy);
         // 1. Predict.
         if let Some(last) = self.last_stamp_secs {
             let dt = stamp_secs - last;
@@ -181,6 +202,21 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
             self.tracks.iter_mut().for_each(|t| t.filter.predict(dt));
         }
         self.last_stamp_secs = Some(stamp_secs);
+        // The heading each track's box is aligned with this scan (`box_reference`).
+        let headings: Vec<Option<f64>> = self
+            .tracks
+            .iter()
+            .map(|t| t.filter.estimate().map(|e| e.heading_rad))
+            .collect();
+        let centre = |track: &Track<F>, ti: usize, ci: usize| {
+            let outline = outline_of(ci);
+            measured_centre(
+                track.reference.as_ref(),
+                headings[ti],
+                outline,
+                centroids_xy[ci],
+            )
+        };
         // 2. Gate.
         let new_track_log_likelihood = (0..centroids_xy.len())
             .map(|ci| {
@@ -198,9 +234,10 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         };
         for (ti, track) in gated.iter().enumerate() {
             let gate = track.filter.centroid_gate()?;
-            for (ci, c) in centroids_xy.iter().enumerate() {
-                let d2 =
-                    gate.mahalanobis_sq(measured_point(track.anchor.as_ref(), *c, ends_of(ci)));
+            for ci in 0..centroids_xy.len() {
+                let point =
+                    measured_point(track.anchor.as_ref(), centre(track, ti, ci), ends_of(ci));
+                let d2 = gate.mahalanobis_sq(point);
                 if d2 <= self.params.gate_chi2 {
                     let rank = usize::from(track.status == TrackStatus::Tentative);
                     // A cluster with a measured velocity (GP-KF) adds the velocity's evidence
@@ -238,13 +275,13 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
             }
         }
         // 4. Update hits, 5. count misses.
-        for (track, cluster) in self.tracks.iter_mut().zip(&track_cluster) {
+        for (ti, (track, cluster)) in self.tracks.iter_mut().zip(&track_cluster).enumerate() {
             match cluster {
                 Some(ci) => {
-                    let (centroid, ends) = (centroids_xy[*ci], ends_of(*ci));
+                    let (centre, ends) = (centre(track, ti, *ci), ends_of(*ci));
                     track
                         .filter
-                        .update(measured_point(track.anchor.as_ref(), centroid, ends))?;
+                        .update(measured_point(track.anchor.as_ref(), centre, ends))?;
                     let reference = track.filter.position();
                     // Only a confirmed track that sees its object move takes an anchor
                     // (`reference_point`).
@@ -254,7 +291,27 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
                             .estimate()
                             .is_some_and(|e| e.speed_mps >= MIN_ANCHOR_SPEED_MPS);
                     let ends = ends.filter(|_| moving || track.anchor.is_some());
-                    let (anchor, shift) = next_reference(track.anchor, centroid, ends, reference);
+                    let anchored = track.anchor.is_some();
+                    let (anchor, mut shift) = next_reference(track.anchor, centre, ends, reference);
+                    if !anchored && anchor.is_none() {
+                        // A moving object in view measured by its box from now on, re-fitted to
+                        // this scan; the state moves by what the change of reference measures.
+                        let outline = outline_of(*ci);
+                        let next = headings[ti].filter(|_| moving).and_then(|h| {
+                            BoxReference::facing(outline, sensor_xy, h, track.reference.as_ref())
+                        });
+                        let moved = measured_centre(
+                            next.as_ref(),
+                            headings[ti],
+                            outline,
+                            centroids_xy[*ci],
+                        );
+                        shift = [
+                            shift[0] + moved[0] - centre[0],
+                            shift[1] + moved[1] - centre[1],
+                        ];
+                        track.reference = next;
+                    }
                     track.filter.shift_position(shift);
                     track.anchor = anchor;
                     if let Some(v) = velocity_of(*ci) {
@@ -287,6 +344,7 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
                     consecutive_hits: 1,
                     consecutive_misses: 0,
                     anchor: None,
+                    reference: None,
                 };
                 if self.params.confirm_hits <= 1 {
                     track.status = TrackStatus::Confirmed;

@@ -157,9 +157,13 @@ fn track_emerging_truck(with_ends: bool, scans: usize) -> Vec<(f64, [f64; 2])> {
         .into_iter()
         .enumerate()
         .map(|(k, (centroid, ends, _))| {
-            let ends = if with_ends { vec![Some(ends)] } else { vec![] };
+            let outline = ClusterOutline {
+                ends: Some(ends),
+                points_xy: &[],
+            };
+            let outlines = if with_ends { vec![outline] } else { vec![] };
             let taken = t
-                .step_anchored(k, k as f64 * DT, &[centroid], &ends, &[])
+                .step_anchored(k, k as f64 * DT, &[centroid], &outlines, &[], [0.0, 0.0])
                 .unwrap();
             assert!(
                 id.is_none_or(|id| taken[0] == Some(id)),
@@ -194,4 +198,62 @@ fn once_the_whole_truck_shows_its_track_is_back_on_the_centroid_at_its_speed() {
         let off_m = (position[0] - true_centroid[0]).hypot(position[1] - true_centroid[1]);
         assert!(off_m < 0.3, "scan {k}: {off_m} m from the centroid");
     }
+}
+
+/// The outline of a 10 m × 2.5 m bus driving −x at 7 m/s, `time` seconds after its front was at
+/// x = 25 m, its near side along y = 4 m, as a sensor at the origin samples it: one return per
+/// 0.5° of bearing on the near side (densest where the side is nearest), and its front or its rear
+/// face every 0.1 m while that faces the sensor.
+fn passing_bus(time: f64) -> Vec<[f64; 2]> {
+    let front = 25.0 - 7.0 * time;
+    let rear = front + 10.0;
+    let mut points: Vec<[f64; 2]> = (-178..=178)
+        .map(|k| [4.0 * (k as f64 * 0.5f64.to_radians()).tan(), 4.0])
+        .filter(|p| (front..=rear).contains(&p[0]))
+        .collect();
+    let face = (front > 0.0)
+        .then_some(front)
+        .or((rear < 0.0).then_some(rear));
+    if let Some(x) = face {
+        points.extend((1..=25).map(|k| [x, 4.0 + 0.1 * k as f64]));
+    }
+    points
+}
+
+/// The track's speed per scan on [`passing_bus`], measured by the clusters' outlines or by their
+/// centroids alone.
+fn track_passing_bus(with_outline: bool) -> Vec<f64> {
+    let mut t = tracker();
+    (0..60)
+        .map(|k| {
+            let points = passing_bus(k as f64 * DT);
+            let centroid = crate::methods::observation::centroid_of(&points).unwrap();
+            let outline = ClusterOutline {
+                ends: None,
+                points_xy: &points,
+            };
+            let outlines = if with_outline { vec![outline] } else { vec![] };
+            let taken = t
+                .step_anchored(k, k as f64 * DT, &[centroid], &outlines, &[], [0.0, 0.0])
+                .unwrap();
+            let track = t.track(taken[0].unwrap()).unwrap();
+            track.filter.estimate().map_or(0.0, |e| e.speed_mps)
+        })
+        .collect()
+}
+
+#[test]
+fn a_bus_passing_beside_the_sensor_is_tracked_at_its_speed_by_its_box_not_its_dense_side() {
+    let worst = |speeds: &[f64]| {
+        speeds[20..]
+            .iter()
+            .map(|s| (s - 7.0).abs())
+            .fold(0.0, f64::max)
+    };
+    let by_box = track_passing_bus(true);
+    let by_centroid = track_passing_bus(false);
+    // The centroid stays with the dense part beside the sensor while the bus passes, and the
+    // track's speed drops by metres per second; the box's centre moves with the bus.
+    assert!(worst(&by_box) < 0.3, "{by_box:?}");
+    assert!(worst(&by_centroid) > 1.5, "{by_centroid:?}");
 }

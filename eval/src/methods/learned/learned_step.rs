@@ -36,7 +36,7 @@ use crate::methods::baselines::rigid_motion::{
     RigidMotion, icp_rigid_motion, icp_rigid_motion_from,
 };
 use crate::methods::baselines::track_filter::TrackFilter;
-use crate::methods::baselines::tracker::MultiTargetTracker;
+use crate::methods::baselines::tracker::{ClusterOutline, MultiTargetTracker};
 use crate::methods::baselines::velocity_measurement::{GpVelocityNoise, VelocityMeasurement};
 use crate::methods::estimate::MotionEstimate;
 use crate::methods::method::Method;
@@ -126,13 +126,21 @@ impl LearnedTrackers {
             })
             .collect();
         let centroids: Vec<[f64; 2]> = scan.clusters.iter().map(|c| c.centroid_xy).collect();
-        let ends: Vec<_> = scan.clusters.iter().map(|c| c.ends).collect();
+        let outlines: Vec<ClusterOutline> = scan
+            .clusters
+            .iter()
+            .map(|c| ClusterOutline {
+                ends: c.ends,
+                points_xy: &c.points_xy_world,
+            })
+            .collect();
         let tracks = self.tracker.step_anchored(
             scan.scan,
             scan.stamp_secs,
             &centroids,
-            &ends,
+            &outlines,
             &velocities,
+            scan.sensor_xy_world,
         )?;
         Ok(tracks
             .iter()
