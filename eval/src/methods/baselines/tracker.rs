@@ -234,7 +234,7 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         };
         for (ti, track) in gated.iter().enumerate() {
             let gate = track.filter.centroid_gate()?;
-            for ci in 0..centroids_xy.len() {
+            for (ci, &new_track) in new_track_log_likelihood.iter().enumerate() {
                 let point =
                     measured_point(track.anchor.as_ref(), centre(track, ti, ci), ends_of(ci));
                 let d2 = gate.mahalanobis_sq(point);
@@ -248,7 +248,7 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
                     // like with like. Only evidence for counts: the GP misreads the right
                     // object for runs of scans, and where only one cluster carries a reading
                     // (the per-target protocol) a penalty would push the track off it alone.
-                    let cost = match (velocity_of(ci), new_track_log_likelihood[ci]) {
+                    let cost = match (velocity_of(ci), new_track) {
                         (Some(v), Some(new_track)) => {
                             let ratio = track.filter.velocity_log_likelihood(&v)? - new_track;
                             d2 - 2.0 * ratio.max(0.0)
