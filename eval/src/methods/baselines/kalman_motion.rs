@@ -79,6 +79,23 @@ impl ConstantVelocityKalman {
 
     /// The transition of the velocity sensor's persistent error (first-order Gauss-Markov) with
     /// every other entry held: the motion models add their kinematics to it.
+    /// Carries the persistent error over by `rho` (in (0, 1]) and restores the stationary spread
+    /// it loses: a first-order Gauss-Markov step of the error alone, as the prediction takes one
+    /// over time (`GpTrustFilter` takes one more as the object's motion changes).
+    pub(crate) fn fade_persistent_error(&mut self, rho: f64) {
+        let Some((stationary, _)) = self.persistent else {
+            return;
+        };
+        let mut f = StateCovariance::identity();
+        f[(4, 4)] = rho;
+        f[(5, 5)] = rho;
+        let mut q = StateCovariance::zeros();
+        q.fixed_view_mut::<2, 2>(4, 4)
+            .copy_from(&(stationary * (1.0 - rho * rho)));
+        self.state = f * self.state;
+        self.covariance = f * self.covariance * f.transpose() + q;
+    }
+
     fn transition_without_kinematics(&self, dt_secs: f64) -> StateCovariance {
         let decay = self.persistent_decay(dt_secs);
         let mut f = StateCovariance::identity();
