@@ -10,8 +10,7 @@
 //! 1. predict every track to the scan's time stamp;
 //! 2. gate: a (track, cluster) pair is a candidate when the squared Mahalanobis distance of the
 //!    centroid innovation `yᵀS⁻¹y` (the anchored point's or the box's centre, for a track that
-//!    has one) is at most
-//!    `gate_chi2` (9.21 = χ²₂ at 99 %);
+//!    has one) is at most `gate_chi2` (9.21 = χ²₂ at 99 %);
 //! 3. associate greedily, one-to-one: confirmed tracks before tentative ones, then the smallest
 //!    distance first (ties broken by track id, then cluster index, so the result is deterministic);
 //!    a cluster that comes with a measured velocity (`GP-KF`) subtracts 2 ln of how much likelier
