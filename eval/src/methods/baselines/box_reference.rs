@@ -120,6 +120,23 @@ pub fn measured_centre(
         .unwrap_or(centroid_xy)
 }
 
+/// The box a track measures its object by from the next scan on, fitted to this scan's cluster
+/// (`outline_xy`, `centroid_xy`) with its axes along `heading_rad` after the track's box so far
+/// (`previous`), and the point it measures on this cluster: the box's centre, or without a
+/// heading (an object that does not move) or points, no box and the centroid. The tracker moves
+/// the track's state by that point less the one it measured this scan.
+pub fn next_box(
+    previous: Option<&BoxReference>,
+    heading_rad: Option<f64>,
+    outline_xy: &[[f64; 2]],
+    sensor_xy: [f64; 2],
+    centroid_xy: [f64; 2],
+) -> (Option<BoxReference>, [f64; 2]) {
+    let next = heading_rad.and_then(|h| BoxReference::facing(outline_xy, sensor_xy, h, previous));
+    let centre = measured_centre(next.as_ref(), heading_rad, outline_xy, centroid_xy);
+    (next, centre)
+}
+
 #[cfg(test)]
 #[path = "box_reference_tests.rs"]
 mod tests;

@@ -17,8 +17,9 @@ impl ConstantVelocityKalman {
     /// covariance.
     pub(crate) fn predict_with_accel_noise(&mut self, dt_secs: f64, accel_noise_std_mps2: f64) {
         let dt = dt_secs;
-        let mut f = self.transition_without_kinematics(dt);
-        let mut q = self.persistent_error_noise(dt);
+        let decay = self.persistent_decay(dt);
+        let mut f = Self::transition_without_kinematics(decay);
+        let mut q = self.persistent_error_noise(decay);
         let q_var = accel_noise_std_mps2.powi(2);
         let (q_pp, q_pv, q_vv) = (
             dt.powi(4) / 4.0 * q_var,
@@ -54,8 +55,9 @@ impl ConstantVelocityKalman {
         time_constant_secs: f64,
     ) {
         let alpha = time_constant_secs.recip();
-        let mut f = self.transition_without_kinematics(dt_secs);
-        let mut q = self.persistent_error_noise(dt_secs);
+        let decay = self.persistent_decay(dt_secs);
+        let mut f = Self::transition_without_kinematics(decay);
+        let mut q = self.persistent_error_noise(decay);
         let gain = singer_gain(dt_secs, alpha);
         let noise = singer_process_noise(dt_secs, alpha);
         let psd = jerk_noise_std_mps3.powi(2);
@@ -77,39 +79,34 @@ impl ConstantVelocityKalman {
         self.covariance = f * self.covariance * f.transpose() + q;
     }
 
-    /// The transition of the velocity sensor's persistent error (first-order Gauss-Markov) with
-    /// every other entry held: the motion models add their kinematics to it.
     /// Carries the persistent error over by `rho` (in (0, 1]) and restores the stationary spread
     /// it loses: a first-order Gauss-Markov step of the error alone, as the prediction takes one
     /// over time (`GpTrustFilter` takes one more as the object's motion changes).
     pub(crate) fn fade_persistent_error(&mut self, rho: f64) {
-        let Some((stationary, _)) = self.persistent else {
+        if self.persistent.is_none() {
             return;
-        };
-        let mut f = StateCovariance::identity();
-        f[(4, 4)] = rho;
-        f[(5, 5)] = rho;
-        let mut q = StateCovariance::zeros();
-        q.fixed_view_mut::<2, 2>(4, 4)
-            .copy_from(&(stationary * (1.0 - rho * rho)));
+        }
+        let f = Self::transition_without_kinematics(rho);
+        let q = self.persistent_error_noise(rho);
         self.state = f * self.state;
         self.covariance = f * self.covariance * f.transpose() + q;
     }
 
-    fn transition_without_kinematics(&self, dt_secs: f64) -> StateCovariance {
-        let decay = self.persistent_decay(dt_secs);
+    /// The transition of the velocity sensor's persistent error (first-order Gauss-Markov), which
+    /// keeps the fraction `decay` of it, with every other entry held: the motion models add their
+    /// kinematics to it.
+    fn transition_without_kinematics(decay: f64) -> StateCovariance {
         let mut f = StateCovariance::identity();
         f[(4, 4)] = decay;
         f[(5, 5)] = decay;
         f
     }
 
-    /// The process noise of the velocity sensor's persistent error over `dt_secs`, zero
-    /// elsewhere.
-    fn persistent_error_noise(&self, dt_secs: f64) -> StateCovariance {
+    /// The process noise of the velocity sensor's persistent error over a step that keeps the
+    /// fraction `decay` of it, zero elsewhere.
+    fn persistent_error_noise(&self, decay: f64) -> StateCovariance {
         let mut q = StateCovariance::zeros();
         if let Some((stationary, _)) = self.persistent {
-            let decay = self.persistent_decay(dt_secs);
             q.fixed_view_mut::<2, 2>(4, 4)
                 .copy_from(&(stationary * (1.0 - decay * decay)));
         }

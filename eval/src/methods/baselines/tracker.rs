@@ -30,7 +30,7 @@
 use patchflow_learn::ObjectEnd;
 
 use crate::error::EvalError;
-use crate::methods::baselines::box_reference::{BoxReference, measured_centre};
+use crate::methods::baselines::box_reference::{BoxReference, measured_centre, next_box};
 use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
 use crate::methods::baselines::reference_point::{
     Anchor, MIN_ANCHOR_SPEED_MPS, measured_point, next_reference,
@@ -295,14 +295,11 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
                     if !anchored && anchor.is_none() {
                         // A moving object in view measured by its box from now on, re-fitted to
                         // this scan; the state moves by what the change of reference measures.
-                        let outline = outline_of(*ci);
-                        let next = headings[ti].filter(|_| moving).and_then(|h| {
-                            BoxReference::facing(outline, sensor_xy, h, track.reference.as_ref())
-                        });
-                        let moved = measured_centre(
-                            next.as_ref(),
-                            headings[ti],
-                            outline,
+                        let (next, moved) = next_box(
+                            track.reference.as_ref(),
+                            headings[ti].filter(|_| moving),
+                            outline_of(*ci),
+                            sensor_xy,
                             centroids_xy[*ci],
                         );
                         shift = [
