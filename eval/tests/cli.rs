@@ -368,7 +368,11 @@ fn a_misspelt_gp_fit_kind_is_refused_with_the_valid_kinds() {
 #[test]
 fn an_unknown_study_is_refused_with_the_known_studies() {
     let output = patchflow(&["study", "colour"]);
-    assert_refused_listing(&output, "colour", &["realism", "rate", "channels", "cell"]);
+    assert_refused_listing(
+        &output,
+        "colour",
+        &["realism", "rate", "channels", "cell", "cell-rate"],
+    );
 }
 
 #[test]

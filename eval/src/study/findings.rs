@@ -40,6 +40,15 @@ pub(crate) fn thesis_prediction(factor: StudyFactor) -> &'static str {
              faster cars' motion, 0.20 m cells (2.2 m patches) should see 4-20 m/s but blur \
              slow motion and capture more of the object's shape."
         }
+        StudyFactor::CellRate => {
+            "\"In principle, a laser with a higher frequency should also result in better \
+             features. The higher the turning rate the smaller the map patches can be. Smaller \
+             map patches means a smaller dimensionality and problem size\" (Ch. 6). At 20 Hz an \
+             object moves half as far between sweeps as at 10 Hz, so cells half as large see it \
+             move by as many cells (0.10 m at 10 Hz and 0.05 m at 20 Hz both see 2-10 m/s, 4.3): \
+             if the claim holds, each 20 Hz point reads as well as the 10 Hz point beside it with \
+             a patch half the side."
+        }
     }
 }
 

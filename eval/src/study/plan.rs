@@ -26,11 +26,23 @@ pub enum StudyFactor {
     /// 0.10 m maps. Each point samples, trains and evaluates on its own features of the same
     /// sweeps.
     Cell,
+    /// The cell and the rate together (thesis Ch. 6, "the higher the turning rate the smaller the
+    /// map patches can be"): pairs of points that move an object by the same number of cells per
+    /// sweep, a 10 Hz point and a 20 Hz point with cells half as large (0.10 m at 10 Hz beside
+    /// 0.05 m at 20 Hz, 0.20 m beside 0.10 m). Each rate trains and evaluates on its own data;
+    /// the points of one rate share their sweeps.
+    CellRate,
 }
 
 impl StudyFactor {
     /// Every study `patchflow study NAME` knows.
-    pub const ALL: [StudyFactor; 4] = [Self::Realism, Self::Rate, Self::Channels, Self::Cell];
+    pub const ALL: [StudyFactor; 5] = [
+        Self::Realism,
+        Self::Rate,
+        Self::Channels,
+        Self::Cell,
+        Self::CellRate,
+    ];
 
     /// The study's name on the command line and in `study.json`.
     pub fn name(self) -> &'static str {
@@ -39,6 +51,7 @@ impl StudyFactor {
             Self::Rate => "rate",
             Self::Channels => "channels",
             Self::Cell => "cell",
+            Self::CellRate => "cell-rate",
         }
     }
 
@@ -53,21 +66,27 @@ impl StudyFactor {
         Self::ALL
             .into_iter()
             .find(|f| f.name() == name)
-            .ok_or_else(|| EvalError::BadParameter {
-                name: "study",
-                reason: format!(
-                    "unknown study {name:?}: expected one of realism, rate, channels, cell"
-                ),
+            .ok_or_else(|| {
+                let known: Vec<&str> = Self::ALL.iter().map(|f| f.name()).collect();
+                EvalError::BadParameter {
+                    name: "study",
+                    reason: format!(
+                        "unknown study {name:?}: expected one of {}",
+                        known.join(", ")
+                    ),
+                }
             })
     }
 
-    /// The unit of the factor's values.
+    /// The unit of the factor's values. A `cell-rate` point's value is its cell times its rate:
+    /// the speed at which an object moves one cell per sweep.
     pub fn unit(self) -> &'static str {
         match self {
             Self::Realism => "rung",
             Self::Rate => "Hz",
             Self::Channels => "channels",
             Self::Cell => "m",
+            Self::CellRate => "m/s",
         }
     }
 
@@ -122,9 +141,28 @@ impl StudyFactor {
                     StudyPoint::own_data(k, format!("{cell_m:.2} m"), cell_m, setting)
                 })
                 .collect(),
+            Self::CellRate => CELL_RATE_PAIRS
+                .into_iter()
+                .flat_map(|(coarse_m, fine_m)| [(coarse_m, 10.0), (fine_m, 20.0)])
+                .enumerate()
+                .map(|(k, (cell_m, hz))| {
+                    let setting = SensorSetting {
+                        rate_hz: Some(hz),
+                        cell_m: Some(cell_m),
+                        ..SensorSetting::default()
+                    };
+                    let label = format!("{cell_m:.2} m, {hz:.0} Hz");
+                    StudyPoint::own_data(k, label, cell_m * hz, setting)
+                })
+                .collect(),
         }
     }
 }
+
+/// The `cell-rate` study's pairs of patch-map cells, metres: (the 10 Hz point's, the 20 Hz
+/// point's), the second half the first, so an object moves by as many cells per sweep at both.
+/// The first pair holds the thesis' 0.10 m at 10 Hz (4.3), the second the default's 0.20 m.
+pub const CELL_RATE_PAIRS: [(f64, f64); 2] = [(0.10, 0.05), (0.20, 0.10)];
 
 /// Patch-map cell sizes of the cell study, metres: half, once and twice the thesis' 0.10 m (4.3)
 /// (the default's is 0.20 m, `patchflow_learn::WIDE_PATCH_CELL_M`). With
@@ -244,6 +282,39 @@ mod tests {
     fn every_cell_of_the_cell_study_passes_the_feature_checks() {
         for point in StudyFactor::Cell.points() {
             point.train.features().check().unwrap();
+        }
+    }
+
+    #[test]
+    fn the_cell_rate_study_pairs_each_10_hz_cell_with_half_the_cell_at_20_hz() {
+        let points = StudyFactor::CellRate.points();
+        let settings: Vec<(f64, f64)> = points
+            .iter()
+            .map(|p| (p.train.cell_m.unwrap(), p.train.rate_hz.unwrap()))
+            .collect();
+        assert_eq!(
+            settings,
+            [(0.10, 10.0), (0.05, 20.0), (0.20, 10.0), (0.10, 20.0)]
+        );
+        // A pair moves an object by as many cells per sweep: equal cell × rate.
+        let values: Vec<f64> = points.iter().map(|p| p.value).collect();
+        assert_eq!(values, [1.0, 1.0, 2.0, 2.0]);
+        assert!(points.iter().all(|p| p.train == p.evaluate));
+        // The points of one rate share their sweeps, the two rates do not.
+        assert_eq!(points[0].train.data_key(), points[2].train.data_key());
+        assert_eq!(points[1].train.data_key(), "20hz");
+        assert_ne!(points[0].train.data_key(), points[1].train.data_key());
+        assert_eq!(points[1].label, "0.05 m, 20 Hz");
+        for point in &points {
+            point.train.features().check().unwrap();
+        }
+    }
+
+    #[test]
+    fn an_unknown_study_names_every_known_one() {
+        let error = StudyFactor::parse("colour").unwrap_err().to_string();
+        for factor in StudyFactor::ALL {
+            assert!(error.contains(factor.name()), "{error}");
         }
     }
 

@@ -127,6 +127,8 @@ pub enum StudyChoice {
     Channels,
     /// The cell size of the maps the patches sample.
     Cell,
+    /// The cell size and the lidar's rate together, pairs at the same cells per sweep.
+    CellRate,
 }
 
 impl From<StudyChoice> for StudyFactor {
@@ -136,6 +138,7 @@ impl From<StudyChoice> for StudyFactor {
             StudyChoice::Rate => Self::Rate,
             StudyChoice::Channels => Self::Channels,
             StudyChoice::Cell => Self::Cell,
+            StudyChoice::CellRate => Self::CellRate,
         }
     }
 }

@@ -1,5 +1,5 @@
 //! `patchflow study NAME`: one factor varied (realism rung, lidar rate, channels, patch-map cell
-//! size), everything else fixed and seeded, by the library's study driver
+//! size, or cell and rate together), everything else fixed and seeded, by the library's study driver
 //! ([`patchflow_eval::run_study`]); `--shard I/N` runs every N-th point, `--merge` joins the
 //! shards' points into `study.json`.
 
@@ -18,8 +18,9 @@ const READOUT_METHODS: [Method; 3] = [Method::SpgpHetAll, Method::Kf, Method::Ic
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// The study: `realism` (the five situations at each rung, trained on `urban`), `rate`
-    /// (5, 10, 20 Hz), `channels` (16, 32, 64, 128) or `cell` (patch-map cells of 0.05, 0.10,
-    /// 0.20 m; patches of 11 × 11 cells).
+    /// (5, 10, 20 Hz), `channels` (16, 32, 64, 128), `cell` (patch-map cells of 0.05, 0.10,
+    /// 0.20 m; patches of 11 × 11 cells) or `cell-rate` (0.10 m at 10 Hz beside 0.05 m at 20 Hz,
+    /// 0.20 m at 10 Hz beside 0.10 m at 20 Hz).
     #[arg(value_enum)]
     pub name: StudyChoice,
     /// Output folder (default `results/study-NAME`).
