@@ -162,7 +162,7 @@ impl StudyFactor {
 /// The `cell-rate` study's pairs of patch-map cells, metres: (the 10 Hz point's, the 20 Hz
 /// point's), the second half the first, so an object moves by as many cells per sweep at both.
 /// The first pair holds the thesis' 0.10 m at 10 Hz (4.3), the second the default's 0.20 m.
-pub const CELL_RATE_PAIRS: [(f64, f64); 2] = [(0.10, 0.05), (0.20, 0.10)];
+pub(crate) const CELL_RATE_PAIRS: [(f64, f64); 2] = [(0.10, 0.05), (0.20, 0.10)];
 
 /// Patch-map cell sizes of the cell study, metres: half, once and twice the thesis' 0.10 m (4.3)
 /// (the default's is 0.20 m, `patchflow_learn::WIDE_PATCH_CELL_M`). With

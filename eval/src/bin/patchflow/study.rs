@@ -1,7 +1,7 @@
 //! `patchflow study NAME`: one factor varied (realism rung, lidar rate, channels, patch-map cell
-//! size, or cell and rate together), everything else fixed and seeded, by the library's study driver
-//! ([`patchflow_eval::run_study`]); `--shard I/N` runs every N-th point, `--merge` joins the
-//! shards' points into `study.json`.
+//! size, or cell and rate together), everything else fixed and seeded, by the library's study
+//! driver ([`patchflow_eval::run_study`]); `--shard I/N` runs every N-th point, `--merge` joins
+//! the shards' points into `study.json`.
 
 use std::path::PathBuf;
 
