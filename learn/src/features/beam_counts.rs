@@ -11,6 +11,9 @@ use crate::features::grid::GridWindow;
 use crate::features::line::add_misses;
 use crate::features::slice::SlicedBeam;
 
+/// The largest cell coordinate a traced line may have (16.7 million cells, 1,670 km at 0.1 m).
+const MAX_CELLS: i64 = 1 << 24;
+
 /// Rows per band of touched-column bookkeeping.
 pub(crate) const BAND_ROWS: usize = 16;
 
@@ -65,7 +68,8 @@ impl BeamCounts {
         self.bands.get(b).copied().filter(|(lo, hi)| lo <= hi)
     }
 
-    /// Adds one beam's hit and misses.
+    /// Adds one beam's hit and misses: the cells of its whole line that lie in the window, so
+    /// the counts on any window inside this one are these counts cut to it.
     fn add_beam(&mut self, beam: &SlicedBeam) {
         let finite = beam
             .start_xy
@@ -76,39 +80,32 @@ impl BeamCounts {
             return;
         }
         let window = self.window;
-        let a = window.to_local(beam.start_xy[0], beam.start_xy[1]);
-        let b = window.to_local(beam.end_xy[0], beam.end_xy[1]);
-        let (cols, rows) = (window.cols as f64, window.rows as f64);
-        let end_cell = (floor(b[0]), floor(b[1]));
-        let end_inside = end_cell.0 >= 0
-            && end_cell.1 >= 0
-            && end_cell.0 < window.cols as i64
-            && end_cell.1 < window.rows as i64;
-        if beam.hit && end_inside {
-            let (c, r) = (end_cell.0 as usize, end_cell.1 as usize);
-            self.hits[window.index(c, r)] += 1.0;
-            self.mark(c, c, r, r);
-        }
-        let Some((ca, cb)) = clip_to_box(a, b, cols, rows) else {
+        let from = window.local_cell(beam.start_xy[0], beam.start_xy[1]);
+        let to = window.local_cell(beam.end_xy[0], beam.end_xy[1]);
+        // A line thousands of kilometres long is no sweep's; it would overflow the stepping.
+        if [from.0, from.1, to.0, to.1]
+            .iter()
+            .any(|v| v.abs() > MAX_CELLS)
+        {
             return;
+        }
+        let inside = |(c, r): (i64, i64)| {
+            (0..window.cols as i64).contains(&c) && (0..window.rows as i64).contains(&r)
         };
-        let last = |v: f64, n: f64| floor(v).clamp(0, n as i64 - 1);
-        let (x0, y0) = (last(ca[0], cols), last(ca[1], rows));
-        let (x1, y1) = (last(cb[0], cols), last(cb[1], rows));
-        // The end cell is the hit itself when the beam ends in the slice inside the window.
-        let skip_last = beam.hit && end_inside && (x1, y1) == end_cell;
-        add_misses(&mut self.misses, window.cols, (x0, y0), (x1, y1), skip_last);
-        // Clamped to the window, so the casts are in range.
-        self.mark(
-            x0.min(x1) as usize,
-            x0.max(x1) as usize,
-            y0.min(y1) as usize,
-            y0.max(y1) as usize,
-        );
+        if beam.hit && inside(to) {
+            let (c, r) = (to.0 as usize, to.1 as usize);
+            self.hits[window.index(c, r)] += 1.0;
+            self.mark((c, c), (r, r));
+        }
+        // The end cell of a beam ending in the slice is its hit, not a miss.
+        let size = (window.cols, window.rows);
+        if let Some((cols, rows)) = add_misses(&mut self.misses, size, from, to, beam.hit) {
+            self.mark(cols, rows);
+        }
     }
 
     /// Records that columns `[c0, c1]` of rows `[r0, r1]` may hold counts.
-    fn mark(&mut self, c0: usize, c1: usize, r0: usize, r1: usize) {
+    fn mark(&mut self, (c0, c1): (usize, usize), (r0, r1): (usize, usize)) {
         for band in &mut self.bands[r0 / BAND_ROWS..=r1 / BAND_ROWS] {
             band.0 = band.0.min(c0);
             band.1 = band.1.max(c1);
@@ -138,47 +135,6 @@ impl Drop for BeamCounts {
 /// A zeroed buffer of `len` cells: a pooled one of that length, or a new one.
 fn clean_buffer(len: usize) -> Vec<f32> {
     POOL.take(len).unwrap_or_else(|| vec![0.0; len])
-}
-
-/// `v.floor()` as an integer for finite `v` (saturating far outside the window), without the
-/// library call `f64::floor` costs on baseline x86-64.
-fn floor(v: f64) -> i64 {
-    let i = v as i64;
-    if (i as f64) > v { i - 1 } else { i }
-}
-
-/// Clips the segment `a → b` to the box `[0, cols] × [0, rows]` (Liang–Barsky).
-fn clip_to_box(a: [f64; 2], b: [f64; 2], cols: f64, rows: f64) -> Option<([f64; 2], [f64; 2])> {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let inside = |p: [f64; 2]| p[0] >= 0.0 && p[1] >= 0.0 && p[0] <= cols && p[1] <= rows;
-    if inside(a) && inside(b) {
-        // Most beams: no division needed (t0 = 0, t1 = 1 below).
-        return Some((a, [a[0] + d[0], a[1] + d[1]]));
-    }
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [
-        (-d[0], a[0]),
-        (d[0], cols - a[0]),
-        (-d[1], a[1]),
-        (d[1], rows - a[1]),
-    ] {
-        if p.abs() < 1e-15 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let r = q / p;
-            if p < 0.0 {
-                t0 = t0.max(r);
-            } else {
-                t1 = t1.min(r);
-            }
-        }
-    }
-    (t0 <= t1).then(|| {
-        let at = |t: f64| [a[0] + t * d[0], a[1] + t * d[1]];
-        (at(t0), at(t1))
-    })
 }
 
 #[cfg(test)]

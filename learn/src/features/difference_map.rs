@@ -2,7 +2,7 @@
 //! moving object shows a loss of occupancy behind it and a gain ahead.
 
 use crate::FeatureParams;
-use crate::features::beam_counts::BeamCounts;
+use crate::features::counts_view::CountsView;
 use crate::features::grid::{GridMap, GridWindow};
 use crate::features::reflection_map::{MapValues, reflection_and_difference};
 use crate::features::slice::HeightSlice;
@@ -36,7 +36,7 @@ impl MapPair {
 
     /// Like [`Self::build`] once per prior, with the hit-and-miss `spread` of
     /// [`FeatureParams::spread`]: the beams are traced once (in parallel for the two sweeps),
-    /// since the prior only fills unobserved cells.
+    /// since the prior only fills unobserved cells; each slice keeps its counts for the next pair.
     pub fn build_for_priors(
         prev: &HeightSlice,
         curr: &HeightSlice,
@@ -44,13 +44,17 @@ impl MapPair {
         spread: f64,
         priors: &[f64],
     ) -> Vec<Self> {
-        // 2.1.1: hits and misses of both sweeps' sliced beams on the current window.
+        // 2.1.1: hits and misses of both sweeps' sliced beams on the current window (each
+        // sweep's beams traced once: the previous one's counts are usually those it was traced
+        // with as the current sweep).
         let (prev_counts, curr_counts) = rayon::join(
-            || BeamCounts::trace(&prev.beams, &window),
-            || BeamCounts::trace(&curr.beams, &window),
+            || prev.counts_holding(&window),
+            || curr.counts_holding(&window),
         );
+        let [prev_view, curr_view] =
+            [&prev_counts, &curr_counts].map(|(counts, at)| CountsView::at(counts, &window, *at));
         // Eq. 2.8-2.9: spread, divide, subtract.
-        let maps = reflection_and_difference(&prev_counts, &curr_counts, priors, spread);
+        let maps = reflection_and_difference(&prev_view, &curr_view, priors, spread);
         maps.into_iter()
             .zip(priors)
             .map(|(values, &prior)| Self::from_values(window, values, prior))
@@ -173,6 +177,36 @@ mod tests {
                 },
             );
             assert_eq!(pair, &one, "prior {prior}");
+        }
+    }
+
+    #[test]
+    fn maps_from_the_counts_a_slice_keeps_equal_maps_traced_afresh() {
+        // The ego drives 0.7 m per sweep (within the room the counts keep), then jumps 6 m (not).
+        let scene = SyntheticScene {
+            boxes: vec![
+                SceneBox::car(1, [4.0, 9.0], 0.3, 6.0),
+                SceneBox::wall([-3.0, -6.0], 0.2, [8.0, 0.4, 2.5]),
+            ],
+        };
+        let lidar = SyntheticLidar::with_resolution(32, 900);
+        let params = FeatureParams {
+            half_extent_m: 15.0,
+            ..FeatureParams::default()
+        };
+        let sensors = [[0.0, 0.0], [0.7, 0.05], [1.4, 0.1], [7.4, 0.1]];
+        let cut = |k: usize| {
+            let sweep = scene
+                .advanced(0.1 * k as f64)
+                .scan(&lidar, sensors[k], 0.0, k as u32);
+            HeightSlice::cut(&sweep, &params).unwrap()
+        };
+        let kept: Vec<HeightSlice> = (0..sensors.len()).map(cut).collect();
+        for k in 1..sensors.len() {
+            let window = params.map_window(sensors[k]);
+            let from_kept = MapPair::build(&kept[k - 1], &kept[k], window, &params);
+            let afresh = MapPair::build(&cut(k - 1), &cut(k), window, &params);
+            assert_eq!(from_kept, afresh, "sweep {k}");
         }
     }
 }

@@ -74,6 +74,48 @@ impl GridWindow {
     pub fn index(&self, col: usize, row: usize) -> usize {
         row * self.cols + col
     }
+
+    /// The local cell `(col, row)` of a finite world point, inside the window or not: the grid's
+    /// cell less the origin, in integers, so every window of one grid names the same cell
+    /// (saturating far outside).
+    pub(crate) fn local_cell(&self, x_m: f64, y_m: f64) -> (i64, i64) {
+        (
+            floor(x_m / self.cell_m).saturating_sub(self.origin_col),
+            floor(y_m / self.cell_m).saturating_sub(self.origin_row),
+        )
+    }
+
+    /// This window grown by `cells` on every side, on the same grid.
+    pub(crate) fn padded(&self, cells: usize) -> Self {
+        Self {
+            origin_col: self.origin_col - cells as i64,
+            origin_row: self.origin_row - cells as i64,
+            cols: self.cols + 2 * cells,
+            rows: self.rows + 2 * cells,
+            cell_m: self.cell_m,
+        }
+    }
+
+    /// Where this window's first cell lies in `outer` (column, row), if `outer` is on the same
+    /// grid and holds every cell of this one.
+    pub(crate) fn offset_in(&self, outer: &GridWindow) -> Option<(usize, usize)> {
+        let (dc, dr) = (
+            self.origin_col - outer.origin_col,
+            self.origin_row - outer.origin_row,
+        );
+        let fits = |d: i64, n: usize, m: usize| d >= 0 && d as usize + n <= m;
+        (self.cell_m.to_bits() == outer.cell_m.to_bits()
+            && fits(dc, self.cols, outer.cols)
+            && fits(dr, self.rows, outer.rows))
+        .then_some((dc as usize, dr as usize))
+    }
+}
+
+/// `v.floor()` as an integer for finite `v` (saturating far outside any window), without the
+/// library call `f64::floor` costs on baseline x86-64.
+fn floor(v: f64) -> i64 {
+    let i = v as i64;
+    if (i as f64) > v { i - 1 } else { i }
 }
 
 /// Values on a [`GridWindow`], row-major (`row · cols + col`), with one value for every cell

@@ -3,7 +3,8 @@
 
 use rayon::prelude::*;
 
-use crate::features::beam_counts::{BAND_ROWS, BeamCounts};
+use crate::features::beam_counts::BAND_ROWS;
+use crate::features::counts_view::CountsView;
 use crate::features::grid::recycled_values;
 use crate::features::spread_kernel::{Kernel, neighbour_rows, ratios, spread_row};
 
@@ -25,8 +26,8 @@ pub(crate) struct MapValues {
 /// unobserved cells, so one pass serves every prior. Bands of rows no count reaches are filled
 /// without arithmetic, and within a band only the touched columns are computed.
 pub(crate) fn reflection_and_difference(
-    prev: &BeamCounts,
-    curr: &BeamCounts,
+    prev: &CountsView<'_>,
+    curr: &CountsView<'_>,
     priors: &[f64],
     spread: f64,
 ) -> Vec<MapValues> {
@@ -63,7 +64,7 @@ pub(crate) fn reflection_and_difference(
 /// Fills band `b` of every prior's maps (`maps[k]` belongs to `priors[k]`).
 fn band_pass(
     b: usize,
-    [prev, curr]: [&BeamCounts; 2],
+    [prev, curr]: [&CountsView<'_>; 2],
     priors: &[f64],
     kernel: Kernel,
     maps: &mut [(&mut [f64], &mut [f64])],
@@ -101,7 +102,7 @@ fn band_pass(
     let width = hi + 1 - lo;
     // Both counts of both sweeps spread along x, rows first − 1 ..= last + 1 (zero outside the
     // window): `spread[channel][k · width + i]` for row `first − 1 + k`, column `lo + i`.
-    let spread_x = |counts: &BeamCounts| -> [Vec<f32>; 2] {
+    let spread_x = |counts: &CountsView<'_>| -> [Vec<f32>; 2] {
         [0, 1].map(|channel| {
             let mut out = vec![0f32; (rows.len() + 2) * width];
             for (k, y) in (rows.start as i64 - 1..=rows.end as i64).enumerate() {
@@ -142,6 +143,7 @@ fn band_pass(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::features::beam_counts::BeamCounts;
     use crate::features::grid::{GridMap, GridWindow};
     use crate::features::slice::SlicedBeam;
 
@@ -160,7 +162,7 @@ mod tests {
     /// One sweep's reflection map (no previous beams).
     fn reflection_map(beams: &[SlicedBeam], w: &GridWindow, prior: f64, spread: f64) -> GridMap {
         let (prev, curr) = (BeamCounts::trace(&[], w), BeamCounts::trace(beams, w));
-        let mut maps = reflection_and_difference(&prev, &curr, &[prior], spread);
+        let mut maps = reflection_and_difference(&whole(&prev), &whole(&curr), &[prior], spread);
         GridMap::from_values(*w, maps.remove(0).reflection, prior).unwrap()
     }
 
@@ -224,6 +226,11 @@ mod tests {
 
     /// The textbook computation on full grids: spread every count along x, then along y, then
     /// divide; no bands, no spans.
+    /// The counts on the whole window they were traced on.
+    fn whole(counts: &BeamCounts) -> CountsView<'_> {
+        CountsView::of(counts, counts.window()).unwrap()
+    }
+
     fn dense_reflection(counts: &BeamCounts, prior: f64, spread: f32) -> Vec<f64> {
         let w = counts.window();
         let (cols, rows) = (w.cols as i64, w.rows as i64);
@@ -269,7 +276,7 @@ mod tests {
             BeamCounts::trace(&prev_beams, &w),
             BeamCounts::trace(&curr_beams, &w),
         );
-        let maps = reflection_and_difference(&prev, &curr, &[0.5, 0.01], 1.0 / 6.0);
+        let maps = reflection_and_difference(&whole(&prev), &whole(&curr), &[0.5, 0.01], 1.0 / 6.0);
         for (out, prior) in maps.iter().zip([0.5, 0.01]) {
             let dense_prev = dense_reflection(&prev, prior, 1.0 / 6.0);
             let dense_curr = dense_reflection(&curr, prior, 1.0 / 6.0);

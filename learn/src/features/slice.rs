@@ -5,8 +5,13 @@
 use patchflow_dataset::Sweep;
 use rayon::prelude::*;
 
+use std::sync::Arc;
+
+use crate::features::beam_counts::BeamCounts;
+use crate::features::grid::GridWindow;
 use crate::features::ground_grid::{GroundGrid, points_in_world};
 use crate::features::ground_slab::{SlabAboveGround, clip_to_slab};
+use crate::features::traced_counts::TracedCounts;
 use crate::{FeatureParams, GroundMode, Result};
 
 /// Points per parallel task of the slice above an estimated ground (a sweep's ~120,000 make
@@ -45,6 +50,8 @@ pub struct HeightSlice {
     pub beams: Vec<SlicedBeam>,
     /// Every end point in the slice, in point order.
     pub points: Vec<SlicedPoint>,
+    /// The beams' hit and miss counts, traced once per cell size.
+    counts: TracedCounts,
 }
 
 impl HeightSlice {
@@ -137,7 +144,15 @@ impl HeightSlice {
             sensor_xy: [origin[0], origin[1]],
             beams: Vec::new(),
             points: Vec::new(),
+            counts: TracedCounts::default(),
         }
+    }
+
+    /// The beams' counts on a window holding `window` and where `window` starts in it: traced
+    /// the first time a window of this cell size is asked for (with room for the next sweep's
+    /// window), cut from those counts afterwards.
+    pub(crate) fn counts_holding(&self, window: &GridWindow) -> (Arc<BeamCounts>, (usize, usize)) {
+        self.counts.holding(&self.beams, window)
     }
 
     /// Adds the parts `intervals` (beam parameters, in order) of the beam to point `index`; the

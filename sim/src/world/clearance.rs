@@ -11,11 +11,22 @@ struct Footprint {
     yaw_cos_sin: (f64, f64),
 }
 
+/// How far apart two bounding boxes must be, beyond the clearance asked for, before their
+/// contents count as clear without their exact distance, metres: far above the distances'
+/// rounding (1e-13 m at a kilometre), so the shortcut decides as the exact test would.
+const SURELY_APART_M: f64 = 1e-6;
+
+/// An axis-aligned bounding box: min x, min y, max x, max y.
+type Bounds = [f64; 4];
+
 /// Free space bookkeeping for clutter placement.
 #[derive(Debug, Default)]
 pub(crate) struct Clearance {
     /// Segments swept by an actor's centre, with the actor's half width, metres.
     corridors: Vec<([f64; 2], [f64; 2], f64)>,
+    /// Each corridor segment's bounding box (a placement far from most of a long route skips
+    /// their distances: clutter placement tests thousands of spots against them).
+    corridor_bounds: Vec<Bounds>,
     /// Footprints of the scenario's structures.
     footprints: Vec<Footprint>,
     /// Clutter placed so far: centre and radius.
@@ -44,6 +55,7 @@ impl Clearance {
                     .position_m;
                 if let Some(q) = previous {
                     out.corridors.push((q, p, half_width));
+                    out.corridor_bounds.push(bounds(q, p));
                 }
                 previous = Some(p);
             }
@@ -75,9 +87,16 @@ impl Clearance {
         margin_m: f64,
     ) -> bool {
         let (axis_a, axis_b) = body.axis(p);
-        let corridor_free = self.corridors.iter().all(|&(a, b, w)| {
-            segments_distance((axis_a, axis_b), (a, b)) > w + body.half_across_m + margin_m
-        });
+        let axis_bounds = bounds(axis_a, axis_b);
+        let corridor_free =
+            self.corridors
+                .iter()
+                .zip(&self.corridor_bounds)
+                .all(|(&(a, b, w), corridor)| {
+                    let clearance = w + body.half_across_m + margin_m;
+                    gap(&axis_bounds, corridor) > clearance + SURELY_APART_M
+                        || segments_distance((axis_a, axis_b), (a, b)) > clearance
+                });
         let structure_free = self.footprints.iter().all(|f| {
             let (c, h, (cos, sin)) = (f.centre, f.half, f.yaw_cos_sin);
             let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
@@ -86,10 +105,10 @@ impl Clearance {
         });
         corridor_free
             && structure_free
-            && self
-                .placed
-                .iter()
-                .all(|&(q, r)| (p[0] - q[0]).hypot(p[1] - q[1]) > r + radius_m + margin_m)
+            && self.placed.iter().all(|&(q, r)| {
+                let (dx, dy, clearance) = (p[0] - q[0], p[1] - q[1], r + radius_m + margin_m);
+                dx.abs().max(dy.abs()) > clearance + SURELY_APART_M || dx.hypot(dy) > clearance
+            })
     }
 
     /// Records an item placed at `p`.
@@ -128,6 +147,25 @@ impl ItemExtent {
         let d = [half * cos, half * sin];
         ([p[0] - d[0], p[1] - d[1]], [p[0] + d[0], p[1] + d[1]])
     }
+}
+
+/// The bounding box of the segment `a`–`b`.
+fn bounds(a: [f64; 2], b: [f64; 2]) -> Bounds {
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[0].max(b[0]),
+        a[1].max(b[1]),
+    ]
+}
+
+/// The larger of the gaps between two boxes along x and along y (negative where they overlap
+/// on both): no point of one box is nearer to the other than this.
+fn gap(a: &Bounds, b: &Bounds) -> f64 {
+    (a[0] - b[2])
+        .max(b[0] - a[2])
+        .max(a[1] - b[3])
+        .max(b[1] - a[3])
 }
 
 /// Distance from `p` to the segment `a`–`b`.
@@ -207,6 +245,22 @@ mod tests {
         let w = scenario.ego.size_m.map_or(1.0, |s| s[1] / 2.0); // the corridor's half width
         assert!(clearance.is_free([20.0, w + 1.0 + 0.35], 2.6, parked_car(), 0.3));
         assert!(!clearance.is_free([20.0, w + 1.0 + 0.25], 2.6, parked_car(), 0.3));
+    }
+
+    #[test]
+    fn the_gap_between_bounding_boxes_never_exceeds_the_segments_distance() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let mut point = || [rng.random_range(-50.0..50.0), rng.random_range(-50.0..50.0)];
+        for _ in 0..20_000 {
+            let (a, b, c, d) = (point(), point(), point(), point());
+            let exact = segments_distance((a, b), (c, d));
+            let lower = gap(&bounds(a, b), &bounds(c, d));
+            assert!(
+                lower <= exact + 1e-12,
+                "{a:?}-{b:?} to {c:?}-{d:?}: {lower} > {exact}"
+            );
+        }
     }
 
     #[test]
