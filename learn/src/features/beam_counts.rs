@@ -9,7 +9,7 @@
 use crate::features::buffer_pool::BufferPool;
 use crate::features::grid::GridWindow;
 use crate::features::line::add_misses;
-use crate::features::slice::SlicedBeam;
+use crate::features::sliced_beam::SlicedBeam;
 
 /// The largest cell coordinate a traced line may have (16.7 million cells, 1,670 km at 0.1 m).
 const MAX_CELLS: i64 = 1 << 24;

@@ -74,7 +74,7 @@ impl<'a> CountsView<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::features::slice::SlicedBeam;
+    use crate::features::sliced_beam::SlicedBeam;
 
     fn beam(start: [f64; 2], end: [f64; 2], hit: bool) -> SlicedBeam {
         SlicedBeam {

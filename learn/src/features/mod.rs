@@ -31,6 +31,7 @@ mod run_sampler;
 mod sample_set;
 mod scan_stream;
 mod slice;
+mod sliced_beam;
 mod spread_kernel;
 mod sweep_features;
 mod synthetic_canopy;

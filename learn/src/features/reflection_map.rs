@@ -145,7 +145,7 @@ mod tests {
     use super::*;
     use crate::features::beam_counts::BeamCounts;
     use crate::features::grid::{GridMap, GridWindow};
-    use crate::features::slice::SlicedBeam;
+    use crate::features::sliced_beam::SlicedBeam;
 
     fn window() -> GridWindow {
         GridWindow::centred([0.0, 0.0], 2.0, 0.1)

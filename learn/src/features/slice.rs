@@ -11,23 +11,13 @@ use crate::features::beam_counts::BeamCounts;
 use crate::features::grid::GridWindow;
 use crate::features::ground_grid::{GroundGrid, points_in_world};
 use crate::features::ground_slab::{SlabAboveGround, clip_to_slab};
+use crate::features::sliced_beam::SlicedBeam;
 use crate::features::traced_counts::TracedCounts;
 use crate::{FeatureParams, GroundMode, Result};
 
 /// Points per parallel task of the slice above an estimated ground (a sweep's ~120,000 make
 /// about fifteen tasks; each clips its beams against the ground on its own).
 const TASK_POINTS: usize = 8192;
-
-/// The part of one beam inside the height slice, projected to the ground plane (world x, y).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlicedBeam {
-    /// Where the beam enters the slice (or the sensor, if it starts inside).
-    pub start_xy: [f64; 2],
-    /// Where it leaves the slice, or its end point.
-    pub end_xy: [f64; 2],
-    /// True if the end point lies in the slice: the end cell is a hit, the rest misses.
-    pub hit: bool,
-}
 
 /// An end point inside the slice: world x, y and its index among the sweep's points.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use crate::features::beam_counts::BeamCounts;
 use crate::features::grid::GridWindow;
-use crate::features::slice::SlicedBeam;
+use crate::features::sliced_beam::SlicedBeam;
 
 /// Room around a traced window, metres: a car at 72 km/h travels 2 m in a 10 Hz sweep. A map
 /// window further away (the moving classifier's look-back half a second, a faster ego) traces
