@@ -78,12 +78,17 @@ fn check_bounds(scene: &str, heading_bound_deg: f64, speed_bound_mps: f64) {
 }
 
 /// Held-out heading and speed RMSE of the whole estimator (its three regressions, with their
-/// projections and noise GPs) trained by `params` on the first two thirds of a draw from `scene`
-/// and tested on the last third: (heading °, speed m/s).
-fn held_out_errors(scene: &str, params: &EstimatorParams) -> (f64, f64) {
-    let dir = tempfile::tempdir().unwrap();
-    let dataset = patchflow_tests::generate_scene(dir.path(), "regression", scene, 11);
-    let set = SampleSet::collect(&dataset, &params.features, FeatureKind::Patch, 600, 5).unwrap();
+/// projections and noise GPs) trained by `params` on the first two thirds of a draw from
+/// `dataset` under `params.seed` and tested on the last third: (heading °, speed m/s).
+fn held_out_errors(dataset: &patchflow_dataset::Dataset, params: &EstimatorParams) -> (f64, f64) {
+    let set = SampleSet::collect(
+        dataset,
+        &params.features,
+        FeatureKind::Patch,
+        600,
+        params.seed,
+    )
+    .unwrap();
     let cut = set.samples.len() * 2 / 3;
     let train = SampleSet {
         samples: set.samples[..cut].to_vec(),
@@ -125,9 +130,26 @@ fn small(params: EstimatorParams) -> EstimatorParams {
     }
 }
 
+/// The seeds the held-out errors are averaged over: one seed's draw of 400 samples swings the
+/// default's speed RMSE by 0.4 m/s on `ideal` (1.85-2.27 m/s over seeds 3-8).
+const HELD_OUT_SEEDS: [u64; 3] = [5, 6, 7];
+
 fn check_held_out(scene: &str, params: &EstimatorParams, bounds: (f64, f64)) {
-    let (heading, speed) = held_out_errors(scene, params);
-    println!("held-out heading RMSE {heading:.3} deg, speed RMSE {speed:.4} m/s");
+    let dir = tempfile::tempdir().unwrap();
+    let dataset = patchflow_tests::generate_scene(dir.path(), "regression", scene, 11);
+    let (mut heading, mut speed) = (0.0, 0.0);
+    for seed in HELD_OUT_SEEDS {
+        let (h, s) = held_out_errors(
+            &dataset,
+            &EstimatorParams {
+                seed,
+                ..params.clone()
+            },
+        );
+        println!("seed {seed}: held-out heading RMSE {h:.3} deg, speed RMSE {s:.4} m/s");
+        (heading, speed) = (heading + h / 3.0, speed + s / 3.0);
+    }
+    println!("mean: held-out heading RMSE {heading:.3} deg, speed RMSE {speed:.4} m/s");
     assert!(
         heading <= bounds.0,
         "heading RMSE {heading:.3} deg > bound {}",
@@ -140,24 +162,30 @@ fn check_held_out(scene: &str, params: &EstimatorParams, bounds: (f64, f64)) {
     );
 }
 
-/// Bounds of the default estimator's held-out errors (heading °, speed m/s) on `ideal` and
-/// `urban` with its per-vehicle fleet (seed 5, 400 training and 200 test samples, 20
-/// pseudo-inputs, 60 iterations). Measured 2026-12-04 with the default's patches on maps of
-/// 0.20 m cells (`WIDE_PATCH_CELL_M`): 70.24°/2.036 m/s on `ideal`, 48.15°/2.022 m/s on
-/// `urban`; with the thesis' 0.10 m patches (stop 41's default) 74.64°/1.774 and 67.72°/1.738;
-/// with the previous 0.5-1.0 m slice 48.61°/1.209 and 78.75°/1.624 (55.59°/1.136 without the
-/// fleet); with a 0.35-0.85 m slice 29.56°/1.150 and 79.07°/1.733. This small one-sided scene's
-/// per-sample heading swings by tens of degrees with the slice while the thesis preset's stays
-/// at 16-25°, so these bounds catch a broken model, not a worse one; on the situations' targets
-/// the lower top and the wider patches gain on every seed (docs/estimator.md). Which part of
-/// the default makes it so fragile here is not measured (the most-likely noise GP's refit on
-/// 400 samples is one suspect). Held-out samples are drawn ones only, no mirror images.
-const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (76.0, 2.19);
-const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (54.0, 2.17);
-/// The thesis preset's (its 0.5-1.0 m slice): measured 16.24°/1.008 m/s on `ideal`,
-/// 25.07°/1.231 m/s on `urban` (21.11°/0.418 m/s without the fleet).
-const THESIS_HELD_OUT_IDEAL: (f64, f64) = (18.5, 1.15);
-const THESIS_HELD_OUT_URBAN: (f64, f64) = (29.0, 1.38);
+/// Bounds of the default estimator's held-out errors (heading °, speed m/s), the mean over
+/// [`HELD_OUT_SEEDS`], on `ideal` and `urban` with its per-vehicle fleet (400 training and 200
+/// test samples, 20 pseudo-inputs, 60 iterations). Measured 2026-12-06 on stop 60's maps (each
+/// sweep's beams traced once, a beam's cells those of its whole line): 70.41°/2.046 m/s on
+/// `ideal`, 48.14°/1.730 m/s on `urban` (stop 59's maps: 70.42°/2.016 and 51.48°/1.900). Until
+/// stop 59 the bounds held seed 5 alone, measured 2026-12-04 with the default's patches on maps
+/// of 0.20 m cells (`WIDE_PATCH_CELL_M`): 70.24°/2.036 m/s on `ideal`, 48.15°/2.022 m/s on
+/// `urban` (on stop 60's maps 67.31°/2.267 and 42.27°/1.993); with the thesis' 0.10 m patches
+/// (stop 41's default) 74.64°/1.774 and 67.72°/1.738; with the previous 0.5-1.0 m slice
+/// 48.61°/1.209 and 78.75°/1.624 (55.59°/1.136 without the fleet); with a 0.35-0.85 m slice
+/// 29.56°/1.150 and 79.07°/1.733. This small one-sided scene's per-sample heading swings by tens
+/// of degrees with the slice while the thesis preset's stays at 10-25°, so these bounds catch a
+/// broken model, not a worse one; on the situations' targets the lower top and the wider patches
+/// gain on every seed (docs/estimator.md). Which part of the default makes it so fragile here is
+/// not measured (the most-likely noise GP's refit on 400 samples is one suspect). Held-out
+/// samples are drawn ones only, no mirror images.
+const DEFAULT_HELD_OUT_IDEAL: (f64, f64) = (76.0, 2.21);
+const DEFAULT_HELD_OUT_URBAN: (f64, f64) = (54.0, 1.95);
+/// The thesis preset's (its 0.5-1.0 m slice), the mean over [`HELD_OUT_SEEDS`] on stop 60's
+/// maps: 16.27°/0.952 m/s on `ideal`, 19.79°/1.259 m/s on `urban` (stop 59's maps: 15.55°/0.980
+/// and 20.47°/1.252; seed 5 alone, until stop 59: 16.24°/1.008 and 25.07°/1.231, 21.11°/0.418
+/// m/s on `urban` without the fleet).
+const THESIS_HELD_OUT_IDEAL: (f64, f64) = (18.5, 1.10);
+const THESIS_HELD_OUT_URBAN: (f64, f64) = (23.0, 1.41);
 
 /// The `urban` scene of the held-out bounds: the traffic scene on the default rung, the fleet's
 /// drawn bodies on (issue 24 item 4, docs/realism.md).
