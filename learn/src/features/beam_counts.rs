@@ -85,7 +85,7 @@ impl BeamCounts {
         // A line thousands of kilometres long is no sweep's; it would overflow the stepping.
         if [from.0, from.1, to.0, to.1]
             .iter()
-            .any(|v| v.abs() > MAX_CELLS)
+            .any(|v| v.unsigned_abs() > MAX_CELLS.unsigned_abs())
         {
             return;
         }
@@ -186,6 +186,16 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_beam_reaching_thousands_of_kilometres_away_counts_nothing() {
+        let w = GridWindow::centred([0.0, 0.0], 2.0, 0.1);
+        let beams = [
+            beam([0.05, 0.05], [-1e30, 0.05], true),
+            beam([1e300, 0.05], [0.05, 0.05], false),
+        ];
+        assert_eq!(total(&BeamCounts::trace(&beams, &w)), [0.0, 0.0]);
     }
 
     #[test]

@@ -115,7 +115,11 @@ impl GridWindow {
 /// library call `f64::floor` costs on baseline x86-64.
 fn floor(v: f64) -> i64 {
     let i = v as i64;
-    if (i as f64) > v { i - 1 } else { i }
+    if (i as f64) > v {
+        i.saturating_sub(1)
+    } else {
+        i
+    }
 }
 
 /// Values on a [`GridWindow`], row-major (`row · cols + col`), with one value for every cell
