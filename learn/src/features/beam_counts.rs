@@ -141,14 +141,6 @@ fn clean_buffer(len: usize) -> Vec<f32> {
 mod tests {
     use super::*;
 
-    fn beam(start: [f64; 2], end: [f64; 2], hit: bool) -> SlicedBeam {
-        SlicedBeam {
-            start_xy: start,
-            end_xy: end,
-            hit,
-        }
-    }
-
     fn total(counts: &BeamCounts) -> [f32; 2] {
         let sum = |channel| {
             (0..counts.window().rows)
@@ -161,7 +153,7 @@ mod tests {
     #[test]
     fn a_hit_beam_counts_one_hit_and_a_miss_in_every_cell_before_it() {
         let w = GridWindow::centred([0.0, 0.0], 2.0, 0.1);
-        let counts = BeamCounts::trace(&[beam([0.05, 0.05], [1.05, 0.05], true)], &w);
+        let counts = BeamCounts::trace(&[SlicedBeam::new([0.05, 0.05], [1.05, 0.05], true)], &w);
         assert_eq!(total(&counts), [1.0, 10.0]);
         let (c, r) = w.cell_of(1.05, 0.05).unwrap();
         assert_eq!((counts.row(0, r)[c], counts.row(1, r)[c]), (1.0, 0.0));
@@ -171,9 +163,9 @@ mod tests {
     fn every_count_lies_inside_the_touched_columns_of_its_band() {
         let w = GridWindow::centred([0.0, 0.0], 4.0, 0.1);
         let beams = [
-            beam([0.0, 0.0], [3.0, 2.5], true),
-            beam([-1.0, -3.5], [-3.9, 1.0], false),
-            beam([-10.0, 0.35], [10.0, 0.35], false),
+            SlicedBeam::new([0.0, 0.0], [3.0, 2.5], true),
+            SlicedBeam::new([-1.0, -3.5], [-3.9, 1.0], false),
+            SlicedBeam::new([-10.0, 0.35], [10.0, 0.35], false),
         ];
         let counts = BeamCounts::trace(&beams, &w);
         for r in 0..w.rows {
@@ -192,8 +184,8 @@ mod tests {
     fn a_beam_reaching_thousands_of_kilometres_away_counts_nothing() {
         let w = GridWindow::centred([0.0, 0.0], 2.0, 0.1);
         let beams = [
-            beam([0.05, 0.05], [-1e30, 0.05], true),
-            beam([1e300, 0.05], [0.05, 0.05], false),
+            SlicedBeam::new([0.05, 0.05], [-1e30, 0.05], true),
+            SlicedBeam::new([1e300, 0.05], [0.05, 0.05], false),
         ];
         assert_eq!(total(&BeamCounts::trace(&beams, &w)), [0.0, 0.0]);
     }
@@ -202,7 +194,7 @@ mod tests {
     fn a_buffer_comes_back_from_the_pool_clean() {
         // An odd size no other test uses, so the pooled buffer is this test's own.
         let w = GridWindow::centred([0.0, 0.0], 1.3, 0.1);
-        let beams = [beam([-1.2, -1.0], [1.1, 1.2], true)];
+        let beams = [SlicedBeam::new([-1.2, -1.0], [1.1, 1.2], true)];
         drop(BeamCounts::trace(&beams, &w));
         let empty = BeamCounts::trace(&[], &w);
         assert_eq!(total(&empty), [0.0, 0.0]);

@@ -76,14 +76,6 @@ mod tests {
     use super::*;
     use crate::features::sliced_beam::SlicedBeam;
 
-    fn beam(start: [f64; 2], end: [f64; 2], hit: bool) -> SlicedBeam {
-        SlicedBeam {
-            start_xy: start,
-            end_xy: end,
-            hit,
-        }
-    }
-
     #[test]
     fn counts_cut_from_a_larger_window_equal_counts_traced_on_the_window() {
         // Beams crossing the small window's edges at shallow and steep angles, some starting
@@ -91,11 +83,11 @@ mod tests {
         let small = GridWindow::centred([0.33, -0.21], 1.15, 0.1);
         let large = small.padded(7);
         let beams = [
-            beam([0.0, 0.0], [3.0, 0.4], true),
-            beam([0.0, 0.0], [-0.2, -2.9], true),
-            beam([-2.0, 1.37], [2.6, 0.91], false),
-            beam([0.5, 0.5], [0.61, 0.52], true),
-            beam([1.3, -1.4], [-1.5, 1.2], false),
+            SlicedBeam::new([0.0, 0.0], [3.0, 0.4], true),
+            SlicedBeam::new([0.0, 0.0], [-0.2, -2.9], true),
+            SlicedBeam::new([-2.0, 1.37], [2.6, 0.91], false),
+            SlicedBeam::new([0.5, 0.5], [0.61, 0.52], true),
+            SlicedBeam::new([1.3, -1.4], [-1.5, 1.2], false),
         ];
         let direct = BeamCounts::trace(&beams, &small);
         let traced = BeamCounts::trace(&beams, &large);

@@ -151,14 +151,6 @@ mod tests {
         GridWindow::centred([0.0, 0.0], 2.0, 0.1)
     }
 
-    fn beam(start: [f64; 2], end: [f64; 2], hit: bool) -> SlicedBeam {
-        SlicedBeam {
-            start_xy: start,
-            end_xy: end,
-            hit,
-        }
-    }
-
     /// One sweep's reflection map (no previous beams).
     fn reflection_map(beams: &[SlicedBeam], w: &GridWindow, prior: f64, spread: f64) -> GridMap {
         let (prev, curr) = (BeamCounts::trace(&[], w), BeamCounts::trace(beams, w));
@@ -169,7 +161,12 @@ mod tests {
     #[test]
     fn a_single_beam_marks_its_end_cell_as_hit_and_the_cells_before_as_missed() {
         let w = window();
-        let map = reflection_map(&[beam([0.05, 0.05], [1.05, 0.05], true)], &w, 0.5, 0.0);
+        let map = reflection_map(
+            &[SlicedBeam::new([0.05, 0.05], [1.05, 0.05], true)],
+            &w,
+            0.5,
+            0.0,
+        );
         let (ec, er) = w.cell_of(1.05, 0.05).unwrap();
         assert_eq!(map.get(ec as i64, er as i64), 1.0);
         for k in 0..10 {
@@ -191,7 +188,12 @@ mod tests {
     #[test]
     fn a_beam_leaving_the_slice_marks_every_cell_it_crosses_as_missed() {
         let w = window();
-        let map = reflection_map(&[beam([0.05, 0.05], [0.05, 0.55], false)], &w, 0.01, 0.0);
+        let map = reflection_map(
+            &[SlicedBeam::new([0.05, 0.05], [0.05, 0.55], false)],
+            &w,
+            0.01,
+            0.0,
+        );
         for k in 0..6 {
             assert_eq!(map.at(0.05, 0.05 + 0.1 * f64::from(k)), 0.0, "cell {k}");
         }
@@ -202,7 +204,7 @@ mod tests {
     fn spreading_gives_neighbours_a_share_of_the_hit() {
         let w = window();
         let map = reflection_map(
-            &[beam([0.05, 0.05], [1.05, 0.05], true)],
+            &[SlicedBeam::new([0.05, 0.05], [1.05, 0.05], true)],
             &w,
             0.5,
             1.0 / 6.0,
@@ -220,7 +222,12 @@ mod tests {
     #[test]
     fn beams_outside_the_window_are_clipped_not_wrapped() {
         let w = window();
-        let map = reflection_map(&[beam([-10.0, 0.05], [10.0, 0.05], false)], &w, 0.5, 0.0);
+        let map = reflection_map(
+            &[SlicedBeam::new([-10.0, 0.05], [10.0, 0.05], false)],
+            &w,
+            0.5,
+            0.0,
+        );
         assert!(map.values().iter().filter(|&&v| v == 0.0).count() == w.cols);
     }
 
@@ -264,13 +271,13 @@ mod tests {
         // 50 × 50 cells: four bands, beams in some of them and across band edges.
         let w = GridWindow::centred([0.0, 0.0], 2.5, 0.1);
         let prev_beams = [
-            beam([0.0, 0.0], [2.2, 1.55], true),
-            beam([0.0, 0.0], [-2.0, -0.9], false),
+            SlicedBeam::new([0.0, 0.0], [2.2, 1.55], true),
+            SlicedBeam::new([0.0, 0.0], [-2.0, -0.9], false),
         ];
         let curr_beams = [
-            beam([0.1, 0.0], [2.2, 1.65], true),
-            beam([0.1, 0.0], [-0.3, -2.45], true),
-            beam([-3.0, 1.0], [3.0, 1.05], false),
+            SlicedBeam::new([0.1, 0.0], [2.2, 1.65], true),
+            SlicedBeam::new([0.1, 0.0], [-0.3, -2.45], true),
+            SlicedBeam::new([-3.0, 1.0], [3.0, 1.05], false),
         ];
         let (prev, curr) = (
             BeamCounts::trace(&prev_beams, &w),

@@ -10,3 +10,15 @@ pub struct SlicedBeam {
     /// True if the end point lies in the slice: the end cell is a hit, the rest misses.
     pub hit: bool,
 }
+
+#[cfg(test)]
+impl SlicedBeam {
+    /// A beam part from `start_xy` to `end_xy` (the tests' hand-made beams).
+    pub(crate) fn new(start_xy: [f64; 2], end_xy: [f64; 2], hit: bool) -> Self {
+        Self {
+            start_xy,
+            end_xy,
+            hit,
+        }
+    }
+}
