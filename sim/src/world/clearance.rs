@@ -24,9 +24,6 @@ type Bounds = [f64; 4];
 pub(crate) struct Clearance {
     /// Segments swept by an actor's centre, with the actor's half width, metres.
     corridors: Vec<([f64; 2], [f64; 2], f64)>,
-    /// Each corridor segment's bounding box (a placement far from most of a long route skips
-    /// their distances: clutter placement tests thousands of spots against them).
-    corridor_bounds: Vec<Bounds>,
     /// Footprints of the scenario's structures.
     footprints: Vec<Footprint>,
     /// Clutter placed so far: centre and radius.
@@ -55,7 +52,6 @@ impl Clearance {
                     .position_m;
                 if let Some(q) = previous {
                     out.corridors.push((q, p, half_width));
-                    out.corridor_bounds.push(bounds(q, p));
                 }
                 previous = Some(p);
             }
@@ -88,15 +84,13 @@ impl Clearance {
     ) -> bool {
         let (axis_a, axis_b) = body.axis(p);
         let axis_bounds = bounds(axis_a, axis_b);
-        let corridor_free =
-            self.corridors
-                .iter()
-                .zip(&self.corridor_bounds)
-                .all(|(&(a, b, w), corridor)| {
-                    let clearance = w + body.half_across_m + margin_m;
-                    gap(&axis_bounds, corridor) > clearance + SURELY_APART_M
-                        || segments_distance((axis_a, axis_b), (a, b)) > clearance
-                });
+        // A corridor segment far from the item by its bounding box needs no exact distance
+        // (clutter placement tests thousands of spots against every segment of a long route).
+        let corridor_free = self.corridors.iter().all(|&(a, b, w)| {
+            let clearance = w + body.half_across_m + margin_m;
+            gap(&axis_bounds, &bounds(a, b)) > clearance + SURELY_APART_M
+                || segments_distance((axis_a, axis_b), (a, b)) > clearance
+        });
         let structure_free = self.footprints.iter().all(|f| {
             let (c, h, (cos, sin)) = (f.centre, f.half, f.yaw_cos_sin);
             let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
