@@ -18,13 +18,8 @@ impl<'a> CountsView<'a> {
     /// The part of `counts` on `window`, if the traced window holds all of it.
     #[cfg(test)]
     pub(crate) fn of(counts: &'a BeamCounts, window: &GridWindow) -> Option<Self> {
-        let (col, row) = window.offset_in(counts.window())?;
-        Some(Self {
-            counts,
-            window: *window,
-            col,
-            row,
-        })
+        let offset = window.offset_in(counts.window())?;
+        Some(Self::at(counts, window, offset))
     }
 
     /// The part of `counts` on `window`, whose first cell lies at `(col, row)` of the traced
