@@ -10,10 +10,11 @@
 //!
 //! DIRs are `bench --quick --keep-data`'s `data/situations` and `data/train`; the default sizes are
 //! `bench --quick`'s. Variants: `default`, `thesis` (its own draws, no speed jitter), `zero-mean`,
-//! `pls<K>` (e.g. `pls20`), `mlhgp`, joined with `+` (`pls20+mlhgp`), and `x<F>` to train on F
-//! times the samples (`pls20+x3`; each sample count is its own importance draw, as `bench`
-//! draws it: a set's samples are in dataset order, so the first N of a larger draw would hold
-//! only the first tracks' samples); `top<CM>` and `bot<CM>` move the height slice's top and
+//! `mirror` (each sample's mirror image too, the default until stop 62), `pls<K>` (e.g. `pls20`),
+//! `mlhgp`, joined with `+` (`pls20+mlhgp`), and `x<F>` to train on F times the samples
+//! (`pls20+x3`; each sample count is its own importance draw, as `bench` draws it: a set's
+//! samples are in dataset order, so the first N of a larger draw would hold only the first
+//! tracks' samples); `top<CM>` and `bot<CM>` move the height slice's top and
 //! bottom edge to CM centimetres above the ground (`top85`), `cell<CM>` sets the cell of the maps
 //! the patches sample to CM centimetres (`cell10`: the thesis' 1.1 m patches on the maps
 //! themselves; `cell20`, the default: 2.2 m patches on maps of their own) and `maps<CM>` the
@@ -51,6 +52,7 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
             "centred" => p.zero_mean = false,
             "mlhgp" => p.most_likely_noise = true,
             "no-mlhgp" => p.most_likely_noise = false,
+            "mirror" => p.mirror_images = true,
             "no-mirror" => p.mirror_images = false,
             other if other.starts_with("top") => {
                 p.features.slice_max_m = other[3..].parse::<f64>()? / 100.0;

@@ -8,6 +8,7 @@
 //! standard deviation the GP and GP-KF state and GP-KF's speed standard deviation.
 //!
 //! `cargo run --release -p patchflow-eval --example learned_targets -- BENCH_OUT [MODEL.json]`
+//! (a thesis-preset model, `spgp-het-thesis.json`, prints its rows as `SPGP-HET-ALL (thesis)`)
 
 use std::path::PathBuf;
 
@@ -37,8 +38,10 @@ fn main() -> Result<(), Failure> {
         &BaselineParams::default(),
         Some(&moving),
     )?;
+    // A thesis-preset model (`spgp-het-thesis.json`) scores as its own method.
     let methods = [
         Method::SpgpHetAll,
+        Method::SpgpHetAllThesis,
         Method::KfAuto,
         Method::GpKf,
         Method::IcpAuto,

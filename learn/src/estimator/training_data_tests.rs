@@ -25,6 +25,7 @@ fn mirror_images_double_the_rows_each_gp_is_fitted_to() {
     let dataset = write_dataset(dir.path(), &[(0.4, 5.0)]);
     let params = EstimatorParams {
         max_iters: 5,
+        mirror_images: true,
         ..small_params()
     };
     let set = SampleSet::collect(
