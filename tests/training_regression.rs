@@ -12,11 +12,11 @@ use patchflow_learn::{EstimatorParams, FeatureKind, MotionEstimator, SampleSet, 
 /// Re-recorded when training began to use mirror images and jittered speed alignments
 /// (2026-11-22, second session): measured 27.68° with seed 5 (seeds 6 and 7: 25.26°, 27.85°).
 /// Before that change: 9.75°; this scene's cars all pass on one side, which a lopsided training
-/// set learned as a prior and the mirror images took away. Tightened when the default dropped the
-/// mirror images again (stop 62, 2026-12-06; docs/estimator.md): measured 11.41° with seed 5.
-const HEADING_RMSE_BOUND_DEG: f64 = 14.0;
+/// set learned as a prior and the mirror images take away (on the benchmark's nine tracks the
+/// cross-validated error moved only from 28.3° to 30.5°, while situations 3 and 5 improved).
+const HEADING_RMSE_BOUND_DEG: f64 = 31.0;
 /// Measured 1.040 m/s with seed 5 (seeds 6 and 7: 0.858, 0.961 m/s); before the jittered speed
-/// alignments (test patches are jittered too) 0.504 m/s; without mirror images (stop 62) 0.835.
+/// alignments (test patches are jittered too) 0.504 m/s.
 const SPEED_RMSE_BOUND_MPS: f64 = 1.20;
 
 #[test]
@@ -28,10 +28,9 @@ fn cross_validated_heading_and_speed_errors_stay_within_the_recorded_bounds() {
 
 /// On the default urban rung: measured 30.21° with seed 5 (2026-12-01); with the window sills of
 /// the first street world (side glass from 0.8 m, inside the thesis' 0.5-1.0 m slice, so
-/// vehicles looked hollow in the maps) 44.48°; without mirror images (stop 62) 17.48°.
-const URBAN_HEADING_RMSE_BOUND_DEG: f64 = 21.0;
-/// Measured 0.993 m/s on urban with seed 5 (1.011 m/s with the old window sills; 1.147 m/s without
-/// mirror images, stop 62).
+/// vehicles looked hollow in the maps) 44.48°.
+const URBAN_HEADING_RMSE_BOUND_DEG: f64 = 34.0;
+/// Measured 0.993 m/s on urban with seed 5 (1.011 m/s with the old window sills).
 const URBAN_SPEED_RMSE_BOUND_MPS: f64 = 1.20;
 
 #[test]
@@ -54,7 +53,7 @@ fn check_bounds(scene: &str, heading_bound_deg: f64, speed_bound_mps: f64) {
         max_iters: 60,
         priors: vec![0.5],
         seed: 5,
-        mirror_images: false,
+        mirror_images: true,
     };
     let report = cross_validate(&dataset, &params, &|_, _| {}).unwrap();
     let row = report

@@ -10,7 +10,7 @@
 //!
 //! DIRs are `bench --quick --keep-data`'s `data/situations` and `data/train`; the default sizes are
 //! `bench --quick`'s. Variants: `default`, `thesis` (its own draws, no speed jitter), `zero-mean`,
-//! `mirror` (each sample's mirror image too, the default until stop 62), `pls<K>` (e.g. `pls20`),
+//! `no-mirror` and `mirror` (without or with each sample's mirror image), `pls<K>` (e.g. `pls20`),
 //! `mlhgp`, joined with `+` (`pls20+mlhgp`), and `x<F>` to train on F times the samples
 //! (`pls20+x3`; each sample count is its own importance draw, as `bench` draws it: a set's
 //! samples are in dataset order, so the first N of a larger draw would hold only the first

@@ -252,7 +252,7 @@ fn thesis_training_writes_a_model_without_mirror_images_or_speed_alignment_error
     assert_eq!(thesis["training"]["most_likely_noise"], false);
     assert_eq!(thesis["features"]["speed_jitter_deg"], 0.0);
     let default = model_of("default.json", &[]);
-    assert_eq!(default["training"]["mirror_images"], false);
+    assert_eq!(default["training"]["mirror_images"], true);
     assert_eq!(default["training"]["most_likely_noise"], true);
     assert_eq!(default["features"]["speed_jitter_deg"], 25.0);
 }

@@ -79,7 +79,7 @@ pub(crate) fn notes(
         ));
     }
     notes.push(
-        "Why training differs from the thesis (docs/estimator.md has the measurements that found it): at run time speed patches follow the estimated heading, and a speed GP trained only on exactly aligned patches read a car whose merged heading was 30-60° off as nearly still; and two training tracks of cross traffic from both sides join the thesis' nine (each sample's mirror image, which stood in for them before, turned a right-hand street into a left-hand one and cost situation 4 14°). The default also fits a most-likely heteroscedastic noise GP (thesis Ch. 6; docs/estimator.md). `patchflow train --preset thesis` trains by the thesis' protocol exactly (speed patches aligned to the true heading, the nine tracks, no noise GP, a zero mean function); the rows `SPGP-HET-ALL (thesis)` are that preset."
+        "Why training differs from the thesis (docs/estimator.md has the measurements that found it): at run time speed patches follow the estimated heading, and a speed GP trained only on exactly aligned patches read a car whose merged heading was 30-60° off as nearly still; and right-hand traffic puts most drawn samples on one side of the line of sight, which the GPs learned as a prior that misreads a target crossing from the other side. The default also fits a most-likely heteroscedastic noise GP (thesis Ch. 6; docs/estimator.md). `patchflow train --preset thesis` trains by the thesis' protocol exactly (neither addition, no noise GP, a zero mean function); the rows `SPGP-HET-ALL (thesis)` are that preset."
             .to_owned(),
     );
     notes.push(

@@ -15,8 +15,7 @@ pub struct CvParams {
     pub priors: Vec<f64>,
     /// Seed of sampling, folds and GP initialisation.
     pub seed: u64,
-    /// Also train each fold on its samples' mirror images, as `EstimatorParams::mirror_images`
-    /// does (off by default there and here).
+    /// Train each fold on its samples and their mirror images, as `EstimatorParams` does.
     pub mirror_images: bool,
 }
 
@@ -29,7 +28,7 @@ impl Default for CvParams {
             max_iters: 200,
             priors: vec![0.01, 0.5],
             seed: 0,
-            mirror_images: false,
+            mirror_images: true,
         }
     }
 }

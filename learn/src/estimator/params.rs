@@ -12,6 +12,7 @@ use crate::{FeatureKind, FeatureParams, FeatureValidParams, GpKind, LearnError, 
 ///
 /// | field | thesis | default |
 /// |---|---|---|
+/// | [`Self::mirror_images`] | no | yes |
 /// | `features.speed_jitter_deg` | 0 | 25 |
 /// | [`Self::zero_mean`] | yes | no (prior mean = training targets' mean) |
 /// | [`Self::projection_dims`] | 0 (raw 242 values) | 0 |
@@ -29,10 +30,8 @@ pub struct EstimatorParams {
     /// Importance-sampled training samples (thesis 3.1.2: 1,600).
     pub samples: usize,
     /// Also train on each sample's mirror image across its line of sight (2 × `samples` rows;
-    /// see `TrainingSample::mirror_image`): balances the sides that right-hand traffic favours.
-    /// `false` is the thesis' training set and, since stop 62, the default: the training traffic
-    /// crosses from both sides, and a mirrored right-hand street is a left-hand one, which no
-    /// situation holds (situation 4 34.3° → 20.1° without them, docs/estimator.md "Stop 62").
+    /// see `TrainingSample::mirror_image`): balances the sides that right-hand traffic favours. `false`
+    /// is the thesis' training set.
     pub mirror_images: bool,
     /// Pseudo-inputs per sparse GP (thesis 4.3: 100).
     pub pseudo_inputs: usize,
@@ -86,7 +85,7 @@ impl Default for EstimatorParams {
                 ..FeatureParams::default()
             },
             samples: 1600,
-            mirror_images: false,
+            mirror_images: true,
             pseudo_inputs: 100,
             zero_mean: false,
             projection_dims: 0,

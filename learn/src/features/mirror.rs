@@ -12,10 +12,6 @@
 //! in one sense (in our nine tracks 70 % of the samples have sin φ > 0). A GP trained on that
 //! learns the side as a prior and gets a crossing from the other side wrong. The rolling shutter
 //! spins one way and is not mirrored; its smear is a few centimetres, under a 10 cm cell.
-//!
-//! Since stop 62 the default does not use them (`EstimatorParams::mirror_images` is off): the two
-//! training tracks of cross traffic from both sides balance the sides with real right-hand
-//! scenes, and a mirrored one is a left-hand street no situation holds (docs/estimator.md).
 
 use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GABOR_FILTERS;

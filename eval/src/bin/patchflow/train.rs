@@ -37,9 +37,9 @@ pub struct Args {
     /// Seed of sampling and initialisation.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// `default` or `thesis`: the thesis' protocol exactly (speed patches aligned to the exact
-    /// true heading, GPs with a zero mean function and no noise GP, the 0.5-1.0 m slice; the list
-    /// of the default's deviations is `EstimatorParams`' doc and docs/estimator.md).
+    /// `default` or `thesis`: the thesis' protocol exactly (no mirror images, speed patches
+    /// aligned to the exact true heading, GPs with a zero mean function; the list of the
+    /// default's deviations is `EstimatorParams`' doc and docs/estimator.md).
     #[arg(long, value_enum, default_value_t = PresetChoice::Default)]
     pub preset: PresetChoice,
     /// Same as `--preset thesis` (kept for older scripts).
