@@ -10,7 +10,9 @@
 //!
 //! DIRs are `bench --quick --keep-data`'s `data/situations` and `data/train`; the default sizes are
 //! `bench --quick`'s. Variants: `default`, `thesis` (its own draws, no speed jitter), `zero-mean`,
-//! `no-mirror` and `mirror` (without or with each sample's mirror image), `pls<K>` (e.g. `pls20`),
+//! `no-mirror` and `mirror` (without or with each sample's mirror image), `side` (no mirror
+//! images, the draw balanced by side of the line of sight), `mirror-only` (each sample's mirror
+//! image instead of the sample), `pls<K>` (e.g. `pls20`),
 //! `mlhgp`, joined with `+` (`pls20+mlhgp`), and `x<F>` to train on F times the samples
 //! (`pls20+x3`; each sample count is its own importance draw, as `bench` draws it: a set's
 //! samples are in dataset order, so the first N of a larger draw would hold only the first
@@ -32,10 +34,24 @@ use rayon::prelude::*;
 
 type Failure = Box<dyn std::error::Error>;
 
-/// A variant's parameters (sizes from the command line) and its sample factor.
-fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize, bool), Failure> {
+/// A variant's parameters (sizes from the command line), its sample factor, whether it is the
+/// thesis preset and what is done to its draw.
+type Variant = (EstimatorParams, usize, bool, DrawUse);
+
+/// What a variant trains on of its draw.
+#[derive(Clone, Copy, PartialEq)]
+enum DrawUse {
+    /// The samples as drawn.
+    AsDrawn,
+    /// Half of a draw of twice the samples, balanced by side (`SampleSet::balanced_by_side`).
+    BalancedBySide,
+    /// The mirror image of every sample instead of the sample.
+    MirrorImagesOnly,
+}
+
+fn variant(name: &str, base: &EstimatorParams) -> Result<Variant, Failure> {
     let mut p = base.clone();
-    let (mut factor, mut thesis) = (1, false);
+    let (mut factor, mut thesis, mut draw) = (1, false, DrawUse::AsDrawn);
     for part in name.split('+') {
         match part {
             "default" => {}
@@ -54,6 +70,14 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
             "no-mlhgp" => p.most_likely_noise = false,
             "mirror" => p.mirror_images = true,
             "no-mirror" => p.mirror_images = false,
+            "side" => {
+                draw = DrawUse::BalancedBySide;
+                p.mirror_images = false;
+            }
+            "mirror-only" => {
+                draw = DrawUse::MirrorImagesOnly;
+                p.mirror_images = false;
+            }
             other if other.starts_with("top") => {
                 p.features.slice_max_m = other[3..].parse::<f64>()? / 100.0;
             }
@@ -76,7 +100,7 @@ fn variant(name: &str, base: &EstimatorParams) -> Result<(EstimatorParams, usize
         }
     }
     p.samples *= factor;
-    Ok((p, factor, thesis))
+    Ok((p, factor, thesis, draw))
 }
 
 fn main() -> Result<(), Failure> {
@@ -106,7 +130,7 @@ fn main() -> Result<(), Failure> {
         .split(',')
         .map(str::to_owned)
         .collect();
-    let variants: Vec<(EstimatorParams, usize, bool)> = names
+    let variants: Vec<Variant> = names
         .iter()
         .map(|n| variant(n, &base))
         .collect::<Result<_, _>>()?;
@@ -114,8 +138,17 @@ fn main() -> Result<(), Failure> {
     let draws: Vec<(f64, u64)> = seeds.iter().map(|&s| (0.5, s)).collect();
     let clock = std::time::Instant::now();
     let mut keys: Vec<(FeatureParams, usize)> = Vec::new();
-    for (p, _, _) in &variants {
-        let key = (p.features.clone(), p.samples);
+    // A side-balanced variant keeps half of twice its samples (SampleSet::balanced_by_side).
+    let draw_size = |p: &EstimatorParams, draw: DrawUse| {
+        p.samples
+            * if draw == DrawUse::BalancedBySide {
+                2
+            } else {
+                1
+            }
+    };
+    for (p, _, _, draw) in &variants {
+        let key = (p.features.clone(), draw_size(p, *draw));
         if !keys.contains(&key) {
             keys.push(key);
         }
@@ -139,8 +172,8 @@ fn main() -> Result<(), Failure> {
     let models = jobs
         .par_iter()
         .map(|&(v, s)| {
-            let (params, _, _) = &variants[v];
-            let key = (params.features.clone(), params.samples);
+            let (params, _, _, draw) = &variants[v];
+            let key = (params.features.clone(), draw_size(params, *draw));
             let set = keys
                 .iter()
                 .position(|k| *k == key)
@@ -150,7 +183,17 @@ fn main() -> Result<(), Failure> {
                 seed: seeds[s],
                 ..params.clone()
             };
-            MotionEstimator::fit_samples(set, &params).map_err(|e| e.to_string())
+            let fit = |set: &SampleSet| MotionEstimator::fit_samples(set, &params);
+            match draw {
+                DrawUse::AsDrawn => fit(set),
+                DrawUse::BalancedBySide => {
+                    let balanced = set.balanced_by_side(params.samples, seeds[s]);
+                    eprintln!("{}, seed {}: exact {}", names[v], seeds[s], balanced.exact);
+                    fit(&balanced.set)
+                }
+                DrawUse::MirrorImagesOnly => fit(&set.mirror_images()),
+            }
+            .map_err(|e| e.to_string())
         })
         .collect::<Result<Vec<_>, String>>()?;
     eprintln!(

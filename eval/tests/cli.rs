@@ -219,45 +219,6 @@ fn a_gp_model_given_to_evaluate_is_refused_as_not_an_estimator() {
 }
 
 #[test]
-fn thesis_training_writes_a_model_without_mirror_images_or_speed_alignment_errors() {
-    let dir = tempfile::tempdir().unwrap();
-    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
-    let data = dir.path().join("data");
-    let generated = patchflow(&["generate", scenario, "--out", data.to_str().unwrap()]);
-    assert!(generated.status.success(), "{}", stderr(&generated));
-    let model_of = |name: &str, extra: &[&str]| {
-        let model = dir.path().join(name);
-        let mut args = vec![
-            "train",
-            "--data",
-            data.to_str().unwrap(),
-            "--out",
-            model.to_str().unwrap(),
-            "--gp",
-            "spgp",
-            "--samples",
-            "40",
-            "--pseudo",
-            "5",
-        ];
-        args.extend_from_slice(extra);
-        let trained = patchflow(&args);
-        assert!(trained.status.success(), "{}", stderr(&trained));
-        let text = std::fs::read_to_string(&model).unwrap();
-        serde_json::from_str::<serde_json::Value>(&text).unwrap()
-    };
-    let thesis = model_of("thesis.json", &["--preset", "thesis"]);
-    assert_eq!(thesis["training"]["mirror_images"], false);
-    assert_eq!(thesis["training"]["zero_mean"], true);
-    assert_eq!(thesis["training"]["most_likely_noise"], false);
-    assert_eq!(thesis["features"]["speed_jitter_deg"], 0.0);
-    let default = model_of("default.json", &[]);
-    assert_eq!(default["training"]["mirror_images"], true);
-    assert_eq!(default["training"]["most_likely_noise"], true);
-    assert_eq!(default["features"]["speed_jitter_deg"], 25.0);
-}
-
-#[test]
 fn no_command_writes_over_its_input() {
     let dir = tempfile::tempdir().unwrap();
     let data = dir.path().join("D");

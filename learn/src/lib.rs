@@ -70,7 +70,7 @@ pub use features::{
 };
 
 // ── Training samples (thesis 3.1.1-3.1.2) ───────────────────────────────────────────────────
-pub use features::{Alignment, SampleSet, TrainingSample, importance_sample};
+pub use features::{Alignment, SampleSet, SideBalanced, TrainingSample, importance_sample};
 
 // ── The motion estimator (thesis 3.1, Algorithm 3.1) ────────────────────────────────────────
 pub use estimator::{

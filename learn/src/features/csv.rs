@@ -13,7 +13,8 @@ pub enum Alignment {
     /// The patch aligned to the observation bearing (heading GPs).
     #[default]
     Bearing,
-    /// The patch aligned to the true heading (speed GP).
+    /// The patch aligned to the true heading plus the training alignment error
+    /// (`FeatureParams::speed_jitter_deg`; speed GP).
     Heading,
 }
 

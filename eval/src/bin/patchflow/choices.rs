@@ -52,7 +52,7 @@ impl From<FeatureChoice> for FeatureKind {
 pub enum AlignChoice {
     /// Along the bearing to the point (heading features).
     Bearing,
-    /// Along the true heading (speed features).
+    /// Along the heading the speed GP is trained on (speed features).
     Heading,
 }
 

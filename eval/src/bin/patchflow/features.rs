@@ -2,11 +2,11 @@
 
 use std::path::PathBuf;
 
-use crate::choices::{AlignChoice, FeatureChoice};
+use crate::choices::{AlignChoice, FeatureChoice, PresetChoice};
 use crate::output_guard::{Input, OutputKind, check_output};
 use anyhow::Context;
 use patchflow_dataset::Dataset;
-use patchflow_learn::{Alignment, FeatureKind, FeatureParams, SampleSet};
+use patchflow_learn::{Alignment, EstimatorParams, FeatureKind, FeatureParams, SampleSet};
 
 /// Arguments of `patchflow features`.
 #[derive(Debug, clap::Args)]
@@ -29,9 +29,15 @@ pub struct Args {
     /// Seed of the sampling.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Patch alignment: `bearing` (heading features) or `heading` (speed features, true heading).
+    /// Patch alignment: `bearing` (heading features) or `heading` (speed features, along the
+    /// true heading plus the preset's training alignment error: 25° for `default`, none for
+    /// `thesis`).
     #[arg(long, value_enum, default_value_t = AlignChoice::Bearing)]
     pub align: AlignChoice,
+    /// Whose features: `default` (what `train` trains on: the 0.5-0.85 m slice, patches on
+    /// 0.20 m maps) or `thesis` (`train --preset thesis`: the 0.5-1.0 m slice, 0.10 m maps).
+    #[arg(long, value_enum, default_value_t = PresetChoice::Default)]
+    pub preset: PresetChoice,
 }
 
 /// Runs `patchflow features`.
@@ -43,7 +49,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         OutputKind::File,
         &[Input::new("--data", &args.data)],
     )?;
-    let params = FeatureParams::with_prior(args.prior);
+    // The features the preset's `train` draws, with the prior asked for.
+    let preset = match args.preset {
+        PresetChoice::Default => EstimatorParams::default(),
+        PresetChoice::Thesis => EstimatorParams::thesis(),
+    };
+    let params = FeatureParams {
+        prior: args.prior,
+        ..preset.features
+    };
     let dataset = Dataset::open(&args.data)?;
     let bar = indicatif::ProgressBar::new(0).with_message("sweep pairs");
     bar.set_style(

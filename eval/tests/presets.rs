@@ -1,0 +1,91 @@
+//! The two presets as `train` and `features` write them: the thesis' protocol exactly beside the
+//! default (issue 24), and `features` drawing the very samples each preset's `train` draws.
+
+#![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
+
+mod common;
+
+use common::{patchflow, stderr};
+
+#[test]
+fn thesis_training_writes_a_model_without_mirror_images_or_speed_alignment_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
+    let data = dir.path().join("data");
+    let generated = patchflow(&["generate", scenario, "--out", data.to_str().unwrap()]);
+    assert!(generated.status.success(), "{}", stderr(&generated));
+    let model_of = |name: &str, extra: &[&str]| {
+        let model = dir.path().join(name);
+        let mut args = vec![
+            "train",
+            "--data",
+            data.to_str().unwrap(),
+            "--out",
+            model.to_str().unwrap(),
+            "--gp",
+            "spgp",
+            "--samples",
+            "40",
+            "--pseudo",
+            "5",
+        ];
+        args.extend_from_slice(extra);
+        let trained = patchflow(&args);
+        assert!(trained.status.success(), "{}", stderr(&trained));
+        let text = std::fs::read_to_string(&model).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()
+    };
+    let thesis = model_of("thesis.json", &["--preset", "thesis"]);
+    assert_eq!(thesis["training"]["mirror_images"], false);
+    assert_eq!(thesis["training"]["zero_mean"], true);
+    assert_eq!(thesis["training"]["most_likely_noise"], false);
+    assert_eq!(thesis["features"]["speed_jitter_deg"], 0.0);
+    let default = model_of("default.json", &[]);
+    assert_eq!(default["training"]["mirror_images"], true);
+    assert_eq!(default["training"]["most_likely_noise"], true);
+    assert_eq!(default["features"]["speed_jitter_deg"], 25.0);
+}
+
+#[test]
+fn features_writes_the_features_each_preset_trains_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
+    let data = dir.path().join("data");
+    let generated = patchflow(&["generate", scenario, "--out", data.to_str().unwrap()]);
+    assert!(generated.status.success(), "{}", stderr(&generated));
+    let dataset = patchflow_dataset::Dataset::open(&data).unwrap();
+    for (preset, params) in [
+        ("default", patchflow_learn::EstimatorParams::default()),
+        ("thesis", patchflow_learn::EstimatorParams::thesis()),
+    ] {
+        let csv = dir.path().join(format!("{preset}.csv"));
+        let written = patchflow(&[
+            "features",
+            "--data",
+            data.to_str().unwrap(),
+            "--out",
+            csv.to_str().unwrap(),
+            "--samples",
+            "20",
+            "--seed",
+            "3",
+            "--align",
+            "heading",
+            "--preset",
+            preset,
+        ]);
+        assert!(written.status.success(), "{}", stderr(&written));
+        let expected = patchflow_learn::SampleSet::collect(
+            &dataset,
+            &params.features,
+            patchflow_learn::FeatureKind::Patch,
+            20,
+            3,
+        )
+        .unwrap()
+        .to_csv(patchflow_learn::Alignment::Heading);
+        assert_eq!(std::fs::read_to_string(&csv).unwrap(), expected, "{preset}");
+    }
+    let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
+    assert_ne!(read("default.csv"), read("thesis.csv"));
+}
