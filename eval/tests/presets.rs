@@ -5,33 +5,16 @@
 
 mod common;
 
-use common::{patchflow, stderr};
+use common::{assert_success, generate_file, patchflow, tiny_scenario, train_small_with};
 
 #[test]
 fn thesis_training_writes_a_model_without_mirror_images_or_speed_alignment_errors() {
     let dir = tempfile::tempdir().unwrap();
-    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
     let data = dir.path().join("data");
-    let generated = patchflow(&["generate", scenario, "--out", data.to_str().unwrap()]);
-    assert!(generated.status.success(), "{}", stderr(&generated));
+    assert_success(&generate_file(&tiny_scenario(), &data));
     let model_of = |name: &str, extra: &[&str]| {
         let model = dir.path().join(name);
-        let mut args = vec![
-            "train",
-            "--data",
-            data.to_str().unwrap(),
-            "--out",
-            model.to_str().unwrap(),
-            "--gp",
-            "spgp",
-            "--samples",
-            "40",
-            "--pseudo",
-            "5",
-        ];
-        args.extend_from_slice(extra);
-        let trained = patchflow(&args);
-        assert!(trained.status.success(), "{}", stderr(&trained));
+        assert_success(&train_small_with(&data, &model, extra));
         let text = std::fs::read_to_string(&model).unwrap();
         serde_json::from_str::<serde_json::Value>(&text).unwrap()
     };
@@ -49,10 +32,8 @@ fn thesis_training_writes_a_model_without_mirror_images_or_speed_alignment_error
 #[test]
 fn features_writes_the_features_each_preset_trains_on() {
     let dir = tempfile::tempdir().unwrap();
-    let scenario = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/tiny.toml");
     let data = dir.path().join("data");
-    let generated = patchflow(&["generate", scenario, "--out", data.to_str().unwrap()]);
-    assert!(generated.status.success(), "{}", stderr(&generated));
+    assert_success(&generate_file(&tiny_scenario(), &data));
     let dataset = patchflow_dataset::Dataset::open(&data).unwrap();
     for (preset, params) in [
         ("default", patchflow_learn::EstimatorParams::default()),
@@ -74,7 +55,7 @@ fn features_writes_the_features_each_preset_trains_on() {
             "--preset",
             preset,
         ]);
-        assert!(written.status.success(), "{}", stderr(&written));
+        assert_success(&written);
         let expected = patchflow_learn::SampleSet::collect(
             &dataset,
             &params.features,

@@ -68,7 +68,12 @@ pub fn generate_tiny(out: &Path, seed: u64) -> Output {
 
 /// Trains a small SPGP model on `data` into `model`.
 pub fn train_small(data: &Path, model: &Path) -> Output {
-    patchflow(&[
+    train_small_with(data, model, &[])
+}
+
+/// [`train_small`] with more arguments (`--preset thesis`).
+pub fn train_small_with(data: &Path, model: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
         "train",
         "--data",
         data.to_str().unwrap(),
@@ -80,7 +85,9 @@ pub fn train_small(data: &Path, model: &Path) -> Output {
         "40",
         "--pseudo",
         "5",
-    ])
+    ];
+    args.extend_from_slice(extra);
+    patchflow(&args)
 }
 
 /// Every file under `root` with its bytes, sorted by path.
