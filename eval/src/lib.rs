@@ -69,8 +69,8 @@ pub use report::thesis_tables;
 /// `evaluate`, `generate` and `occupancy` commands run them).
 pub mod stages {
     pub use crate::pipeline::stages::{
-        collect_draws_with_bar, collect_samples_with_bar, cross_validate_with_bar,
-        evaluate_with_bar, generate_with_progress, occupancy_with_bar,
+        collect_samples_with_bar, cross_validate_with_bar, evaluate_with_bar,
+        generate_with_progress, occupancy_with_bar,
     };
     pub use crate::pipeline::target_runs::{evaluate_targets, evaluate_targets_with_baselines};
 }

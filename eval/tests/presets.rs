@@ -1,5 +1,6 @@
-//! The two presets as `train` and `features` write them: the thesis' protocol exactly beside the
-//! default (issue 24), and `features` drawing the very samples each preset's `train` draws.
+//! The two presets as `train`, `features` and `cv` take them: the thesis' protocol exactly beside
+//! the default (issue 24); `features` writes the very samples each preset's `train` draws, and `cv`
+//! cross-validates that training set.
 
 #![allow(clippy::unwrap_used)] // test code: a panic is a failed test with its location
 
@@ -69,4 +70,40 @@ fn features_writes_the_features_each_preset_trains_on() {
     }
     let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
     assert_ne!(read("default.csv"), read("thesis.csv"));
+}
+
+#[test]
+fn cv_cross_validates_the_training_set_of_the_preset() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data");
+    assert_success(&generate_file(&tiny_scenario(), &data));
+    let cv_json = |preset: &str| {
+        let out = dir.path().join(preset);
+        assert_success(&patchflow(&[
+            "cv",
+            "--data",
+            data.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--folds",
+            "2",
+            "--preset",
+            preset,
+        ]));
+        std::fs::read(out.join("cv.json")).unwrap()
+    };
+    // The default's: its features, its mirror images, the command's folds.
+    let dataset = patchflow_dataset::Dataset::open(&data).unwrap();
+    let params = patchflow_eval::CvParams {
+        folds: 2,
+        mirror_images: true,
+        ..patchflow_eval::CvParams::default()
+    };
+    let features = patchflow_learn::EstimatorParams::default().features;
+    let report = patchflow_eval::cross_validate(&dataset, &features, &params, &|_, _| {}).unwrap();
+    let expected = dir.path().join("expected");
+    patchflow_eval::write_cv_report(&report, &expected).unwrap();
+    let default = cv_json("default");
+    assert_eq!(default, std::fs::read(expected.join("cv.json")).unwrap());
+    assert_ne!(default, cv_json("thesis"));
 }

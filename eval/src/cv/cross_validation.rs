@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use nalgebra::DVector;
 use patchflow_dataset::Dataset;
-use patchflow_learn::{FeatureKind, FeatureParams, GaborBank, SampleSet};
+use patchflow_learn::{FeatureKind, FeatureParams, SampleSet};
 use rayon::prelude::*;
 
 use crate::cv::cv_fold::{Fold, FoldAccumulator, FoldData, Split, features_of, fold_assignment};
@@ -24,10 +24,12 @@ use crate::error::EvalError;
 
 use crate::cv::cv_report::{CvFeature, CvGp, CvReport};
 
-/// Runs the whole cross-validation: draws the samples for each prior, then
-/// [`cross_validate_samples`]. `progress(done, total)` counts GP configurations × folds.
+/// Runs the whole cross-validation: draws the samples with `features` (a preset's,
+/// `EstimatorParams::features`) at each prior, then [`cross_validate_samples`].
+/// `progress(done, total)` counts GP configurations × folds.
 pub fn cross_validate(
     dataset: &Dataset,
+    features: &FeatureParams,
     params: &CvParams,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<CvReport, EvalError> {
@@ -37,7 +39,10 @@ pub fn cross_validate(
         .map(|&prior| {
             SampleSet::collect(
                 dataset,
-                &FeatureParams::with_prior(prior),
+                &FeatureParams {
+                    prior,
+                    ..features.clone()
+                },
                 FeatureKind::Patch,
                 params.samples,
                 params.seed,
@@ -81,9 +86,7 @@ pub fn cross_validate_samples(
                 ),
             });
         }
-        let feature_params = FeatureParams::with_prior(prior);
         let folds = fold_assignment(set.samples.len(), params.folds, params.seed);
-        let gabor = GaborBank::new(&feature_params.gabor, feature_params.patch_cell_m);
         let mirrored = params.mirror_images.then(|| set.mirror_images());
         for feature in [CvFeature::Patch, CvFeature::Gabor] {
             let fold_data = |set: &SampleSet| -> Result<FoldData, EvalError> {
@@ -91,8 +94,8 @@ pub fn cross_validate_samples(
                     DVector::from_iterator(set.samples.len(), set.samples.iter().map(f))
                 };
                 Ok(FoldData {
-                    heading_x: features_of(set, feature, &gabor, |s| &s.heading_features)?,
-                    speed_x: features_of(set, feature, &gabor, |s| &s.speed_features)?,
+                    heading_x: features_of(set, feature, |s| &s.heading_features)?,
+                    speed_x: features_of(set, feature, |s| &s.speed_features)?,
                     sin: target(|s| s.sin_rel),
                     cos: target(|s| s.cos_rel),
                     speed: target(|s| s.speed_mps),

@@ -39,12 +39,15 @@ impl Split {
     }
 }
 
+/// The feature matrix of `set` for `feature`: the picked patch values themselves, or the Gabor
+/// bank's responses to them, with the bank built for the cells the set's patches were drawn on
+/// (0.20 m for the default, 0.10 m for the thesis).
 pub(crate) fn features_of(
     set: &SampleSet,
     feature: CvFeature,
-    gabor: &GaborBank,
     pick: impl Fn(&patchflow_learn::TrainingSample) -> &Vec<f64>,
 ) -> Result<DMatrix<f64>, EvalError> {
+    let gabor = GaborBank::new(&set.features.gabor, set.features.patch_cell_m);
     let d = match feature {
         CvFeature::Patch => FeatureKind::Patch.names().len(),
         CvFeature::Gabor => FeatureKind::Gabor.names().len(),
@@ -249,6 +252,44 @@ mod tests {
         let low = low_log_variance(&var);
         let expected: Vec<bool> = z.iter().map(|z| *z < -1.5).collect();
         assert_eq!(low, expected);
+    }
+
+    #[test]
+    fn gabor_features_use_the_bank_of_the_cells_the_patches_were_drawn_on() {
+        let values: Vec<f64> = (0..patchflow_learn::PATCH_LEN)
+            .map(|i| ((i * 7) % 11) as f64 / 10.0 - 0.5)
+            .collect();
+        let sample = patchflow_learn::TrainingSample {
+            sequence: "s".into(),
+            scan: 1,
+            point: 0,
+            actor: 1,
+            weight: 1.0,
+            bearing_rad: 0.0,
+            sin_rel: 1.0,
+            cos_rel: 0.0,
+            heading_rad: 1.0,
+            speed_mps: 5.0,
+            heading_features: values.clone(),
+            speed_features: values.clone(),
+        };
+        let features = patchflow_learn::EstimatorParams::default().features;
+        assert_eq!(features.patch_cell_m, 0.2);
+        let set = SampleSet {
+            kind: FeatureKind::Patch,
+            features: features.clone(),
+            pool_size: 1,
+            samples: vec![sample],
+        };
+        let x = features_of(&set, CvFeature::Gabor, |s| &s.heading_features).unwrap();
+        let mut patch = Patch {
+            values: [0.0; patchflow_learn::PATCH_LEN],
+        };
+        patch.values.copy_from_slice(&values);
+        let responses = |cell_m: f64| GaborBank::new(&features.gabor, cell_m).responses(&patch);
+        let row: Vec<f64> = x.row(0).iter().copied().collect();
+        assert_eq!(row, responses(0.2).to_vec());
+        assert_ne!(row, responses(0.1).to_vec());
     }
 
     #[test]

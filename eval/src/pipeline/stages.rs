@@ -138,29 +138,23 @@ pub fn generate_with_progress(
     })
 }
 
-/// Importance-samples map patches for several priors in one pass over the dataset (thesis
-/// 3.1.2; the maps of all priors share their beam tracing), with a progress bar.
+/// Importance-samples map patches with `features` for several priors in one pass over the
+/// dataset (thesis 3.1.2; the maps of all priors share their beam tracing), with a progress bar.
+/// `features` is a preset's (`EstimatorParams::features`): its prior is replaced by each of
+/// `priors`.
 pub fn collect_samples_with_bar(
     dataset: &Dataset,
+    features: &FeatureParams,
     priors: &[f64],
     n: usize,
     seed: u64,
 ) -> Result<Vec<SampleSet>, EvalError> {
     let draws: Vec<(f64, u64)> = priors.iter().map(|&prior| (prior, seed)).collect();
-    collect_draws_with_bar(dataset, &draws, n)
+    collect_feature_draws_with_bar(dataset, features, &draws, n)
 }
 
-/// Importance-samples map patches for several `(prior, seed)` draws in one pass over the
-/// dataset (each prior's maps built once and shared by its seeds), with a progress bar.
-pub fn collect_draws_with_bar(
-    dataset: &Dataset,
-    draws: &[(f64, u64)],
-    n: usize,
-) -> Result<Vec<SampleSet>, EvalError> {
-    collect_feature_draws_with_bar(dataset, &FeatureParams::default(), draws, n)
-}
-
-/// [`collect_draws_with_bar`] with other map and patch parameters (the studies' cell sizes).
+/// Importance-samples map patches with `features` for several `(prior, seed)` draws in one pass
+/// over the dataset (each prior's maps built once and shared by its seeds), with a progress bar.
 pub(crate) fn collect_feature_draws_with_bar(
     dataset: &Dataset,
     features: &FeatureParams,
