@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use patchflow_dataset::Dataset;
 use patchflow_eval::{write_map_figure, write_scene_figures};
-use patchflow_learn::{FeatureParams, SweepFeatures};
+use patchflow_learn::{EstimatorParams, SweepFeatures};
 
 use crate::output_guard::{Input, OutputKind, check_output};
 
@@ -82,7 +82,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let prev = sequence.read_sweep(args.scan - 1)?;
     let curr = sequence.read_sweep(args.scan)?;
-    let features = SweepFeatures::compute(&prev, &curr, &FeatureParams::default())
+    // The maps and clusters the default estimator reads (its height slice).
+    let features = SweepFeatures::compute(&prev, &curr, &EstimatorParams::default().features)
         .with_context(|| format!("{}: sweep {}", sequence.dir().display(), args.scan))?;
     let title = format!(
         "{name}, sweep {} (t = {:.1} s): {} sliced points in {} clusters",
