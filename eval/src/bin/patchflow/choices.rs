@@ -5,7 +5,7 @@
 
 use clap::ValueEnum;
 use patchflow_eval::{GpReadout, StudyFactor};
-use patchflow_learn::{Alignment, FeatureKind, GpKind, MergeRule};
+use patchflow_learn::{Alignment, EstimatorParams, FeatureKind, GpKind, MergeRule};
 use patchflow_sim::Realism;
 
 /// A Gaussian-process kind (`--gp`, `--kind`).
@@ -72,6 +72,15 @@ pub enum PresetChoice {
     Default,
     /// The thesis' protocol exactly.
     Thesis,
+}
+
+impl From<PresetChoice> for EstimatorParams {
+    fn from(choice: PresetChoice) -> Self {
+        match choice {
+            PresetChoice::Default => Self::default(),
+            PresetChoice::Thesis => Self::thesis(),
+        }
+    }
 }
 
 /// How clusters move their points (`--readout`).

@@ -26,10 +26,7 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     args.io.check_output(&[])?;
     let dataset = Dataset::open(&args.io.data)?;
-    let preset = match args.preset {
-        PresetChoice::Default => EstimatorParams::default(),
-        PresetChoice::Thesis => EstimatorParams::thesis(),
-    };
+    let preset = EstimatorParams::from(args.preset);
     let params = CvParams {
         folds: args.folds,
         mirror_images: preset.mirror_images,

@@ -50,10 +50,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         &[Input::new("--data", &args.data)],
     )?;
     // The features the preset's `train` draws, with the prior asked for.
-    let preset = match args.preset {
-        PresetChoice::Default => EstimatorParams::default(),
-        PresetChoice::Thesis => EstimatorParams::thesis(),
-    };
+    let preset = EstimatorParams::from(args.preset);
     let params = FeatureParams {
         prior: args.prior,
         ..preset.features

@@ -65,9 +65,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         OutputKind::File,
         &[Input::new("--data", &args.data)],
     )?;
-    let base = match (args.preset, args.thesis_training) {
-        (PresetChoice::Thesis, _) | (_, true) => EstimatorParams::thesis(),
-        (PresetChoice::Default, false) => EstimatorParams::default(),
+    let base = match args.thesis_training {
+        true => EstimatorParams::thesis(),
+        false => EstimatorParams::from(args.preset),
     };
     let base = EstimatorParams {
         projection_dims: args.projection_dims.unwrap_or(base.projection_dims),
