@@ -32,9 +32,8 @@ impl VehicleMesh {
     /// names the file and the scenario line).
     ///
     /// ```
-    /// let dir = std::env::temp_dir().join(format!("mesh-doc-{}", std::process::id()));
-    /// std::fs::create_dir_all(&dir).unwrap();
-    /// let path = dir.join("wedge.obj");
+    /// let dir = tempfile::tempdir().unwrap(); // removed when it goes out of scope
+    /// let path = dir.path().join("wedge.obj");
     /// std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n").unwrap();
     /// let mesh = patchflow_sim::VehicleMesh::load(&path).unwrap();
     /// assert_eq!(mesh.triangles.len(), 4);
