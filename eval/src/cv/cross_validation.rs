@@ -33,22 +33,16 @@ pub fn cross_validate(
     params: &CvParams,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<CvReport, EvalError> {
-    let sets = params
-        .priors
-        .iter()
-        .map(|&prior| {
-            SampleSet::collect(
-                dataset,
-                &FeatureParams {
-                    prior,
-                    ..features.clone()
-                },
-                FeatureKind::Patch,
-                params.samples,
-                params.seed,
-            )
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    // Every prior's draw in one pass over the dataset.
+    let sets = SampleSet::collect_priors(
+        dataset,
+        features,
+        &params.priors,
+        FeatureKind::Patch,
+        params.samples,
+        params.seed,
+        &|_, _| {},
+    )?;
     cross_validate_samples(&sets, params, progress)
 }
 

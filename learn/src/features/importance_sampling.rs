@@ -88,6 +88,22 @@ impl PartialEq for DrawKey {
 
 impl Eq for DrawKey {}
 
+/// The draw key of a training candidate (thesis 3.1.2): its Eq. 3.1 weight and a uniform hashed
+/// from the draw's seed and the candidate's identity (its sequence's [`name_hash`], sweep and
+/// point), so a kept sample's key can be recomputed from the sample alone.
+pub(crate) fn candidate_key(
+    seed: u64,
+    name_key: u64,
+    scan: u32,
+    point: usize,
+    weight: f64,
+) -> DrawKey {
+    DrawKey::new(
+        weight,
+        hashed_uniform(seed, &[name_key, u64::from(scan), point as u64]),
+    )
+}
+
 /// A uniform number in (0, 1] fixed by a seed and an item's identity (splitmix64 over the
 /// parts), so an item's draw does not depend on which thread meets it or when.
 pub(crate) fn hashed_uniform(seed: u64, parts: &[u64]) -> f64 {

@@ -9,7 +9,7 @@ use patchflow_dataset::{SequenceReader, Sweep};
 use crate::features::difference_map::MapPair;
 use crate::features::feature_kind::FeatureKind;
 use crate::features::gabor::GaborBank;
-use crate::features::importance_sampling::{DrawKey, hashed_normal, hashed_uniform, name_hash};
+use crate::features::importance_sampling::{DrawKey, candidate_key, hashed_normal, name_hash};
 use crate::features::patch::Patch;
 use crate::features::slice::HeightSlice;
 use crate::features::sweep_features::SweepFeatures;
@@ -98,11 +98,8 @@ impl RunSampler<'_> {
                     else {
                         continue;
                     };
-                    let u = hashed_uniform(
-                        seed,
-                        &[name_key, u64::from(curr_sweep.index), point as u64],
-                    );
-                    let rank = (DrawKey::new(*weight, u), Reverse(position));
+                    let key = candidate_key(seed, name_key, curr_sweep.index, point, *weight);
+                    let rank = (key, Reverse(position));
                     if draw.accepts(&rank)
                         && let Some(sample) =
                             sample_at(f, &curr_sweep, i, (heading, *weight), seed, self, name)

@@ -14,7 +14,7 @@
 
 use std::cmp::Reverse;
 
-use crate::features::importance_sampling::{DrawKey, hashed_uniform, name_hash};
+use crate::features::importance_sampling::{candidate_key, name_hash};
 use crate::features::sample_set::SampleSet;
 use crate::features::training_sample::TrainingSample;
 
@@ -33,11 +33,7 @@ impl SampleSet {
     /// leaves the rest to the other side (and the result is not exact).
     pub fn balanced_by_side(&self, n: usize, seed: u64) -> SideBalanced {
         let key = |s: &TrainingSample| {
-            let u = hashed_uniform(
-                seed,
-                &[name_hash(&s.sequence), u64::from(s.scan), s.point as u64],
-            );
-            DrawKey::new(s.weight, u)
+            candidate_key(seed, name_hash(&s.sequence), s.scan, s.point, s.weight)
         };
         // Per side, indices by key, best first (ties to the earlier sample, as the draw).
         let mut sides: [Vec<usize>; 2] = [Vec::new(), Vec::new()];
@@ -45,7 +41,7 @@ impl SampleSet {
             sides[usize::from(s.sin_rel <= 0.0)].push(i);
         }
         for side in &mut sides {
-            side.sort_by_key(|&i| (Reverse(key(&self.samples[i])), i));
+            side.sort_by_cached_key(|&i| (Reverse(key(&self.samples[i])), i));
         }
         let half = n / 2;
         let quota = [
@@ -61,8 +57,10 @@ impl SampleSet {
         kept.sort_unstable();
         SideBalanced {
             set: SampleSet {
+                kind: self.kind,
+                features: self.features.clone(),
+                pool_size: self.pool_size,
                 samples: kept.into_iter().map(|i| self.samples[i].clone()).collect(),
-                ..self.clone()
             },
             exact,
         }
@@ -139,12 +137,8 @@ mod tests {
             .collect();
         let full = set(&signs);
         let balanced = full.balanced_by_side(10, 9);
-        let key = |s: &TrainingSample| {
-            DrawKey::new(
-                s.weight,
-                hashed_uniform(9, &[name_hash("s"), 1, s.point as u64]),
-            )
-        };
+        // The draw's own key of each sample (seed 9, sequence "s", sweep 1).
+        let key = |s: &TrainingSample| candidate_key(9, name_hash("s"), 1, s.point, s.weight);
         for positive in [true, false] {
             let on_side = |s: &&TrainingSample| (s.sin_rel > 0.0) == positive;
             let worst_kept = balanced.set.samples.iter().filter(on_side).map(key).min();

@@ -65,9 +65,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         OutputKind::File,
         &[Input::new("--data", &args.data)],
     )?;
-    let base = match args.thesis_training {
-        true => EstimatorParams::thesis(),
-        false => EstimatorParams::from(args.preset),
+    let base = if args.thesis_training {
+        EstimatorParams::thesis()
+    } else {
+        EstimatorParams::from(args.preset)
     };
     let base = EstimatorParams {
         projection_dims: args.projection_dims.unwrap_or(base.projection_dims),
