@@ -21,6 +21,7 @@
 //! | `score/` | another method's predictions scored like the built-in ones | SPEC §7 |
 //! | `study/` | one factor varied, every method scored at each point | issue #10 |
 //! | `bench/` | the whole benchmark run, its report written once | SPEC §7 |
+//! | `check/` | models read on targets of one's own over several worlds, against the bar | issue 24 |
 //!
 //! The Kalman baseline on a cluster centroid moving at 3 m/s along +y, measured every 0.1 s:
 //!
@@ -39,6 +40,7 @@
 //! ```
 
 mod bench;
+mod check;
 mod cv;
 mod error;
 mod methods;
@@ -51,6 +53,10 @@ mod study;
 
 // ── The benchmark ──────────────────────────────────────────────────────────────────────────
 pub use bench::{BenchOutcome, MethodSpread, SeedFigure, SeedSpread, run_bench};
+pub use check::check_plan::{CheckPlan, parse_worlds};
+pub use check::check_report::{Bar, CheckFiles, CheckReport, CheckedModel, Tally};
+pub use check::run_checks::{CheckModel, run_checks};
+pub use check::target_reading::TargetReading;
 pub use error::EvalError;
 pub use pipeline::plan::{
     BENCH_SEED, BenchPlan, DENSE_TRAFFIC_TOML, QUICK_REALISM_SITUATIONS, QUICK_SWEEP_SHARE,

@@ -168,12 +168,12 @@ fn worst_count(n: usize) -> usize {
 }
 
 /// Whether a heading RMSE (degrees) is under the bar.
-pub(super) fn heading_under_bar(rmse_deg: Option<f64>) -> bool {
+pub(crate) fn heading_under_bar(rmse_deg: Option<f64>) -> bool {
     rmse_deg.is_some_and(|h| h < BAR_HEADING_DEG)
 }
 
 /// Whether a speed RMSE (m/s) is under the bar.
-pub(super) fn speed_under_bar(rmse_mps: Option<f64>) -> bool {
+pub(crate) fn speed_under_bar(rmse_mps: Option<f64>) -> bool {
     rmse_mps.is_some_and(|s| s < BAR_SPEED_MPS)
 }
 

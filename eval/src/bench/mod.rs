@@ -12,5 +12,6 @@ mod run_report;
 mod seed_spread;
 mod training;
 
+pub(crate) use bar_check::{BAR_HEADING_DEG, BAR_SPEED_MPS, heading_under_bar, speed_under_bar};
 pub use run::{BenchOutcome, run_bench};
 pub use seed_spread::{MethodSpread, SeedFigure, SeedSpread};

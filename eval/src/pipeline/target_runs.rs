@@ -61,6 +61,17 @@ pub fn evaluate_targets_with_baselines(
     })
 }
 
+/// [`evaluate_targets_with_baselines`] for several trained runs at once (`runs[k]` one run's
+/// estimators, one per GP kind): the runs share each scan's maps and the baselines run once;
+/// `result[k]` is what run `k` alone would give (its GP-KF and GP-ICP read its own estimator).
+pub fn evaluate_runs_with_baselines(
+    dataset: &Dataset,
+    runs: &[Vec<MotionEstimator>],
+    baselines: &BaselineParams,
+) -> Result<Vec<Vec<SituationResult>>, EvalError> {
+    targets_of_runs(dataset, runs, Some(baselines), None)
+}
+
 /// The targets of `dataset` for each run, with the baselines' estimates in every run if asked.
 fn targets_of_runs(
     dataset: &Dataset,

@@ -2,6 +2,7 @@
 //! arguments, calls one library function and prints; no algorithm lives here.
 
 mod bench;
+mod check;
 mod choices;
 mod common;
 mod csv_table;
@@ -52,6 +53,8 @@ enum Command {
     Study(study::Args),
     /// Occupancy maps (grid, GPOM) of planar-scanner sequences, scored by ROC AUC against exact truth.
     Occupancy(occupancy::Args),
+    /// Read trained models on targets of your own scenarios over several world draws, against the bar.
+    Check(check::Args),
     /// Gaussian-process regression on any CSV.
     Gp(gp::Args),
 }
@@ -70,6 +73,7 @@ fn main() -> std::process::ExitCode {
         Command::Bench(args) => bench::run(args),
         Command::Study(args) => study::run(args),
         Command::Occupancy(args) => occupancy::run(args),
+        Command::Check(args) => check::run(args),
         Command::Gp(args) => gp::run(args),
     };
     match result {
