@@ -54,7 +54,7 @@ mod study;
 // ── The benchmark ──────────────────────────────────────────────────────────────────────────
 pub use bench::{BenchOutcome, MethodSpread, SeedFigure, SeedSpread, run_bench};
 pub use check::check_plan::{CheckPlan, parse_worlds};
-pub use check::check_report::{Bar, CheckFiles, CheckReport, CheckedModel, Tally};
+pub use check::check_report::{CheckBar, CheckFiles, CheckReport, CheckTally, CheckedModel};
 pub use check::run_checks::{CheckModel, run_checks};
 pub use check::target_reading::TargetReading;
 pub use error::EvalError;

@@ -1,7 +1,7 @@
 //! `checks.md`: how many readings of each method are within the bar, over all checks and per
 //! check, with the median errors beside the counts.
 
-use crate::check::check_report::{CheckReport, Tally};
+use crate::check::check_report::{CheckReport, CheckTally};
 use crate::report::fmt_opt;
 
 impl CheckReport {
@@ -79,7 +79,7 @@ fn count(n: usize, noun: &str) -> String {
 }
 
 /// `within of readings (heading / speed)`.
-fn cell(t: &Tally) -> String {
+fn cell(t: &CheckTally) -> String {
     format!(
         "{} of {} ({} / {})",
         t.within,

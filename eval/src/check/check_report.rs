@@ -9,7 +9,7 @@ use serde::Serialize;
 use crate::bench::{BAR_HEADING_DEG, BAR_SPEED_MPS};
 use crate::check::target_reading::TargetReading;
 use crate::error::EvalError;
-use crate::report::{create_dir, write_atomic};
+use crate::report::{create_dir, write_atomic, write_json_atomic};
 
 /// A model file read, and what trained it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -24,7 +24,7 @@ pub struct CheckedModel {
 
 /// Readings within the bar among all of a method's (or a method's on one check).
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Tally {
+pub struct CheckTally {
     /// The check, or `all`.
     pub check: String,
     /// The method.
@@ -41,7 +41,7 @@ pub struct Tally {
 
 /// The bar every reading is held to.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Bar {
+pub struct CheckBar {
     /// Heading RMSE under this, degrees.
     pub heading_rmse_deg: f64,
     /// Speed RMSE under this, m/s.
@@ -62,11 +62,11 @@ pub struct CheckReport {
     /// The models read.
     pub models: Vec<CheckedModel>,
     /// The bar.
-    pub bar: Bar,
+    pub bar: CheckBar,
     /// Per method over every check, world and model (`check` is `all`).
-    pub methods: Vec<Tally>,
+    pub methods: Vec<CheckTally>,
     /// Per check and method.
-    pub per_check: Vec<Tally>,
+    pub per_check: Vec<CheckTally>,
     /// Every reading: checks in order, then worlds, models and methods.
     pub readings: Vec<TargetReading>,
 }
@@ -126,7 +126,7 @@ impl CheckReport {
             worlds,
             realism,
             models,
-            bar: Bar {
+            bar: CheckBar {
                 heading_rmse_deg: BAR_HEADING_DEG,
                 speed_rmse_mps: BAR_SPEED_MPS,
             },
@@ -144,12 +144,7 @@ impl CheckReport {
             csv: out.join("checks.csv"),
             markdown: out.join("checks.md"),
         };
-        let mut json = serde_json::to_vec_pretty(self).map_err(|source| EvalError::Json {
-            path: files.json.clone(),
-            source,
-        })?;
-        json.push(b'\n');
-        write_atomic(&files.json, &json)?;
+        write_json_atomic(&files.json, self)?;
         write_atomic(&files.csv, self.csv().as_bytes())?;
         write_atomic(&files.markdown, self.markdown().as_bytes())?;
         Ok(files)
@@ -183,9 +178,9 @@ fn tally<'a>(
     check: &str,
     method: &str,
     readings: impl Iterator<Item = &'a TargetReading>,
-) -> Tally {
+) -> CheckTally {
     let readings: Vec<&TargetReading> = readings.collect();
-    Tally {
+    CheckTally {
         check: check.to_owned(),
         method: method.to_owned(),
         within: readings.iter().filter(|r| r.within_bar).count(),

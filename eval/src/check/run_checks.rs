@@ -60,6 +60,12 @@ pub fn run_checks(
     out: &Path,
 ) -> Result<CheckReport, EvalError> {
     let checks = plan.check_names()?;
+    if models.is_empty() {
+        return Err(EvalError::BadParameter {
+            name: "--model",
+            reason: "no model given".into(),
+        });
+    }
     let mut methods = Vec::with_capacity(models.len());
     for model in models {
         let readout =
@@ -70,12 +76,6 @@ pub fn run_checks(
                 }
             })?;
         methods.push(checked_methods(readout));
-    }
-    if models.is_empty() {
-        return Err(EvalError::BadParameter {
-            name: "--model",
-            reason: "no model given".into(),
-        });
     }
     let runs: Vec<Vec<MotionEstimator>> =
         models.iter().map(|m| vec![m.estimator.clone()]).collect();

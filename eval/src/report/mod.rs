@@ -34,7 +34,7 @@ mod writer;
 
 pub(crate) use cv::render_cv;
 pub use cv::write_cv_report;
-pub(crate) use files::{create_dir, fmt_opt, write_atomic};
+pub(crate) use files::{create_dir, fmt_opt, write_atomic, write_json_atomic};
 pub(crate) use font::{FONT, ensure_font};
 pub use json::metrics_json;
 pub use map_view::write_map_figure;

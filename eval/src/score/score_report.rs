@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::error::EvalError;
-use crate::report::{create_dir, fmt_opt, write_atomic};
+use crate::report::{create_dir, fmt_opt, write_atomic, write_json_atomic};
 use crate::score::method_scores::{MethodScores, MethodSource};
 
 /// One sequence's (or the pool's) scores.
@@ -58,12 +58,7 @@ impl ScoreReport {
             tables_csv: out.join("tables.csv"),
             report_md: out.join("report.md"),
         };
-        let mut json = serde_json::to_vec_pretty(self).map_err(|source| EvalError::Json {
-            path: files.metrics_json.clone(),
-            source,
-        })?;
-        json.push(b'\n');
-        write_atomic(&files.metrics_json, &json)?;
+        write_json_atomic(&files.metrics_json, self)?;
         write_atomic(&files.tables_csv, self.csv().as_bytes())?;
         write_atomic(&files.report_md, self.markdown().as_bytes())?;
         Ok(files)

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::EvalError;
-use crate::report::{create_dir, write_atomic};
+use crate::report::{create_dir, write_atomic, write_json_atomic};
 use crate::study::markdown::study_markdown;
 use crate::study::plan::StudyPlan;
 use crate::study::plan_stamp::PlanStamp;
@@ -51,12 +51,7 @@ pub fn merge_study(plan: &StudyPlan, out: &Path) -> Result<StudyFiles, EvalError
 pub fn write_study(report: &StudyReport, out: &Path) -> Result<StudyFiles, EvalError> {
     create_dir(out)?;
     let study_json = out.join("study.json");
-    let mut bytes = serde_json::to_vec_pretty(report).map_err(|source| EvalError::Json {
-        path: study_json.clone(),
-        source,
-    })?;
-    bytes.push(b'\n');
-    write_atomic(&study_json, &bytes)?;
+    write_json_atomic(&study_json, report)?;
     let plots = plot_study(report, &out.join("plots"))?;
     let study_md = out.join("study.md");
     write_atomic(&study_md, study_markdown(report).as_bytes())?;

@@ -18,7 +18,7 @@ use crate::pipeline::short_tracks::shortened_tracks;
 use crate::pipeline::stages::{
     collect_feature_draws_with_bar, evaluate_with_bar, generate_with_progress,
 };
-use crate::report::{create_dir, write_atomic};
+use crate::report::{create_dir, write_json_atomic};
 use crate::study::merge::{StudyFiles, merge_study};
 use crate::study::plan::{StudyPlan, StudyPoint};
 use crate::study::plan_stamp::PlanStamp;
@@ -81,12 +81,7 @@ pub(crate) fn write_point(
         plan: PlanStamp::of(plan),
         result: result.clone(),
     };
-    let mut bytes = serde_json::to_vec_pretty(&file).map_err(|source| EvalError::Json {
-        path: path.clone(),
-        source,
-    })?;
-    bytes.push(b'\n');
-    write_atomic(&path, &bytes)
+    write_json_atomic(&path, &file)
 }
 
 /// Simulates the training tracks with a setting (`plan.training_sweep_share` of their sweeps),
