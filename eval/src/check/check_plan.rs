@@ -4,7 +4,7 @@
 //!
 //! A world seed draws everything random in a scenario (the fleet's shapes, clutter, sensor noise),
 //! so one check on several worlds is several readings of the same manoeuvre, as the README's tally
-//! of the nineteen `unseen_*` checks on worlds 7-14 is.
+//! of the `unseen_*` checks on worlds 7-14 is.
 
 use patchflow_sim::{Realism, ScenarioSource};
 
@@ -85,6 +85,9 @@ pub fn parse_worlds(text: &str) -> Result<Vec<u64>, EvalError> {
                     format!("`{text}`: the range ends before it starts"),
                 ));
             }
+            if last - first >= MAX_WORLDS as u64 {
+                return Err(too_many(text));
+            }
             (first..=last).collect()
         }
         None => text.split(',').map(seed).collect::<Result<_, _>>()?,
@@ -96,12 +99,13 @@ pub fn parse_worlds(text: &str) -> Result<Vec<u64>, EvalError> {
         return Err(bad("--worlds", format!("`{text}`: a seed given twice")));
     }
     if worlds.len() > MAX_WORLDS {
-        return Err(bad(
-            "--worlds",
-            format!("`{text}`: at most {MAX_WORLDS} worlds"),
-        ));
+        return Err(too_many(text));
     }
     Ok(worlds)
+}
+
+fn too_many(text: &str) -> EvalError {
+    bad("--worlds", format!("`{text}`: at most {MAX_WORLDS} worlds"))
 }
 
 /// Most worlds one run reads (each costs a few minutes for twenty checks).
@@ -150,7 +154,16 @@ mod tests {
 
     #[test]
     fn malformed_or_repeated_worlds_are_refused_with_the_text_given() {
-        for text in ["", "a", "7-", "9-7", "7,7", "1-2000", "-3"] {
+        for text in [
+            "",
+            "a",
+            "7-",
+            "9-7",
+            "7,7",
+            "1-2000",
+            "0-18446744073709551615",
+            "-3",
+        ] {
             let err = parse_worlds(text).unwrap_err().to_string();
             assert!(
                 err.contains("--worlds") && err.contains(text),

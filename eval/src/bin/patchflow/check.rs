@@ -31,8 +31,8 @@ pub struct Args {
     /// Realism rung for every check (default: each file's own, `urban` if it names none).
     #[arg(long, value_enum)]
     pub realism: Option<RealismChoice>,
-    /// Keep each world's dataset under `OUT/data/world-W` (about 6 GB per world for the nineteen
-    /// shipped checks; without it one world is on disk at a time).
+    /// Keep each world's dataset under `OUT/data/world-W` (about 6 GB per world for the shipped
+    /// checks; without it one world is on disk at a time).
     #[arg(long)]
     pub keep_data: bool,
 }
