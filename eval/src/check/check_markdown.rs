@@ -24,7 +24,8 @@ impl CheckReport {
              in one world with one model; it is within the bar when its heading RMSE is under \
              {}° and its speed RMSE under {} m/s (thesis 4.4's target protocol; a method that \
              gave no estimate is a miss). The baselines do not learn: each world's KF-AUTO and \
-             ICP-AUTO reading counts once per model. Every reading is in `checks.csv`.\n\n",
+             ICP-AUTO reading (on the clusters of the first model's height slice) counts once \
+             per model. Every reading is in `checks.csv`.\n\n",
             count(self.checks.len(), "check"),
             worlds.join(", "),
             count(self.models.len(), "model"),
