@@ -9,7 +9,10 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{assert_clean_failure, assert_success, generate_tiny, patchflow, train_small};
+use common::{
+    assert_clean_failure, assert_success, evaluate, generate_seeded, generate_tiny, patchflow,
+    train_small,
+};
 
 /// `scenarios/tiny.toml` with 8 sweeps (GP-KF needs a few scans to report), written into `dir`.
 fn eight_sweep_check(dir: &Path) -> PathBuf {
@@ -62,24 +65,9 @@ fn check_reads_each_world_as_evaluate_does_and_a_rerun_writes_the_same_bytes() {
     assert!(!out.join("data").exists(), "the worlds' data were kept");
     // World 3's readings are what `evaluate` reports on the same world.
     let data = dir.path().join("world3");
-    assert_success(&patchflow(&[
-        "generate",
-        scenario.to_str().unwrap(),
-        "--out",
-        data.to_str().unwrap(),
-        "--seed",
-        "3",
-    ]));
+    assert_success(&generate_seeded(&scenario, &data, 3));
     let evaluated = dir.path().join("evaluated");
-    assert_success(&patchflow(&[
-        "evaluate",
-        "--model",
-        model.to_str().unwrap(),
-        "--data",
-        data.to_str().unwrap(),
-        "--out",
-        evaluated.to_str().unwrap(),
-    ]));
+    assert_success(&evaluate(&model, &data, &evaluated));
     let metrics = json(&evaluated.join("metrics.json"));
     // GP-KF reading an SPGP model is named after it in the check's tally.
     let methods = [

@@ -8,20 +8,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{assert_clean_failure, assert_success, generate_tiny, patchflow, train_small};
-
-/// Runs `evaluate` with `model` on `data`.
-fn evaluate(model: &Path, data: &Path, out: &Path) -> std::process::Output {
-    patchflow(&[
-        "evaluate",
-        "--model",
-        model.to_str().unwrap(),
-        "--data",
-        data.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ])
-}
+use common::{assert_clean_failure, assert_success, evaluate, generate_tiny, train_small};
 
 /// Loads `model`, applies `edit` to its JSON and writes it as `edited.json` beside it.
 fn edited(model: &Path, edit: impl Fn(&mut serde_json::Value)) -> std::path::PathBuf {

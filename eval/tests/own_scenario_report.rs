@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{assert_success, generate_tiny, patchflow, train_small};
+use common::{assert_success, evaluate, generate_tiny, patchflow, train_small};
 
 #[test]
 fn evaluate_on_an_own_scenario_writes_its_figures_and_no_thesis_placeholders() {
@@ -17,15 +17,7 @@ fn evaluate_on_an_own_scenario_writes_its_figures_and_no_thesis_placeholders() {
     let model = dir.path().join("spgp.json");
     assert_success(&train_small(&data, &model));
     let out = dir.path().join("report");
-    assert_success(&patchflow(&[
-        "evaluate",
-        "--model",
-        model.to_str().unwrap(),
-        "--data",
-        data.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]));
+    assert_success(&evaluate(&model, &data, &out));
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         md.contains("Scenario: test scene: a car crossing in front of a slow ego car."),

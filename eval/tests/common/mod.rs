@@ -53,16 +53,34 @@ pub fn generate_file(scenario: &Path, out: &Path) -> Output {
     ])
 }
 
-/// Generates `scenarios/tiny.toml` with `seed` into `out`.
-pub fn generate_tiny(out: &Path, seed: u64) -> Output {
+/// Generates the scenario file `scenario` with `seed` into `out`.
+pub fn generate_seeded(scenario: &Path, out: &Path, seed: u64) -> Output {
     let seed = seed.to_string();
     patchflow(&[
         "generate",
-        tiny_scenario().to_str().unwrap(),
+        scenario.to_str().unwrap(),
         "--out",
         out.to_str().unwrap(),
         "--seed",
         &seed,
+    ])
+}
+
+/// Generates `scenarios/tiny.toml` with `seed` into `out`.
+pub fn generate_tiny(out: &Path, seed: u64) -> Output {
+    generate_seeded(&tiny_scenario(), out, seed)
+}
+
+/// Runs `evaluate` with `model` on `data`, writing the report to `out`.
+pub fn evaluate(model: &Path, data: &Path, out: &Path) -> Output {
+    patchflow(&[
+        "evaluate",
+        "--model",
+        model.to_str().unwrap(),
+        "--data",
+        data.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
     ])
 }
 
