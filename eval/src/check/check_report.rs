@@ -10,6 +10,7 @@ use crate::bench::{BAR_HEADING_DEG, BAR_SPEED_MPS};
 use crate::check::target_reading::TargetReading;
 use crate::error::EvalError;
 use crate::report::{create_dir, write_atomic, write_json_atomic};
+use crate::scene::metrics::median;
 
 /// A model file read, and what trained it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -187,18 +188,6 @@ fn tally<'a>(
         readings: readings.len(),
         median_heading_rmse_deg: median(readings.iter().filter_map(|r| r.heading_rmse_deg)),
         median_speed_rmse_mps: median(readings.iter().filter_map(|r| r.speed_rmse_mps)),
-    }
-}
-
-/// The median (the mean of the middle two of an even count), or `None` of nothing.
-fn median(values: impl Iterator<Item = f64>) -> Option<f64> {
-    let mut values: Vec<f64> = values.collect();
-    values.sort_by(f64::total_cmp);
-    let n = values.len();
-    match n {
-        0 => None,
-        _ if n % 2 == 1 => Some(values[n / 2]),
-        _ => Some(0.5 * (values[n / 2 - 1] + values[n / 2])),
     }
 }
 

@@ -138,10 +138,3 @@ fn a_model_file_with_a_comma_is_quoted_in_the_csv() {
     assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
     assert_eq!(csv_field("plain.json"), "plain.json");
 }
-
-#[test]
-fn the_median_of_an_even_count_is_the_mean_of_the_middle_two() {
-    assert_eq!(median([4.0, 1.0, 3.0, 2.0].into_iter()), Some(2.5));
-    assert_eq!(median([5.0, 1.0, 3.0].into_iter()), Some(3.0));
-    assert_eq!(median(std::iter::empty()), None);
-}

@@ -105,9 +105,28 @@ pub fn mean_abs(errors: &[f64]) -> Option<f64> {
     (!errors.is_empty()).then(|| errors.iter().map(|e| e.abs()).sum::<f64>() / errors.len() as f64)
 }
 
+/// The median (the mean of the middle two of an even count); `None` for no values.
+pub(crate) fn median(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let mut v: Vec<f64> = values.collect();
+    v.sort_by(f64::total_cmp);
+    let mid = v.len() / 2;
+    match v.len() {
+        0 => None,
+        n if n.is_multiple_of(2) => Some(0.5 * (v[mid - 1] + v[mid])),
+        _ => Some(v[mid]),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_median_of_an_even_count_is_the_mean_of_the_middle_two() {
+        assert_eq!(median([4.0, 1.0, 3.0, 2.0].into_iter()), Some(2.5));
+        assert_eq!(median([5.0, 1.0, 3.0].into_iter()), Some(3.0));
+        assert_eq!(median(std::iter::empty()), None);
+    }
 
     fn estimate(heading_deg: f64, speed_mps: f64) -> Option<MotionEstimate> {
         let h = heading_deg.to_radians();

@@ -6,6 +6,8 @@
 use patchflow_learn::{FeatureTiming, PredictionTiming};
 use serde::{Deserialize, Serialize};
 
+use crate::scene::metrics::median;
+
 /// Wall times of one scan, seconds.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ScanTiming {
@@ -147,20 +149,16 @@ impl Spread {
     /// Median and maximum of `values` (zero for none; the median of an even count is the mean of
     /// the middle two).
     pub fn of(values: impl Iterator<Item = f64>) -> Self {
-        let mut v: Vec<f64> = values.collect();
-        if v.is_empty() {
-            return Self::default();
-        }
-        v.sort_by(f64::total_cmp);
-        let mid = v.len() / 2;
-        let median = if v.len().is_multiple_of(2) {
-            0.5 * (v[mid - 1] + v[mid])
-        } else {
-            v[mid]
-        };
-        Self {
-            median_secs: median,
-            worst_secs: v[v.len() - 1],
+        let v: Vec<f64> = values.collect();
+        match (
+            median(v.iter().copied()),
+            v.iter().copied().max_by(f64::total_cmp),
+        ) {
+            (Some(median_secs), Some(worst_secs)) => Self {
+                median_secs,
+                worst_secs,
+            },
+            _ => Self::default(),
         }
     }
 }
