@@ -2,7 +2,8 @@
 //! gemm: the off-diagonal blocks are matrix products, only blocks of at most `LEAF` columns are
 //! done column by column, in vectorised loops along contiguous columns. For M = 100 pseudo-inputs
 //! (one leaf) and thousands of points in the full GP this is several times faster than
-//! nalgebra's unblocked routines.
+//! nalgebra's unblocked routines. The products with a triangular block and the symmetric updates
+//! skip the zero and the mirrored halves (`triangular.rs`).
 
 use nalgebra::{DMatrix, DMatrixView, DMatrixViewMut};
 
@@ -10,6 +11,7 @@ use rayon::prelude::*;
 
 use super::gemm::mul;
 use super::simd::vectorised;
+use super::triangular::{add_lower_gram, lower_times, times_lower};
 
 /// Largest block factored column by column: a whole M×M pseudo-input covariance (M ≤ 128) is
 /// one leaf.
@@ -66,13 +68,13 @@ fn cholesky_view(a: &mut DMatrixViewMut<'_, f64>) -> bool {
     if !cholesky_view(&mut a.view_mut((0, 0), (n1, n1))) {
         return false;
     }
-    // L21 = A21 L11⁻ᵀ, then A22 −= L21 L21ᵀ.
+    // L21 = A21 L11⁻ᵀ = (L11⁻¹ A21ᵀ)ᵀ, then the lower triangle of A22 −= L21 L21ᵀ.
     let l11_inv = lower_inverse_of(&a.view((0, 0), (n1, n1)).into_owned());
-    let l21 = mul(&a.view((n1, 0), (n2, n1)), &l11_inv.transpose());
+    let a21_t = a.view((n1, 0), (n2, n1)).transpose();
+    let l21 = lower_times(l11_inv.as_view(), a21_t.as_view()).transpose();
     a.view_mut((n1, 0), (n2, n1)).copy_from(&l21);
-    let update = mul(&l21, &l21.transpose());
     let mut a22 = a.view_mut((n1, n1), (n2, n2));
-    a22 -= update;
+    add_lower_gram(&mut a22, l21.as_view(), -1.0);
     cholesky_view(&mut a22)
 }
 
@@ -118,7 +120,8 @@ pub(crate) fn lower_inverse_of(l: &DMatrix<f64>) -> DMatrix<f64> {
         || lower_inverse_of(&l.view((0, 0), (n1, n1)).into_owned()),
         || lower_inverse_of(&l.view((n1, n1), (n2, n2)).into_owned()),
     );
-    let x21 = -mul(&x22, &mul(&l.view((n1, 0), (n2, n1)), &x11));
+    let l21_x11 = times_lower(l.view((n1, 0), (n2, n1)), x11.as_view());
+    let x21 = -lower_times(x22.as_view(), l21_x11.as_view());
     x.view_mut((0, 0), (n1, n1)).copy_from(&x11);
     x.view_mut((n1, 0), (n2, n1)).copy_from(&x21);
     x.view_mut((n1, n1), (n2, n2)).copy_from(&x22);
@@ -196,7 +199,7 @@ pub(crate) fn lower_gram(x: &DMatrix<f64>) -> DMatrix<f64> {
     out
 }
 
-/// XᵀX with its lower triangle exact (the upper may differ in the last bits).
+/// XᵀX with its lower triangle exact (the strict upper one is left partly updated).
 fn lower_gram_part(x: &DMatrix<f64>) -> DMatrix<f64> {
     let n = x.nrows();
     if n <= 2 * LEAF {
@@ -210,9 +213,10 @@ fn lower_gram_part(x: &DMatrix<f64>) -> DMatrix<f64> {
         || lower_gram_part(&x.view((0, 0), (n1, n1)).into_owned()),
         || lower_gram_part(&x22),
     );
+    // A11 += X21ᵀX21 (its lower triangle), A21 = X22ᵀX21 = (X21ᵀX22)ᵀ.
     let x21t = x21.transpose();
-    a11 += mul(&x21t, &x21);
-    let a21 = mul(&x22.transpose(), &x21);
+    add_lower_gram(&mut a11.as_view_mut(), x21t.as_view(), 1.0);
+    let a21 = times_lower(x21t.as_view(), x22.as_view()).transpose();
     let mut out = DMatrix::zeros(n, n);
     out.view_mut((0, 0), (n1, n1)).copy_from(&a11);
     out.view_mut((n1, 0), (n2, n1)).copy_from(&a21);

@@ -58,6 +58,7 @@ mod stationary;
 mod tile_kernel;
 mod train_data;
 mod transform;
+mod triangular;
 
 pub use error::{GpError, Result};
 pub use full::FULL_GP_MAX_SAMPLES;
