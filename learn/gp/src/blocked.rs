@@ -207,14 +207,13 @@ fn lower_gram_part(x: &DMatrix<f64>) -> DMatrix<f64> {
     }
     let n1 = n / 2;
     let n2 = n - n1;
-    let x21 = x.view((n1, 0), (n2, n1)).into_owned();
     let x22 = x.view((n1, n1), (n2, n2)).into_owned();
     let (mut a11, a22) = rayon::join(
         || lower_gram_part(&x.view((0, 0), (n1, n1)).into_owned()),
         || lower_gram_part(&x22),
     );
-    // A11 += X21ᵀX21 (its lower triangle), A21 = X22ᵀX21 = (X21ᵀX22)ᵀ.
-    let x21t = x21.transpose();
+    // A11 += X21ᵀX21 (its lower triangle), A21 = X22ᵀX21 = (X21ᵀX22)ᵀ; only X21ᵀ is needed.
+    let x21t = x.view((n1, 0), (n2, n1)).transpose();
     add_lower_gram(&mut a11.as_view_mut(), x21t.as_view(), 1.0);
     let a21 = times_lower(x21t.as_view(), x22.as_view()).transpose();
     let mut out = DMatrix::zeros(n, n);
