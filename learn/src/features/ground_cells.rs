@@ -5,7 +5,14 @@
 //! Himmelsbach et al. 2010), the lowest returns in a cell of a metre or two are the ground
 //! wherever the ground is seen at all: objects stand on it, canopies hang over it.
 
+use rayon::prelude::*;
+
 use crate::features::grid::GridWindow;
+
+/// Least points of a parallel task that maps points to their cells.
+const TASK_POINTS: usize = 8192;
+/// Runs of points binned in parallel, then merged (a window's worth of cells each).
+const RUNS: usize = 2;
 
 /// A cell's lowest robust height: the single lowest return is dropped once the cell holds this
 /// many returns (one noisy or mixed return must not set the ground).
@@ -33,9 +40,9 @@ pub(crate) struct CellLows {
 
 impl CellLows {
     /// Bins world points into `window`'s cells and keeps each cell's two lowest heights.
+    /// Runs of points in parallel tasks, merged: a cell's two lowest heights are the two lowest
+    /// of its runs' two lowest, and its count their sum, so the result is the one-task loop's.
     pub(crate) fn bin(points_in_world: &[[f64; 3]], window: &GridWindow) -> Self {
-        let mut lowest = vec![[f64::INFINITY; 2]; window.len()];
-        let mut counts = vec![0u32; window.len()];
         let inv_cell = 1.0 / window.cell_m;
         let (x0, y0) = (
             window.origin_col as f64 * window.cell_m,
@@ -43,19 +50,49 @@ impl CellLows {
         );
         let (cols, rows) = (window.cols as f64, window.rows as f64);
         let cell_of_point: Vec<u32> = points_in_world
-            .iter()
+            .par_iter()
+            .with_min_len(TASK_POINTS)
             .map(|p| {
                 // Truncation is the floor here: negative coordinates are outside.
                 let (u, v) = ((p[0] - x0) * inv_cell, (p[1] - y0) * inv_cell);
                 if !(u >= 0.0 && v >= 0.0 && u < cols && v < rows) {
                     return u32::MAX;
                 }
-                let k = v as usize * window.cols + u as usize;
-                counts[k] += 1;
-                Self::keep_lowest(&mut lowest[k], p[2]);
-                k as u32
+                (v as usize * window.cols + u as usize) as u32
             })
             .collect();
+        let run = points_in_world.len().div_ceil(RUNS).max(1);
+        let parts: Vec<(Vec<[f64; 2]>, Vec<u32>)> = points_in_world
+            .par_chunks(run)
+            .zip(cell_of_point.par_chunks(run))
+            .map(|(points, cells)| {
+                let mut lowest = vec![[f64::INFINITY; 2]; window.len()];
+                let mut counts = vec![0u32; window.len()];
+                for (p, &k) in points.iter().zip(cells) {
+                    if let Some(low) = lowest.get_mut(k as usize) {
+                        counts[k as usize] += 1;
+                        Self::keep_lowest(low, p[2]);
+                    }
+                }
+                (lowest, counts)
+            })
+            .collect();
+        let mut parts = parts.into_iter();
+        let (mut lowest, mut counts) = parts.next().unwrap_or_else(|| {
+            (
+                vec![[f64::INFINITY; 2]; window.len()],
+                vec![0; window.len()],
+            )
+        });
+        for (part_lowest, part_counts) in parts {
+            for (low, part) in lowest.iter_mut().zip(&part_lowest) {
+                part.iter().for_each(|&z| Self::keep_lowest(low, z));
+            }
+            counts
+                .iter_mut()
+                .zip(&part_counts)
+                .for_each(|(n, m)| *n += m);
+        }
         let low_m = lowest
             .iter()
             .zip(&counts)
@@ -175,6 +212,41 @@ mod tests {
         );
         assert_eq!(many.low_m[k], 0.02);
         assert!(many.low_m.iter().filter(|v| v.is_finite()).count() == 1);
+    }
+
+    #[test]
+    fn binning_in_parallel_runs_gives_the_one_run_loop_exactly() {
+        let w = GridWindow::centred([0.0, 0.0], 6.0, 1.0);
+        // Points over the window and beyond it, heights repeating so cells hold ties.
+        let points: Vec<[f64; 3]> = (0..20_001)
+            .map(|k| {
+                let t = k as f64;
+                [
+                    7.5 * (0.37 * t).sin(),
+                    7.5 * (0.23 * t).cos(),
+                    0.1 * (k % 13) as f64 - 0.4,
+                ]
+            })
+            .collect();
+        let binned = CellLows::bin(&points, &w);
+        let (mut lowest, mut counts) = (vec![[f64::INFINITY; 2]; w.len()], vec![0u32; w.len()]);
+        for (p, &k) in points.iter().zip(&binned.cell_of_point) {
+            let expected = w
+                .cell_of(p[0], p[1])
+                .map_or(u32::MAX, |(c, r)| w.index(c, r) as u32);
+            assert_eq!(k, expected, "{p:?}");
+            if let Some(low) = lowest.get_mut(k as usize) {
+                counts[k as usize] += 1;
+                CellLows::keep_lowest(low, p[2]);
+            }
+        }
+        let serial: Vec<f64> = lowest
+            .iter()
+            .zip(&counts)
+            .map(|(low, &n)| CellLows::robust_low(low, n))
+            .collect();
+        assert_eq!(binned.low_m, serial, "bit for bit");
+        assert!(counts.iter().filter(|&&n| n >= DROP_LOWEST_FROM).count() > 20);
     }
 
     #[test]

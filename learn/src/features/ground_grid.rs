@@ -7,6 +7,7 @@
 //! of parked cars cannot pass for ground there.
 
 use patchflow_dataset::Sweep;
+use rayon::prelude::*;
 
 use crate::features::grid::GridWindow;
 use crate::features::ground_cells::{CellLows, band_moments};
@@ -163,27 +164,32 @@ impl GroundGrid {
 /// ([`Sweep::estimated_pose`], the truth where the dataset has no estimate); a non-finite point
 /// is an error.
 pub(crate) fn points_in_world(sweep: &Sweep) -> Result<Vec<[f64; 3]>> {
+    let finite = |p: &[f32; 3]| p.iter().all(|v| v.is_finite());
+    if let Some(index) = sweep.points_in_sensor.iter().position(|p| !finite(p)) {
+        return Err(LearnError::degenerate_data(format!(
+            "sweep {}: point {index} is not finite",
+            sweep.index
+        )));
+    }
     let world_from_sensor = sweep.estimated_pose();
     let origin = world_from_sensor.translation.vector;
     let rotation = world_from_sensor.rotation.to_rotation_matrix();
-    sweep
+    // Each point on its own: in parallel tasks, in point order.
+    Ok(sweep
         .points_in_sensor
-        .iter()
-        .enumerate()
-        .map(|(index, p)| {
-            if !p.iter().all(|v| v.is_finite()) {
-                return Err(LearnError::degenerate_data(format!(
-                    "sweep {}: point {index} is not finite",
-                    sweep.index
-                )));
-            }
+        .par_iter()
+        .with_min_len(TASK_POINTS)
+        .map(|p| {
             let end = rotation
                 * nalgebra::Vector3::new(f64::from(p[0]), f64::from(p[1]), f64::from(p[2]))
                 + origin;
-            Ok([end.x, end.y, end.z])
+            [end.x, end.y, end.z]
         })
-        .collect()
+        .collect())
 }
+
+/// Least points of a parallel task that moves points into the world frame.
+const TASK_POINTS: usize = 8192;
 
 /// Radius of the near ground, metres: where the road still returns densely (beyond about 20 m a
 /// real HDL-64E, and the `urban` rung, lose most road returns at grazing incidence).

@@ -105,6 +105,26 @@ impl BoxReference {
     }
 }
 
+/// How far from `centroid_xy` the farthest of `points_xy` lies, metres (0 for no points).
+pub fn reach_m(points_xy: &[[f64; 2]], centroid_xy: [f64; 2]) -> f64 {
+    let far_sq = points_xy.iter().fold(0.0, |far: f64, p| {
+        let (dx, dy) = (p[0] - centroid_xy[0], p[1] - centroid_xy[1]);
+        far.max(dx * dx + dy * dy)
+    });
+    far_sq.sqrt()
+}
+
+/// How far from a cluster's centroid the point [`measured_centre`] gives can lie, for a cluster
+/// whose points lie within `cluster_reach_m` of its centroid ([`reach_m`]): along each of the
+/// box's axes its centre lies within half the box's extent beyond the cluster's span, and the
+/// span within the reach of the centroid; without a box (or heading) the point is the centroid.
+pub fn measured_reach_m(reference: Option<&BoxReference>, cluster_reach_m: f64) -> f64 {
+    reference.map_or(0.0, |r| {
+        let [along, across] = r.extent_m.map(|e| cluster_reach_m + 0.5 * e);
+        (along * along + across * across).sqrt()
+    })
+}
+
 /// The point of a cluster a track with the box `reference` measures: the box's centre on the
 /// cluster's points `outline_xy` with its axes along `heading_rad`; without a box, a heading or
 /// points, the cluster's centroid.

@@ -86,3 +86,31 @@ fn no_points_give_no_box() {
     let reference = after(1, &rear_and_side(10.0, 4.0), None);
     assert_eq!(reference.point(&[], 0.0), None);
 }
+
+#[test]
+fn the_measured_centre_lies_within_the_reach_the_tracker_gates_by() {
+    // Outlines of many shapes and boxes of many extents and headings.
+    for k in 0..200 {
+        let side_m = 0.25 * (k % 17) as f64;
+        let points: Vec<[f64; 2]> = rear_and_side(3.0 + 0.1 * k as f64, side_m)
+            .into_iter()
+            .map(|[x, y]| [x, y * (1.0 + 0.01 * (k % 7) as f64)])
+            .collect();
+        let centroid = [
+            points.iter().map(|p| p[0]).sum::<f64>() / points.len() as f64,
+            points.iter().map(|p| p[1]).sum::<f64>() / points.len() as f64,
+        ];
+        let heading = 0.13 * k as f64;
+        let seen = rear_and_side(0.0, 0.3 * (k % 23) as f64);
+        let previous = BoxReference::facing(&seen, [5.0, -4.0], heading, None);
+        let reference = BoxReference::facing(&points, [0.0, 0.0], heading, previous.as_ref());
+        let reach = measured_reach_m(reference.as_ref(), reach_m(&points, centroid));
+        let centre = measured_centre(reference.as_ref(), Some(heading), &points, centroid);
+        let off = (centre[0] - centroid[0]).hypot(centre[1] - centroid[1]);
+        assert!(
+            off <= reach + TOLERANCE_M,
+            "shape {k}: {off} m beyond a reach of {reach} m"
+        );
+    }
+    assert_eq!(measured_reach_m(None, 3.0), 0.0);
+}

@@ -94,9 +94,16 @@ pub fn nearest_centroid_matches(
     gate_m: f64,
 ) -> Vec<Option<usize>> {
     let mut pairs = Vec::new();
+    // Pairs surely beyond the gate by their squared distance (a margin far above its rounding)
+    // skip the slower `hypot` that sorts the rest: the same pairs.
+    let beyond_sq = gate_m * gate_m * (1.0 + 1e-9);
     for (pi, p) in previous.iter().enumerate() {
         for (ci, c) in current.iter().enumerate() {
-            let d = (p[0] - c[0]).hypot(p[1] - c[1]);
+            let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
+            if dx * dx + dy * dy > beyond_sq {
+                continue;
+            }
+            let d = dx.hypot(dy);
             if d <= gate_m {
                 pairs.push((d, pi, ci));
             }

@@ -84,6 +84,36 @@ impl CentroidGate {
     pub fn mahalanobis_sq(&self, centroid_xy: [f64; 2]) -> f64 {
         self.innovation(centroid_xy).mahalanobis_sq
     }
+
+    /// How far from the predicted centroid a point inside the gate of squared Mahalanobis
+    /// distance `chi2` can lie, metres: every point farther away lies beyond the gate, which
+    /// lets the tracker skip fitting a cluster's measured point where none of the cluster could
+    /// pass it. Conservative: a little wider than the gate's ellipse, and infinite when in doubt
+    /// (a covariance whose inverse as computed is not positive definite, a non-finite value).
+    pub fn reach_m(&self, chi2: f64) -> f64 {
+        // rᵀS⁻¹r ≥ λmin(S⁻¹)·|r|², with λmin of the symmetric part of the inverse as computed.
+        let m = &self.inverse;
+        let (a, d, b) = (m[(0, 0)], m[(1, 1)], 0.5 * (m[(0, 1)] + m[(1, 0)]));
+        let lambda_min = 0.5 * (a + d) - (0.25 * (a - d) * (a - d) + b * b).sqrt();
+        // A relative margin far above the rounding of either side.
+        let reach_m = (chi2 * (1.0 + 1e-6) / lambda_min).sqrt();
+        if lambda_min > 0.0 && reach_m.is_finite() {
+            reach_m
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Whether every point within `radius_m` of `centre_xy` lies farther than `reach_m` from
+    /// the predicted centroid (`false` for non-finite values).
+    pub fn beyond(&self, centre_xy: [f64; 2], radius_m: f64, reach_m: f64) -> bool {
+        let (dx, dy) = (
+            centre_xy[0] - self.predicted_xy.x,
+            centre_xy[1] - self.predicted_xy.y,
+        );
+        let near_m = radius_m + reach_m;
+        dx * dx + dy * dy > near_m * near_m
+    }
 }
 
 /// `S⁻¹`, or an error naming `noise` when `S` is singular.
@@ -120,6 +150,63 @@ mod tests {
         let (direct, _) =
             Innovation::with_inverse(Vector2::new(4.5, -1.25), covariance, "noise").unwrap();
         assert_eq!(gate.innovation([1.5, 3.75]), direct, "bit for bit");
+    }
+
+    #[test]
+    fn a_disk_the_gate_excludes_holds_no_point_inside_the_gate() {
+        let gate = CentroidGate::new(
+            Vector2::new(1.0, -2.0),
+            Matrix2::new(0.9, 0.35, 0.35, 0.3),
+            "noise",
+        )
+        .unwrap();
+        let chi2 = 9.21;
+        let (mut excluded, mut kept) = (0, 0);
+        for k in 0..400 {
+            let angle = 0.37 * k as f64;
+            let distance_m = 0.02 * k as f64;
+            let centre = [
+                1.0 + distance_m * angle.cos(),
+                -2.0 + distance_m * angle.sin(),
+            ];
+            let radius_m = 0.5 + 0.3 * (k % 5) as f64;
+            if !gate.beyond(centre, radius_m, gate.reach_m(chi2)) {
+                kept += 1;
+                continue;
+            }
+            excluded += 1;
+            // The disk's points on a polar lattice, its rim included: all outside the gate.
+            for i in 0..=8 {
+                for j in 0..32 {
+                    let (r, a) = (
+                        radius_m * i as f64 / 8.0,
+                        j as f64 * std::f64::consts::TAU / 32.0,
+                    );
+                    let p = [centre[0] + r * a.cos(), centre[1] + r * a.sin()];
+                    assert!(
+                        gate.mahalanobis_sq(p) > chi2,
+                        "disk {k}: {p:?} inside the gate"
+                    );
+                }
+            }
+        }
+        assert!(
+            excluded > 100 && kept > 20,
+            "excluded {excluded}, kept {kept}"
+        );
+    }
+
+    #[test]
+    fn a_disk_reaching_into_the_gate_or_not_finite_is_never_excluded() {
+        let gate = CentroidGate::new(Vector2::new(0.0, 0.0), Matrix2::identity(), "noise").unwrap();
+        let reach = gate.reach_m(9.0);
+        assert!((reach - 3.0).abs() < 1e-5, "{reach}");
+        // The nearest point of the disk at distance 2.9 < 3 = √9.
+        assert!(!gate.beyond([4.0, 0.0], 1.1, reach));
+        assert!(gate.beyond([4.0, 0.0], 0.9, reach));
+        assert!(!gate.beyond([f64::NAN, 0.0], 0.0, reach));
+        assert!(!gate.beyond([40.0, 0.0], f64::NAN, reach));
+        assert!(!gate.beyond([40.0, 0.0], 0.0, f64::INFINITY));
     }
 
     #[test]

@@ -30,7 +30,9 @@
 use patchflow_learn::ObjectEnd;
 
 use crate::error::EvalError;
-use crate::methods::baselines::box_reference::{BoxReference, measured_centre, next_box};
+use crate::methods::baselines::box_reference::{
+    BoxReference, measured_centre, measured_reach_m, next_box, reach_m,
+};
 use crate::methods::baselines::kalman::{ConstantVelocityKalman, KalmanParams};
 use crate::methods::baselines::reference_point::{
     Anchor, MIN_ANCHOR_SPEED_MPS, measured_point, next_reference,
@@ -225,6 +227,12 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
             })
             .collect::<Result<Vec<_>, EvalError>>()?;
         let mut candidates = Vec::new();
+        // How far each cluster's points lie from its centroid: a track without an anchor measures
+        // a point within reach of it (`box_reference`), so a cluster whose reach lies wholly
+        // beyond the gate needs no box fitted to it (the same pairs as fitting every one).
+        let cluster_reach_m: Vec<f64> = (0..centroids_xy.len())
+            .map(|ci| reach_m(outline_of(ci), centroids_xy[ci]))
+            .collect();
         // Each track's gate once per scan (none when there is no cluster to gate).
         let gated = if centroids_xy.is_empty() {
             &[][..]
@@ -233,7 +241,13 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
         };
         for (ti, track) in gated.iter().enumerate() {
             let gate = track.filter.centroid_gate()?;
+            let gate_reach_m = gate.reach_m(self.params.gate_chi2);
+            let box_now = track.reference.as_ref().filter(|_| headings[ti].is_some());
             for (ci, &new_track) in new_track_log_likelihood.iter().enumerate() {
+                let reach = measured_reach_m(box_now, cluster_reach_m[ci]);
+                if track.anchor.is_none() && gate.beyond(centroids_xy[ci], reach, gate_reach_m) {
+                    continue;
+                }
                 let point =
                     measured_point(track.anchor.as_ref(), centre(track, ti, ci), ends_of(ci));
                 let d2 = gate.mahalanobis_sq(point);
