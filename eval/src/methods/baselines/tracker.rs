@@ -244,9 +244,11 @@ impl<F: TrackFilter> MultiTargetTracker<F> {
             let gate_reach_m = gate.reach_m(self.params.gate_chi2);
             let box_now = track.reference.as_ref().filter(|_| headings[ti].is_some());
             for (ci, &new_track) in new_track_log_likelihood.iter().enumerate() {
-                let reach = measured_reach_m(box_now, cluster_reach_m[ci]);
-                if track.anchor.is_none() && gate.beyond(centroids_xy[ci], reach, gate_reach_m) {
-                    continue;
+                if track.anchor.is_none() {
+                    let reach = measured_reach_m(box_now, cluster_reach_m[ci]);
+                    if gate.beyond(centroids_xy[ci], reach, gate_reach_m) {
+                        continue;
+                    }
                 }
                 let point =
                     measured_point(track.anchor.as_ref(), centre(track, ti, ci), ends_of(ci));
